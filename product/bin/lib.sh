@@ -1,0 +1,34 @@
+# Shared shell functions of the ./sabot launcher and the product/bin/sabot-* commands. Source it; don't run it.
+# SABOT_ROOT is the repository root.
+SABOT_ROOT=${SABOT_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
+export SABOT_ROOT
+
+sabot_log() { printf '[sabot] %s\n' "$*" >&2; }
+sabot_die() { printf '[sabot] error: %s\n' "$*" >&2; exit 1; }
+
+# Major version of a java binary, e.g. 21 or 25 (0 when it does not run).
+sabot_java_major() {
+    local v
+    v=$("$1" -XshowSettings:properties -version 2>&1 | sed -n 's/^ *java\.specification\.version = //p')
+    echo "${v%%.*}" | grep -E '^[0-9]+$' || echo 0
+}
+
+# Prints the JAVA_HOME of a JDK >= 21: $SABOT_JAVA_HOME, $JAVA_HOME, $TEMURIN25_HOME, then /usr/lib/jvm/*
+# (newest first). Exits with the install command when there is none.
+sabot_java_home() {
+    local c
+    for c in "${SABOT_JAVA_HOME:-}" "${JAVA_HOME:-}" "${TEMURIN25_HOME:-}" $(ls -d /usr/lib/jvm/*/ 2>/dev/null | sort -rV); do
+        c=${c%/}
+        [ -n "$c" ] && [ -x "$c/bin/javac" ] || continue
+        if [ "$(sabot_java_major "$c/bin/java")" -ge 21 ]; then echo "$c"; return 0; fi
+    done
+    sabot_die "no JDK >= 21 found (looked at \$SABOT_JAVA_HOME, \$JAVA_HOME, \$TEMURIN25_HOME, /usr/lib/jvm/*).
+  Install one, e.g.:  apt-get install -y temurin-25-jdk   (Adoptium's Debian repository)
+  or point SABOT_JAVA_HOME at an unpacked JDK >= 21."
+}
+
+# Runs the Maven wrapper with the right JDK; extra arguments are passed through.
+sabot_mvn() {
+    local jh; jh=$(sabot_java_home) || exit 1
+    (cd "$SABOT_ROOT" && JAVA_HOME="$jh" ./mvnw -B -ntp "$@")
+}
