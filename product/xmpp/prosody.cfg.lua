@@ -1,0 +1,63 @@
+-- Private, loopback-only Prosody 0.12 instance for Sabot (./sabot xmpp, ./sabot demo and the JUnit fixture
+-- sabot.testsupport.xmpp.PrivateXmppServer). Never start Prosody without --config pointing here.
+-- Everything comes from the environment (Prosody's ENV_<name> globals; Lua's os.getenv is not reachable):
+--   SABOT_XMPP_RUN        absolute state directory (a relative one makes Prosody 0.12.3 hang on start)
+--   SABOT_C2S_PORT        client port on 127.0.0.1 (default 15222)
+--   SABOT_RUN_AS_ROOT=1   needed when started by root, or Prosody refuses and hangs
+--   SABOT_ARCHIVE_STORE   "memory" for tests (the file archive caps a chatting pair at ~600 msgs/s)
+--   SABOT_DOMAIN, SABOT_DOMAIN2  the two virtual hosts (default sabot.local, sabot2.local)
+local run = ENV_SABOT_XMPP_RUN or error("SABOT_XMPP_RUN is not set")
+local c2s_port = (ENV_SABOT_C2S_PORT or "15222") + 0
+
+run_as_root = (ENV_SABOT_RUN_AS_ROOT == "1")
+data_path = run .. "/data"
+pidfile   = run .. "/prosody.pid"
+certificates = run .. "/certs"      -- a self-signed sabot.local.crt/.key here turns STARTTLS on
+log = { { levels = { min = ENV_SABOT_XMPP_LOGLEVEL or "info" }, to = "file", filename = run .. "/prosody.log" } }
+
+-- loopback only, non-default port, no s2s, no http
+interfaces = { "127.0.0.1" }
+local_interfaces = { "127.0.0.1" }
+c2s_ports = { c2s_port }
+c2s_direct_tls_ports = { }
+legacy_ssl_ports = { }
+s2s_ports = { }
+s2s_direct_tls_ports = { }
+modules_disabled = { "s2s", "s2s_auth_certs" }
+
+c2s_require_encryption = false
+s2s_require_encryption = false
+allow_unencrypted_plain_auth = true
+authentication = "internal_hashed"
+storage = { archive = ENV_SABOT_ARCHIVE_STORE or "internal" }
+
+-- Prosody defaults to Nagle on; with delayed ACKs that costs ~40 ms per request on loopback
+network_settings = { nagle = false }
+
+-- XEP-0077 in-band registration, unthrottled (devices register themselves; tests create many accounts)
+allow_registration = true
+min_seconds_between_registrations = 0
+registration_throttle_max = 0
+
+-- XEP-0313 MAM: archive chat by default
+default_archive_policy = true
+archive_expires_after = "1d"
+max_archive_query_results = 250
+
+-- XEP-0198 stream management: sessions survive a dropped socket this long
+smacks_hibernation_time = 60
+
+modules_enabled = {
+    "roster"; "saslauth"; "disco"; "ping"; "time"; "version"; "uptime";
+    "tls"; "private"; "blocklist"; "carbons";
+    "register";      -- XEP-0077
+    "pep";           -- XEP-0163
+    "vcard";         -- XEP-0054 vcard-temp, stored verbatim (vcard_legacy converts to vCard4 and drops
+                     -- DESC, ROLE, GEO...: device identity needs every field back as it was written)
+    "mam";           -- XEP-0313
+    "smacks";        -- XEP-0198
+    "offline";       -- XEP-0160 offline storage with XEP-0203 delay stamps
+}
+
+VirtualHost (ENV_SABOT_DOMAIN or "sabot.local")
+VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests

@@ -1,0 +1,178 @@
+package sabot.xmpp.tests;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.lang.reflect.Field;
+import java.net.Socket;
+import java.util.concurrent.ArrayBlockingQueue;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+import org.jivesoftware.smack.XMPPException;
+import org.jivesoftware.smack.chat2.ChatManager;
+import org.jivesoftware.smack.packet.ExtensionElement;
+import org.jivesoftware.smack.packet.Message;
+import org.jivesoftware.smack.packet.XmlEnvironment;
+import org.jivesoftware.smack.packet.StanzaError.Condition;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.RosterEntry;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.pep.PepManager;
+import org.jivesoftware.smackx.pubsub.PayloadItem;
+import org.jivesoftware.smackx.pubsub.SimplePayload;
+import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jivesoftware.smackx.vcardtemp.packet.VCard;
+import org.junit.jupiter.api.Test;
+import org.jxmpp.jid.EntityBareJid;
+
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * What every later feature relies on, proven with Smack inside OSGi against a real private server: login, chat,
+ * vCard, PEP, in-band registration conflicts and stream-management resumption. Subclasses pick the server.
+ */
+abstract class SmackSmokeTest {
+
+    private static final long TIMEOUT_S = 10;
+
+    protected abstract PrivateXmppServer server();
+
+    @Test
+    void twoClientsExchangeAChatMessage() throws Exception {
+        XMPPTCPConnection alice = server().login("alice-chat");
+        XMPPTCPConnection bob = server().login("bob-chat");
+        BlockingQueue<Message> received = new ArrayBlockingQueue<>(1);
+        ChatManager.getInstanceFor(bob).addIncomingListener((from, message, chat) -> received.offer(message));
+
+        ChatManager.getInstanceFor(alice).chatWith(bob.getUser().asEntityBareJid()).send("hello bob");
+
+        Message m = received.poll(TIMEOUT_S, TimeUnit.SECONDS);
+        assertNotNull(m, "bob received nothing");
+        assertEquals("hello bob", m.getBody());
+        assertEquals(alice.getUser().asEntityBareJid(), m.getFrom().asEntityBareJidIfPossible());
+    }
+
+    @Test
+    void vcardIsStoredAndFetchedByAnotherClient() throws Exception {
+        XMPPTCPConnection robot = server().login("robot-vcard");
+        XMPPTCPConnection workbench = server().login("wb-vcard");
+        VCard card = new VCard();
+        card.setField("DESC", "mobile robot");
+        card.setNickName("sabot-01");
+        card.setOrganization("Sabot");
+        byte[] png = { (byte) 0x89, 'P', 'N', 'G', 13, 10, 26, 10, 1, 2, 3, 4 };
+        card.setAvatar(png, "image/png");
+        VCardManager.getInstanceFor(robot).saveVCard(card);
+
+        VCard fetched = VCardManager.getInstanceFor(workbench).loadVCard(robot.getUser().asEntityBareJid());
+
+        assertEquals("mobile robot", fetched.getField("DESC"));
+        assertEquals("Sabot", fetched.getOrganization());
+        assertEquals("sabot-01", fetched.getNickName());
+        assertArrayEquals(png, fetched.getAvatar());
+        assertEquals("image/png", fetched.getAvatarMimeType());
+    }
+
+    @Test
+    void pepItemReachesASubscribedContact() throws Exception {
+        String node = "urn:sabot:smoke:telemetry";
+        XMPPTCPConnection robot = server().login("robot-pep");
+        // +notify must be in the subscriber's entity caps before it logs in, so build its connection by hand.
+        server().register("wb-pep", PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        XMPPTCPConnection workbench = new XMPPTCPConnection(server().configuration("wb-pep", PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).build());
+        BlockingQueue<String> events = new ArrayBlockingQueue<>(4);
+        PepManager.getInstanceFor(workbench).addPepEventListener(node, SimplePayload.class,
+                (from, payload, id, message) -> events.offer(from.asEntityBareJidString() + "|"
+                        + ((ExtensionElement) payload).toXML(XmlEnvironment.EMPTY)));
+        workbench.connect().login();
+        try {
+            befriend(robot, workbench);
+            PepManager.getInstanceFor(robot).publish(node, new PayloadItem<>("pose-1",
+                    new SimplePayload("<pose xmlns='urn:sabot:smoke'>1 2 0.5</pose>")));
+
+            String event = events.poll(TIMEOUT_S, TimeUnit.SECONDS);
+            assertNotNull(event, "no PEP notification");
+            assertTrue(event.startsWith(robot.getUser().asEntityBareJidString() + "|"), event);
+            assertTrue(event.contains("1 2 0.5"), event);
+        } finally {
+            workbench.disconnect();
+        }
+    }
+
+    @Test
+    void registeringATakenJidIsRefusedWithConflict() throws Exception {
+        server().register("robot-taken", PrivateXmppServer.DOMAIN, "first");
+        XMPPException.XMPPErrorException refused = assertThrows(XMPPException.XMPPErrorException.class,
+                () -> server().register("robot-taken", PrivateXmppServer.DOMAIN, "second"));
+        assertEquals(Condition.conflict, refused.getStanzaError().getCondition());
+    }
+
+    @Test
+    void connectionsUseTcpNoDelay() throws Exception {
+        XMPPTCPConnection alice = server().login("alice-nodelay");
+        assertTrue(socketOf(alice).getTcpNoDelay(), "Smack's socket has Nagle on: requests stall ~40 ms");
+    }
+
+    @Test
+    void streamIsResumedAfterTheSocketDiesAndQueuedMessageArrives() throws Exception {
+        XMPPTCPConnection.setUseStreamManagementDefault(true);
+        XMPPTCPConnection.setUseStreamManagementResumptionDefault(true);
+        XMPPTCPConnection robot = server().login("robot-sm");
+        XMPPTCPConnection workbench = server().login("wb-sm");
+        assertTrue(robot.isSmEnabled(), "stream management not enabled");
+        BlockingQueue<Message> received = new ArrayBlockingQueue<>(4);
+        ChatManager.getInstanceFor(robot).addIncomingListener((from, message, chat) -> received.offer(message));
+
+        socketOf(robot).close(); // the network drops: no closing stream element is sent
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        while (robot.isConnected() && System.nanoTime() < deadline) {
+            Thread.onSpinWait(); // Smack's reader thread notices the closed socket asynchronously
+        }
+        assertFalse(robot.isConnected());
+        assertTrue(robot.isDisconnectedButSmResumptionPossible());
+
+        ChatManager.getInstanceFor(workbench).chatWith(robot.getUser().asEntityBareJid()).send("while you were away");
+        robot.connect();
+        robot.login();
+
+        assertTrue(robot.streamWasResumed(), "stream was not resumed");
+        Message m = received.poll(TIMEOUT_S, TimeUnit.SECONDS);
+        assertNotNull(m, "the message sent during the outage was lost");
+        assertEquals("while you were away", m.getBody());
+    }
+
+    private static void befriend(XMPPTCPConnection a, XMPPTCPConnection b) throws Exception {
+        Roster ra = Roster.getInstanceFor(a);
+        Roster rb = Roster.getInstanceFor(b);
+        ra.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
+        rb.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
+        EntityBareJid ja = a.getUser().asEntityBareJid();
+        EntityBareJid jb = b.getUser().asEntityBareJid();
+        ra.createItemAndRequestSubscription(jb, "b", null);
+        rb.createItemAndRequestSubscription(ja, "a", null);
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        while (System.nanoTime() < deadline) {
+            RosterEntry ea = ra.getEntry(jb);
+            RosterEntry eb = rb.getEntry(ja);
+            if (ea != null && eb != null && ea.canSeeHisPresence() && eb.canSeeHisPresence()
+                    && ra.getPresence(jb).isAvailable()) {
+                return;
+            }
+            ra.reloadAndWait();
+            rb.reloadAndWait();
+        }
+        throw new AssertionError("mutual subscription not established within " + TIMEOUT_S + " s");
+    }
+
+    private static Socket socketOf(XMPPTCPConnection connection) throws ReflectiveOperationException {
+        Field f = XMPPTCPConnection.class.getDeclaredField("socket");
+        f.setAccessible(true);
+        return (Socket) f.get(connection);
+    }
+}
