@@ -1,0 +1,223 @@
+package sabot.onboard.internal;
+
+import java.io.IOException;
+import java.net.URI;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.util.ArrayList;
+import java.util.Hashtable;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+
+import org.eclipse.equinox.app.IApplication;
+import org.eclipse.equinox.app.IApplicationContext;
+import org.osgi.framework.Bundle;
+import org.osgi.framework.BundleContext;
+import org.osgi.framework.FrameworkUtil;
+import org.osgi.framework.ServiceReference;
+import org.osgi.service.cm.Configuration;
+import org.osgi.service.cm.ConfigurationAdmin;
+import org.osgi.service.component.runtime.ServiceComponentRuntime;
+import org.osgi.service.metatype.MetaTypeService;
+import org.osgi.util.tracker.ServiceTracker;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.onboard.task.OnboardTask;
+
+/**
+ * The robot's headless application: reads the configuration file, starts the tasks it enables, runs until SIGTERM
+ * (or SIGINT, or {@link #stop()}), then stops the tasks and exits with status 0.
+ * <p>
+ * Exit statuses: 0 after a clean stop; 2 for a configuration error (one log line naming the file, line and key);
+ * 3 when an enabled task did not start.
+ */
+public final class OnboardApplication implements IApplication {
+
+    /** Exit status for an invalid configuration file. */
+    public static final Integer EXIT_CONFIG_ERROR = 2;
+    /** Exit status when an enabled task fails to start. */
+    public static final Integer EXIT_TASK_FAILED = 3;
+    /** System property naming the configuration file (the {@code -config FILE} argument wins). */
+    public static final String CONFIG_PROPERTY = "sabot.onboard.config";
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.onboard");
+    private static final long TASK_START_TIMEOUT_S = 20;
+    private static final long SERVICE_TIMEOUT_S = 20;
+
+    private final CountDownLatch stopRequested = new CountDownLatch(1);
+
+    @Override
+    public Object start(IApplicationContext context) throws Exception {
+        Bundle bundle = FrameworkUtil.getBundle(getClass());
+        BundleContext bc = bundle.getBundleContext();
+        String version = bundle.getVersion().toString();
+        String[] args = (String[]) context.getArguments().getOrDefault(IApplicationContext.APPLICATION_ARGS,
+                new String[0]);
+        Path file = configFile(args);
+        LOG.info("Sabot Onboard {} starting (Java {}), configuration {}", version, Runtime.version(), file);
+
+        ServiceComponentRuntime scr = await(bc, ServiceComponentRuntime.class);
+        MetaTypeService metaType = await(bc, MetaTypeService.class);
+        ConfigurationAdmin configAdmin = await(bc, ConfigurationAdmin.class);
+        if (scr == null || metaType == null || configAdmin == null) {
+            LOG.error("the OSGi runtime is incomplete: Declarative Services, Metatype or Config Admin is missing");
+            return EXIT_TASK_FAILED;
+        }
+
+        Map<String, Map<String, SettingSpec>> catalog = OsgiTaskCatalog.read(bc, scr, metaType);
+        OnboardConfigFile config;
+        Map<String, Hashtable<String, Object>> enabled;
+        try {
+            config = OnboardConfigFile.read(file);
+            enabled = TaskSettings.resolve(config, catalog);
+        } catch (ConfigError e) {
+            LOG.error("configuration error: {}", e.getMessage());
+            return EXIT_CONFIG_ERROR;
+        }
+        String robot = config.robotName("unnamed");
+        installSignalHandlers();
+        context.applicationRunning();
+
+        Set<String> running = ConcurrentHashMap.newKeySet();
+        Object progress = new Object();
+        ServiceTracker<OnboardTask, OnboardTask> tracker = new ServiceTracker<>(bc, OnboardTask.class, null) {
+            @Override
+            public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
+                OnboardTask task = super.addingService(reference);
+                synchronized (progress) {
+                    running.add(task.name());
+                    progress.notifyAll();
+                }
+                return task;
+            }
+
+            @Override
+            public void removedService(ServiceReference<OnboardTask> reference, OnboardTask task) {
+                running.remove(task.name());
+                super.removedService(reference, task);
+            }
+        };
+        tracker.open();
+        try {
+            applyTaskConfigurations(configAdmin, catalog.keySet(), enabled);
+            List<String> missing = awaitTasks(enabled.keySet(), running, progress);
+            if (!missing.isEmpty()) {
+                LOG.error("task(s) {} did not start within {} s; see the errors above", missing,
+                        TASK_START_TIMEOUT_S);
+                return EXIT_TASK_FAILED;
+            }
+            LOG.info("Sabot Onboard {} running as '{}': {} task(s) loaded: {}", version, robot, enabled.size(),
+                    enabled.isEmpty() ? "none" : String.join(", ", enabled.keySet()));
+            stopRequested.await();
+            LOG.info("Sabot Onboard stopping");
+            return IApplication.EXIT_OK;
+        } finally {
+            for (String task : enabled.keySet()) {
+                deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);
+            }
+            tracker.close();
+            LOG.info("Sabot Onboard stopped");
+        }
+    }
+
+    @Override
+    public void stop() {
+        stopRequested.countDown();
+    }
+
+    /** The file named by {@code -config FILE}, else the system property, else etc/onboard.conf of the install. */
+    static Path configFile(String[] args) {
+        for (int i = 0; i < args.length - 1; i++) {
+            if (args[i].equals("-config") || args[i].equals("--config")) {
+                return Paths.get(args[i + 1]).toAbsolutePath();
+            }
+        }
+        String property = System.getProperty(CONFIG_PROPERTY);
+        if (property != null && !property.isBlank()) {
+            return Paths.get(property).toAbsolutePath();
+        }
+        String home = System.getProperty("eclipse.home.location");
+        Path base = home != null && home.startsWith("file:") ? Paths.get(URI.create(home.replace(" ", "%20")))
+                : Paths.get("");
+        return base.resolve("etc/onboard.conf").toAbsolutePath();
+    }
+
+    /**
+     * Enabled tasks get their configuration (DS then activates them); installed but disabled tasks lose any
+     * configuration left from an earlier run (Config Admin persists configurations across restarts).
+     */
+    private static void applyTaskConfigurations(ConfigurationAdmin configAdmin, Set<String> installed,
+            Map<String, Hashtable<String, Object>> enabled) throws IOException {
+        for (String task : installed) {
+            String pid = OnboardTask.PID_PREFIX + task;
+            if (enabled.containsKey(task)) {
+                configAdmin.getConfiguration(pid, "?").update(enabled.get(task));
+            } else {
+                deleteConfiguration(configAdmin, pid);
+            }
+        }
+    }
+
+    private static void deleteConfiguration(ConfigurationAdmin configAdmin, String pid) {
+        try {
+            Configuration[] existing = configAdmin.listConfigurations("(service.pid=" + pid + ")");
+            if (existing != null) {
+                for (Configuration c : existing) {
+                    c.delete();
+                }
+            }
+        } catch (IOException | org.osgi.framework.InvalidSyntaxException e) {
+            LOG.warn("could not delete the configuration of {}: {}", pid, e.toString());
+        }
+    }
+
+    private static List<String> awaitTasks(Set<String> expected, Set<String> running, Object progress)
+            throws InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TASK_START_TIMEOUT_S);
+        synchronized (progress) {
+            while (!running.containsAll(expected)) {
+                long left = deadline - System.nanoTime();
+                if (left <= 0) {
+                    break;
+                }
+                TimeUnit.NANOSECONDS.timedWait(progress, left);
+            }
+        }
+        List<String> missing = new ArrayList<>(expected);
+        missing.removeAll(running);
+        return missing;
+    }
+
+    private static <S> S await(BundleContext bc, Class<S> type) throws InterruptedException {
+        ServiceTracker<S, S> t = new ServiceTracker<>(bc, type, null);
+        t.open();
+        try {
+            return t.waitForService(TimeUnit.SECONDS.toMillis(SERVICE_TIMEOUT_S));
+        } finally {
+            t.close();
+        }
+    }
+
+    /**
+     * SIGTERM (service managers, {@code kill}) and SIGINT (Ctrl-C) request an orderly stop instead of the JVM's
+     * default of running shutdown hooks and exiting with 143/130: tasks are deactivated, then the launcher exits 0.
+     */
+    @SuppressWarnings("restriction")
+    private void installSignalHandlers() {
+        for (String name : new String[] { "TERM", "INT" }) {
+            try {
+                sun.misc.Signal.handle(new sun.misc.Signal(name), signal -> {
+                    LOG.info("received SIG{}", signal.getName());
+                    stop();
+                });
+            } catch (IllegalArgumentException unsupported) {
+                LOG.warn("cannot handle SIG{} on this platform: {}", name, unsupported.getMessage());
+            }
+        }
+    }
+}

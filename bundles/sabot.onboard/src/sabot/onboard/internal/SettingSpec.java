@@ -1,0 +1,109 @@
+package sabot.onboard.internal;
+
+import java.util.Locale;
+
+import org.eclipse.equinox.metatype.EquinoxAttributeDefinition;
+import org.osgi.service.metatype.AttributeDefinition;
+
+/**
+ * What a task accepts for one setting: its type and bounds, as declared in the task's Metatype description.
+ *
+ * @param id   the setting's id (the part after {@code <task>.} in the configuration file)
+ * @param type one of {@link AttributeDefinition#INTEGER}, {@link AttributeDefinition#LONG},
+ *             {@link AttributeDefinition#DOUBLE}, {@link AttributeDefinition#BOOLEAN},
+ *             {@link AttributeDefinition#STRING}
+ * @param min  inclusive lower bound for numbers, or null
+ * @param max  inclusive upper bound for numbers, or null
+ */
+public record SettingSpec(String id, int type, Double min, Double max) {
+
+    /** @return the spec of a Metatype attribute definition (bounds read through Equinox's extension) */
+    public static SettingSpec of(AttributeDefinition ad) {
+        Double min = null;
+        Double max = null;
+        if (ad instanceof EquinoxAttributeDefinition eq) {
+            min = parseBound(eq.getMin());
+            max = parseBound(eq.getMax());
+        }
+        return new SettingSpec(ad.getID(), ad.getType(), min, max);
+    }
+
+    private static Double parseBound(String bound) {
+        if (bound == null || bound.isBlank()) {
+            return null;
+        }
+        try {
+            return Double.valueOf(bound.strip());
+        } catch (NumberFormatException e) {
+            return null; // a non-numeric bound (string length) does not apply to numbers
+        }
+    }
+
+    /**
+     * Converts a value as written in the file into the type the task's configuration expects.
+     *
+     * @throws IllegalArgumentException with a message for the operator when the value does not fit
+     */
+    public Object convert(String text) {
+        String v = text.strip();
+        Object value;
+        switch (type) {
+            case AttributeDefinition.INTEGER, AttributeDefinition.LONG -> {
+                long n;
+                try {
+                    n = Long.parseLong(v);
+                } catch (NumberFormatException e) {
+                    throw new IllegalArgumentException("'" + v + "' is not an integer");
+                }
+                checkRange(n, v);
+                if (type == AttributeDefinition.LONG) {
+                    value = Long.valueOf(n); // (a ?: between Integer and Long would unbox and widen to Long)
+                } else if (n < Integer.MIN_VALUE || n > Integer.MAX_VALUE) {
+                    throw new IllegalArgumentException("'" + v + "' is out of the integer range");
+                } else {
+                    value = Integer.valueOf((int) n);
+                }
+            }
+            case AttributeDefinition.DOUBLE, AttributeDefinition.FLOAT -> {
+                double d;
+                try {
+                    d = Double.parseDouble(v);
+                } catch (NumberFormatException e) {
+                    throw new IllegalArgumentException("'" + v + "' is not a number");
+                }
+                if (!Double.isFinite(d)) {
+                    throw new IllegalArgumentException("'" + v + "' is not a finite number");
+                }
+                checkRange(d, v);
+                if (type == AttributeDefinition.DOUBLE) {
+                    value = Double.valueOf(d);
+                } else {
+                    value = Float.valueOf((float) d);
+                }
+            }
+            case AttributeDefinition.BOOLEAN -> {
+                String b = v.toLowerCase(Locale.ROOT);
+                if (!b.equals("true") && !b.equals("false")) {
+                    throw new IllegalArgumentException("'" + v + "' is not true or false");
+                }
+                value = Boolean.valueOf(b);
+            }
+            case AttributeDefinition.STRING -> value = v;
+            default -> throw new IllegalArgumentException("setting type " + type + " is not supported in the file");
+        }
+        return value;
+    }
+
+    private void checkRange(double n, String text) {
+        if (min != null && n < min) {
+            throw new IllegalArgumentException("'" + text + "' is below the minimum " + fmt(min));
+        }
+        if (max != null && n > max) {
+            throw new IllegalArgumentException("'" + text + "' is above the maximum " + fmt(max));
+        }
+    }
+
+    private static String fmt(double d) {
+        return d == Math.rint(d) ? Long.toString((long) d) : Double.toString(d);
+    }
+}

@@ -1,0 +1,24 @@
+package sabot.onboard.task;
+
+/**
+ * A unit of robot work that the onboard product starts when its configuration file enables it (planner,
+ * tracker, localizer, Modbus master, diagnostics...).
+ * <p>
+ * A task is a Declarative Services component named {@code sabot.task.<name>} with
+ * {@code configuration-policy = REQUIRE} that provides this service: the onboard application creates the
+ * component's configuration (PID = component name) from the file's {@code <name>.<setting>} keys when the task is
+ * listed in {@code tasks}, and deletes it otherwise, so DS activates exactly the configured tasks. The settings a
+ * task accepts, with types and ranges, are declared in an OSGi Metatype description for that PID; the file is
+ * checked against it before anything starts.
+ */
+public interface OnboardTask {
+
+    /** Prefix of every task's component name and configuration PID. */
+    String PID_PREFIX = "sabot.task.";
+
+    /** @return the task's name as written in the configuration file, e.g. {@code heartbeat}; never null */
+    String name();
+
+    /** @return a one-line human-readable state of the task, e.g. for an operator's task list; never null */
+    String status();
+}
