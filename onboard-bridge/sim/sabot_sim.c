@@ -1,0 +1,466 @@
+/*
+ * sabot-sim: SabotOne robots on a host. Each robot's RS-485 bus appears as a
+ * pseudo-terminal (symlinked to a stable name) and as Modbus RTU framing over TCP on
+ * loopback; the first line on stdout is JSON naming them. Stops on SIGTERM/SIGINT.
+ *
+ * Time: the simulation advances in control periods of 50 us. It is locked to the
+ * wall clock times a speed factor (1 = real time, for live use), or free-running
+ * in --bench. Everything random derives from --seed.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <getopt.h>
+#include <limits.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "robot.h"
+
+#define MAX_ROBOTS 16
+#define MAX_CLIENTS 8          /* TCP connections per robot */
+#define SLICE_STEPS 20         /* 1 ms of simulated time between I/O checks */
+#define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
+
+typedef struct {
+    int pty_master, pty_slave;
+    char pty_path[128], link_path[PATH_MAX];
+    int listen_fd, tcp_port;
+    int client[MAX_CLIENTS];
+} transports_t;
+
+typedef struct {
+    const char *map_path;
+    double start_x, start_y, start_theta;
+    bool start_given;
+    uint64_t seed;
+    double speed;
+    int tcp_port;               /* -1: no TCP */
+    int robots;
+    bus_faults_t faults;
+    double gear_ratio, track;
+    const char *truth_path;
+    const char *link_prefix;
+    double duration;            /* simulated seconds, 0 = until signalled */
+    bool bench;
+    double bench_seconds;
+} options_t;
+
+static volatile sig_atomic_t stop_requested;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* Files shipped beside the binary: <source>/maps, <repo>/docs. Resolved from the
+ * executable's location so a moved checkout still finds them. */
+static void source_path(char *out, size_t len, const char *relative)
+{
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = '\0';   /* .../onboard-bridge/build */
+            char joined[2 * PATH_MAX], resolved[PATH_MAX];
+            snprintf(joined, sizeof joined, "%s/../%s", exe, relative);
+            if (realpath(joined, resolved)) {
+                snprintf(out, len, "%s", resolved);
+                return;
+            }
+        }
+    }
+    snprintf(out, len, "%s/%s", SABOT_SOURCE_DIR, relative);
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: sabot-sim [options]\n"
+            "  --map FILE.yaml        ROS map_server map (default maps/lab.yaml)\n"
+            "  --start X,Y,THETA      start pose of robot 1 in m, m, rad; others 0.8 m apart in y\n"
+            "  --seed N               seed of every random process (default 1)\n"
+            "  --speed F              simulated seconds per wall second (default 1)\n"
+            "  --realtime             same as --speed 1\n"
+            "  --tcp PORT             Modbus RTU over TCP on 127.0.0.1:PORT+i (0 = any free port)\n"
+            "  --robots N             robots in this process, each with its own bus (default 1)\n"
+            "  --fault-crc P          probability that an answer's CRC is corrupted\n"
+            "  --fault-drop P         probability that an answer is lost\n"
+            "  --fault-latency MS     extra delay before each answer\n"
+            "  --gear-ratio R         gearhead ratio (default 43; the sizing chapter used 66)\n"
+            "  --track M              distance between the wheels (default 0.40)\n"
+            "  --truth FILE.csv       ground truth at 100 Hz\n"
+            "  --link PREFIX          pty symlinks PREFIX1..N (default /tmp/sabot-robot)\n"
+            "  --duration S           stop after S simulated seconds\n"
+            "  --bench [S]            run one robot flat out for S simulated s (default 20), print JSON\n"
+            "  --map-file             print the path of the Modbus register map and exit\n");
+}
+
+static int parse_options(int argc, char **argv, options_t *o)
+{
+    enum { O_MAP = 256, O_START, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
+           O_GEAR, O_TRACK, O_TRUTH, O_LINK, O_DURATION, O_BENCH, O_MAPFILE, O_HELP };
+    static const struct option longopts[] = {
+        { "map", required_argument, 0, O_MAP },        { "start", required_argument, 0, O_START },
+        { "seed", required_argument, 0, O_SEED },      { "speed", required_argument, 0, O_SPEED },
+        { "realtime", no_argument, 0, O_REALTIME },    { "tcp", required_argument, 0, O_TCP },
+        { "robots", required_argument, 0, O_ROBOTS },  { "fault-crc", required_argument, 0, O_CRC },
+        { "fault-drop", required_argument, 0, O_DROP }, { "fault-latency", required_argument, 0, O_LATENCY },
+        { "gear-ratio", required_argument, 0, O_GEAR }, { "track", required_argument, 0, O_TRACK },
+        { "truth", required_argument, 0, O_TRUTH },    { "link", required_argument, 0, O_LINK },
+        { "duration", required_argument, 0, O_DURATION }, { "bench", optional_argument, 0, O_BENCH },
+        { "map-file", no_argument, 0, O_MAPFILE },     { "help", no_argument, 0, O_HELP },
+        { 0, 0, 0, 0 },
+    };
+    int c;
+    char *end;
+    while ((c = getopt_long(argc, argv, "", longopts, NULL)) != -1) {
+        switch (c) {
+        case O_MAP: o->map_path = optarg; break;
+        case O_START:
+            if (sscanf(optarg, "%lf,%lf,%lf", &o->start_x, &o->start_y, &o->start_theta) != 3) {
+                fprintf(stderr, "sabot-sim: --start wants X,Y,THETA\n");
+                return -1;
+            }
+            o->start_given = true;
+            break;
+        case O_SEED: o->seed = strtoull(optarg, &end, 10); break;
+        case O_SPEED:
+            o->speed = strtod(optarg, &end);
+            if (*end || !(o->speed > 0)) {
+                fprintf(stderr, "sabot-sim: --speed wants a positive number\n");
+                return -1;
+            }
+            break;
+        case O_REALTIME: o->speed = 1.0; break;
+        case O_TCP: o->tcp_port = atoi(optarg); break;
+        case O_ROBOTS:
+            o->robots = atoi(optarg);
+            if (o->robots < 1 || o->robots > MAX_ROBOTS) {
+                fprintf(stderr, "sabot-sim: --robots wants 1..%d\n", MAX_ROBOTS);
+                return -1;
+            }
+            break;
+        case O_CRC: o->faults.crc_error_rate = atof(optarg); break;
+        case O_DROP: o->faults.drop_rate = atof(optarg); break;
+        case O_LATENCY: o->faults.latency_us = (uint32_t)(atof(optarg) * 1000.0); break;
+        case O_GEAR: o->gear_ratio = atof(optarg); break;
+        case O_TRACK: o->track = atof(optarg); break;
+        case O_TRUTH: o->truth_path = optarg; break;
+        case O_LINK: o->link_prefix = optarg; break;
+        case O_DURATION: o->duration = atof(optarg); break;
+        case O_BENCH:
+            o->bench = true;
+            if (optarg)
+                o->bench_seconds = atof(optarg);
+            else if (optind < argc && strtod(argv[optind], &end) > 0 && *end == '\0')
+                o->bench_seconds = strtod(argv[optind++], &end);
+            break;
+        case O_MAPFILE: {
+            char path[PATH_MAX];
+            source_path(path, sizeof path, "../docs/sact-modbus-map.json");
+            printf("%s\n", path);
+            exit(0);
+        }
+        case O_HELP: usage(stdout); exit(0);
+        default: usage(stderr); return -1;
+        }
+    }
+    if (optind < argc) {
+        usage(stderr);
+        return -1;
+    }
+    return 0;
+}
+
+static int open_pty(transports_t *t, int id, const char *prefix)
+{
+    t->pty_master = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (t->pty_master < 0 || grantpt(t->pty_master) || unlockpt(t->pty_master))
+        return -1;
+    snprintf(t->pty_path, sizeof t->pty_path, "%s", ptsname(t->pty_master));
+    /* Hold the slave open: without it the master reads EIO between client sessions.
+     * Raw mode, so nothing echoes or translates before a client sets its own. */
+    t->pty_slave = open(t->pty_path, O_RDWR | O_NOCTTY);
+    if (t->pty_slave < 0)
+        return -1;
+    struct termios tio;
+    tcgetattr(t->pty_slave, &tio);
+    cfmakeraw(&tio);
+    tcsetattr(t->pty_slave, TCSANOW, &tio);
+    snprintf(t->link_path, sizeof t->link_path, "%s%d", prefix, id);
+    unlink(t->link_path);
+    if (symlink(t->pty_path, t->link_path)) {
+        fprintf(stderr, "sabot-sim: cannot link %s: %s\n", t->link_path, strerror(errno));
+        t->link_path[0] = '\0';
+    }
+    return 0;
+}
+
+static int open_tcp(transports_t *t, int port)
+{
+    t->listen_fd = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    int one = 1;
+    setsockopt(t->listen_fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    struct sockaddr_in a = { .sin_family = AF_INET, .sin_port = htons((uint16_t)port),
+                             .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
+    if (bind(t->listen_fd, (struct sockaddr *)&a, sizeof a) || listen(t->listen_fd, 4))
+        return -1;
+    socklen_t len = sizeof a;
+    getsockname(t->listen_fd, (struct sockaddr *)&a, &len);
+    t->tcp_port = ntohs(a.sin_port);
+    return 0;
+}
+
+/* Port ids on a robot's bus: 0 = pty, 1 + k = TCP client k. */
+static int port_fd(const transports_t *t, int port) { return port == 0 ? t->pty_master : t->client[port - 1]; }
+
+static void flush_answers(robot_t *r, transports_t *t)
+{
+    bus_frame_t f;
+    while (robot_bus_take(r, &f)) {
+        int fd = f.port >= 0 ? port_fd(t, f.port) : -1;
+        if (fd >= 0 && write(fd, f.data, f.len) < 0 && errno != EAGAIN)
+            fprintf(stderr, "sabot-sim: robot %d: write: %s\n", r->cfg.id, strerror(errno));
+    }
+}
+
+static void read_requests(robot_t *r, transports_t *t, struct pollfd *pfd)
+{
+    uint8_t buf[512];
+    if (pfd[0].revents & POLLIN) {
+        ssize_t n = read(t->pty_master, buf, sizeof buf);
+        if (n > 0)
+            robot_bus_write(r, 0, buf, (size_t)n);
+    }
+    if (t->listen_fd >= 0 && (pfd[1].revents & POLLIN)) {
+        int fd = accept4(t->listen_fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+        for (int k = 0; fd >= 0 && k < MAX_CLIENTS; k++) {
+            if (t->client[k] < 0) {
+                t->client[k] = fd;
+                fd = -1;
+            }
+        }
+        if (fd >= 0)
+            close(fd);   /* all client slots taken */
+    }
+    for (int k = 0; k < MAX_CLIENTS; k++) {
+        if (t->client[k] < 0 || !(pfd[2 + k].revents & (POLLIN | POLLHUP | POLLERR)))
+            continue;
+        ssize_t n = read(t->client[k], buf, sizeof buf);
+        if (n > 0) {
+            robot_bus_write(r, 1 + k, buf, (size_t)n);
+        } else if (n == 0 || errno != EAGAIN) {
+            close(t->client[k]);
+            t->client[k] = -1;
+        }
+    }
+}
+
+static int run_bench(const options_t *o, const world_t *world, robot_config_t *cfg)
+{
+    robot_t *r = calloc(1, sizeof *r);
+    robot_t *list[1] = { r };
+    arena_t arena = { world, list, 1 };
+    robot_init(r, cfg, &arena);
+    /* A gentle arc (both wheels, different speeds) so every path of the step runs:
+     * ramps, PID, both motors, sensors, collisions checks. */
+    sact_write_register(&r->sact, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, 400);
+    sact_write_register(&r->sact, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_RIGHT, 600);
+    uint64_t steps = (uint64_t)(o->bench_seconds * 1e6 / SACT_TS_US);
+    double t0 = wall_seconds();
+    for (uint64_t i = 0; i < steps; i++)
+        robot_step(r);
+    double wall = wall_seconds() - t0;
+
+    /* The firmware's share: the control interrupt alone, on the same state. */
+    const uint64_t isr_calls = 2000000;
+    double t1 = wall_seconds();
+    for (uint64_t i = 0; i < isr_calls; i++)
+        sact_control_isr(&r->sact);
+    double isr_wall = wall_seconds() - t1;
+
+    printf("{\"speed_factor\": %.1f, \"step_ns\": %.1f, \"control_isr_ns\": %.1f, \"steps\": %llu, "
+           "\"simulated_s\": %.3f, \"wall_s\": %.3f, \"pose\": [%.4f, %.4f, %.4f]}\n",
+           o->bench_seconds / wall, wall * 1e9 / (double)steps, isr_wall * 1e9 / (double)isr_calls,
+           (unsigned long long)steps, o->bench_seconds, wall, r->body.x, r->body.y, r->body.theta);
+    free(r);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .robots = 1, .gear_ratio = 43.0,
+                    .track = 0.40, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
+    if (parse_options(argc, argv, &o))
+        return 2;
+
+    char default_map[PATH_MAX], map_file[PATH_MAX], err[256];
+    source_path(default_map, sizeof default_map, "maps/lab.yaml");
+    source_path(map_file, sizeof map_file, "../docs/sact-modbus-map.json");
+    const char *map_path = o.map_path ? o.map_path : default_map;
+    world_t world;
+    if (world_load(&world, map_path, err, sizeof err)) {
+        fprintf(stderr, "sabot-sim: %s\n", err);
+        return 2;
+    }
+    if (!o.start_given) {
+        /* Default start: map centre. */
+        o.start_x = world.origin_x + world.width * world.resolution / 2.0;
+        o.start_y = world.origin_y + world.height * world.resolution / 2.0;
+    }
+
+    robot_config_t base;
+    robot_config_default(&base);
+    base.params.gear_ratio = o.gear_ratio;
+    base.params.track = o.track;
+    base.faults = o.faults;
+    base.seed = o.seed;
+    base.x = o.start_x;
+    base.y = o.start_y;
+    base.theta = o.start_theta;
+    if (o.bench)
+        return run_bench(&o, &world, &base);
+
+    static robot_t robots[MAX_ROBOTS];
+    static robot_t *robot_list[MAX_ROBOTS];
+    static transports_t tr[MAX_ROBOTS];
+    arena_t arena = { &world, robot_list, o.robots };
+    for (int i = 0; i < o.robots; i++) {
+        robot_config_t cfg = base;
+        cfg.id = i + 1;
+        cfg.seed = o.seed * 7919u + (uint64_t)i;   /* distinct, reproducible streams per robot */
+        cfg.y = o.start_y + 0.8 * i;
+        robot_list[i] = &robots[i];
+        robot_init(&robots[i], &cfg, &arena);
+        if (world_clearance(&world, cfg.x, cfg.y) < cfg.params.radius)
+            fprintf(stderr, "sabot-sim: warning: robot %d starts inside an obstacle\n", cfg.id);
+        transports_t *t = &tr[i];
+        t->listen_fd = -1;
+        for (int k = 0; k < MAX_CLIENTS; k++)
+            t->client[k] = -1;
+        if (open_pty(t, i + 1, o.link_prefix)) {
+            fprintf(stderr, "sabot-sim: pty: %s\n", strerror(errno));
+            return 1;
+        }
+        if (o.tcp_port >= 0 && open_tcp(t, o.tcp_port ? o.tcp_port + i : 0)) {
+            fprintf(stderr, "sabot-sim: tcp port %d: %s\n", o.tcp_port + i, strerror(errno));
+            return 1;
+        }
+    }
+
+    FILE *truth = NULL;
+    if (o.truth_path) {
+        truth = fopen(o.truth_path, "w");
+        if (!truth) {
+            fprintf(stderr, "sabot-sim: %s: %s\n", o.truth_path, strerror(errno));
+            return 1;
+        }
+        fprintf(truth, "t_s,robot,x_m,y_m,theta_rad,v_m_s,omega_rad_s,wheel_left_rad_s,wheel_right_rad_s,"
+                       "current_left_a,current_right_a,collisions\n");
+    }
+
+    printf("{\"robots\": [");
+    for (int i = 0; i < o.robots; i++) {
+        printf("%s{\"id\": %d, \"pty\": \"%s\", \"link\": \"%s\", \"tcp\": %d, "
+               "\"slaves\": {\"sact\": %d, \"ins\": %d, \"sonar\": %d}}",
+               i ? ", " : "", i + 1, tr[i].pty_path, tr[i].link_path, o.tcp_port >= 0 ? tr[i].tcp_port : -1,
+               MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS);
+    }
+    printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d}\n",
+           (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD);
+    fflush(stdout);
+
+    struct sigaction sa = { .sa_handler = on_signal };
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGINT, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN);
+
+    double start = wall_seconds();
+    uint64_t sim_us = 0, next_truth_us = 0;
+    uint64_t end_us = o.duration > 0 ? (uint64_t)(o.duration * 1e6) : UINT64_MAX;
+    while (!stop_requested && sim_us < end_us) {
+        uint64_t target_us = (uint64_t)((wall_seconds() - start) * o.speed * 1e6);
+        /* Catch up in 1 ms slices, answering between slices. */
+        while (sim_us + SLICE_STEPS * SACT_TS_US <= target_us && sim_us < end_us && !stop_requested) {
+            for (int s = 0; s < SLICE_STEPS; s++) {
+                for (int i = 0; i < o.robots; i++)
+                    robot_step(&robots[i]);
+                sim_us += SACT_TS_US;
+                if (truth && sim_us >= next_truth_us) {
+                    next_truth_us += TRUTH_PERIOD_US;
+                    for (int i = 0; i < o.robots; i++) {
+                        const body_state_t *b = &robots[i].body;
+                        fprintf(truth, "%.3f,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%llu\n",
+                                sim_us * 1e-6, i + 1, b->x, b->y, b->theta, b->v, b->omega, b->wheel[0].omega,
+                                b->wheel[1].omega, b->wheel[0].current, b->wheel[1].current,
+                                (unsigned long long)b->collisions);
+                    }
+                }
+            }
+            for (int i = 0; i < o.robots; i++)
+                flush_answers(&robots[i], &tr[i]);
+            /* Keep I/O responsive when far behind (e.g. a high speed factor). */
+            if (wall_seconds() - start > (double)target_us * 1e-6 / o.speed + 0.005)
+                break;
+        }
+
+        /* Wait for bytes, at most until the next slice is due in wall time. */
+        struct pollfd pfd[MAX_ROBOTS][2 + MAX_CLIENTS];
+        struct pollfd flat[MAX_ROBOTS * (2 + MAX_CLIENTS)];
+        int nfds = 0;
+        for (int i = 0; i < o.robots; i++) {
+            pfd[i][0] = (struct pollfd){ tr[i].pty_master, POLLIN, 0 };
+            pfd[i][1] = (struct pollfd){ tr[i].listen_fd, POLLIN, 0 };
+            for (int k = 0; k < MAX_CLIENTS; k++)
+                pfd[i][2 + k] = (struct pollfd){ tr[i].client[k], POLLIN, 0 };
+            for (int k = 0; k < 2 + MAX_CLIENTS; k++)
+                flat[nfds++] = pfd[i][k];
+        }
+        double next_slice_wall = start + (double)(sim_us + SLICE_STEPS * SACT_TS_US) * 1e-6 / o.speed;
+        int timeout_ms = (int)ceil((next_slice_wall - wall_seconds()) * 1000.0);
+        if (timeout_ms < 0)
+            timeout_ms = 0;
+        if (poll(flat, (nfds_t)nfds, timeout_ms) > 0) {
+            for (int i = 0; i < o.robots; i++) {
+                for (int k = 0; k < 2 + MAX_CLIENTS; k++)
+                    pfd[i][k].revents = flat[i * (2 + MAX_CLIENTS) + k].revents;
+                read_requests(&robots[i], &tr[i], pfd[i]);
+            }
+        }
+    }
+
+    for (int i = 0; i < o.robots; i++) {
+        if (tr[i].link_path[0])
+            unlink(tr[i].link_path);
+        close(tr[i].pty_slave);
+        close(tr[i].pty_master);
+        if (tr[i].listen_fd >= 0)
+            close(tr[i].listen_fd);
+        for (int k = 0; k < MAX_CLIENTS; k++)
+            if (tr[i].client[k] >= 0)
+                close(tr[i].client[k]);
+    }
+    if (truth)
+        fclose(truth);
+    world_free(&world);
+    return 0;
+}

@@ -1,0 +1,40 @@
+/*
+ * The world: an occupancy grid loaded from a ROS map_server map (YAML + PGM), a
+ * distance field for collisions, and ray casting for the range sensors.
+ *
+ * Frames follow ROS: the map frame is right-handed, `origin` is the pose of the
+ * lower-left pixel, image row 0 is the top of the map. A cell is an obstacle when
+ * its occupancy p > occupied_thresh, with p = (255 - v)/255 (or v/255 if negate);
+ * unknown cells (between the thresholds) neither block nor echo. Outside the map
+ * counts as an obstacle, so robots cannot leave it.
+ */
+#ifndef SIM_WORLD_H
+#define SIM_WORLD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+typedef struct {
+    int width, height;         /* cells */
+    double resolution;         /* m per cell */
+    double origin_x, origin_y; /* m, lower-left corner */
+    uint8_t *occupied;         /* width*height, row 0 = bottom (y up) */
+    float *clearance;          /* m from the cell centre to the nearest obstacle cell */
+} world_t;
+
+/* Loads a map_server YAML (image, resolution, origin, negate, occupied_thresh,
+ * free_thresh) and its PGM (P5 or P2). Returns 0, or -1 with a message in err. */
+int world_load(world_t *w, const char *yaml_path, char *err, int err_len);
+void world_free(world_t *w);
+
+bool world_occupied(const world_t *w, double x, double y);
+
+/* Distance from (x, y) to the nearest obstacle cell's centre minus half a cell: a
+ * lower bound good to one cell, which is the map's own precision. */
+double world_clearance(const world_t *w, double x, double y);
+
+/* First obstacle along the ray, by grid traversal (Amanatides & Woo 1987).
+ * Returns the distance in m, or max_range when nothing is hit before it. */
+double world_raycast(const world_t *w, double x, double y, double angle, double max_range);
+
+#endif
