@@ -98,7 +98,10 @@ public final class OnboardApplication implements IApplication {
 
             @Override
             public void removedService(ServiceReference<OnboardTask> reference, OnboardTask task) {
-                running.remove(task.name());
+                synchronized (progress) {
+                    running.remove(task.name());
+                    progress.notifyAll();
+                }
                 super.removedService(reference, task);
             }
         };
@@ -119,6 +122,11 @@ public final class OnboardApplication implements IApplication {
         } finally {
             for (String task : enabled.keySet()) {
                 deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);
+            }
+            List<String> stuck = awaitTasksStopped(running, progress);
+            if (!stuck.isEmpty()) {
+                LOG.warn("task(s) {} still running {} s after their configuration was removed", stuck,
+                        TASK_START_TIMEOUT_S);
             }
             tracker.close();
             LOG.info("Sabot Onboard stopped");
@@ -191,6 +199,21 @@ public final class OnboardApplication implements IApplication {
         List<String> missing = new ArrayList<>(expected);
         missing.removeAll(running);
         return missing;
+    }
+
+    /** SCR deactivates a task asynchronously once its configuration is deleted: wait for its service to go. */
+    private static List<String> awaitTasksStopped(Set<String> running, Object progress) throws InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TASK_START_TIMEOUT_S);
+        synchronized (progress) {
+            while (!running.isEmpty()) {
+                long left = deadline - System.nanoTime();
+                if (left <= 0) {
+                    break;
+                }
+                TimeUnit.NANOSECONDS.timedWait(progress, left);
+            }
+            return new ArrayList<>(running);
+        }
     }
 
     private static <S> S await(BundleContext bc, Class<S> type) throws InterruptedException {

@@ -1,0 +1,41 @@
+package sabot.workbench.account;
+
+/**
+ * The operator's XMPP account as the workbench connects with it. The password is not part of this value: it lives
+ * only in the secret file of {@link XmppAccountStore}.
+ *
+ * @param server host name or address of the XMPP server (may differ from the JID's domain)
+ * @param port   client port, 1..65535 (XMPP's default is 5222)
+ * @param jid    bare JID, {@code local@domain}
+ */
+public record XmppAccount(String server, int port, String jid) {
+
+    /** Default client port of XMPP (RFC 6120). */
+    public static final int DEFAULT_PORT = 5222;
+
+    public XmppAccount {
+        server = server == null ? "" : server.strip();
+        jid = jid == null ? "" : jid.strip();
+    }
+
+    /**
+     * @return null when the account is complete and well-formed, else a message for the operator naming the field
+     */
+    public String problem() {
+        if (server.isEmpty()) {
+            return "Server is empty";
+        }
+        if (server.chars().anyMatch(Character::isWhitespace)) {
+            return "Server must not contain spaces";
+        }
+        if (port < 1 || port > 65535) {
+            return "Port must be between 1 and 65535";
+        }
+        int at = jid.indexOf('@');
+        if (at <= 0 || at == jid.length() - 1 || jid.indexOf('@', at + 1) >= 0 || jid.contains("/")
+                || jid.chars().anyMatch(Character::isWhitespace)) {
+            return "JID must look like name@domain (no resource, no spaces)";
+        }
+        return null;
+    }
+}

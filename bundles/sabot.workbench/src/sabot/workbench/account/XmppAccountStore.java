@@ -1,0 +1,122 @@
+package sabot.workbench.account;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.AtomicMoveNotSupportedException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
+import java.nio.file.attribute.PosixFilePermission;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.util.EnumSet;
+import java.util.Set;
+
+import org.osgi.service.prefs.BackingStoreException;
+import org.osgi.service.prefs.Preferences;
+
+/**
+ * Stores the XMPP account: server, port and JID in the workbench's preferences, the password in a separate file
+ * readable by its owner only (mode 0600, like an SSH key), never in the preferences. The file is replaced
+ * atomically and refused when its permissions are looser than 0600.
+ */
+public final class XmppAccountStore {
+
+    static final String KEY_SERVER = "xmpp.server";
+    static final String KEY_PORT = "xmpp.port";
+    static final String KEY_JID = "xmpp.jid";
+    private static final Set<PosixFilePermission> OWNER_ONLY = EnumSet.of(PosixFilePermission.OWNER_READ,
+            PosixFilePermission.OWNER_WRITE);
+
+    private final Preferences preferences;
+    private final Path passwordFile;
+
+    /**
+     * @param preferences  where the non-secret fields go (the bundle's instance-scope preferences)
+     * @param passwordFile where the password goes, e.g. {@code ~/.sabot/workbench/xmpp-password}
+     */
+    public XmppAccountStore(Preferences preferences, Path passwordFile) {
+        this.preferences = preferences;
+        this.passwordFile = passwordFile;
+    }
+
+    /** @return the stored account; empty fields and the default port when nothing is stored */
+    public XmppAccount load() {
+        return new XmppAccount(preferences.get(KEY_SERVER, ""), preferences.getInt(KEY_PORT,
+                XmppAccount.DEFAULT_PORT), preferences.get(KEY_JID, ""));
+    }
+
+    /**
+     * Saves the account and, when {@code password} is not null, the password. Nothing is written when the account
+     * is invalid.
+     *
+     * @throws IllegalArgumentException with {@link XmppAccount#problem()} when the account is invalid
+     * @throws IOException              when the preferences or the password file cannot be written
+     */
+    public void save(XmppAccount account, char[] password) throws IOException {
+        String problem = account.problem();
+        if (problem != null) {
+            throw new IllegalArgumentException(problem);
+        }
+        if (password != null) {
+            writePassword(password);
+        }
+        preferences.put(KEY_SERVER, account.server());
+        preferences.putInt(KEY_PORT, account.port());
+        preferences.put(KEY_JID, account.jid());
+        try {
+            preferences.flush();
+        } catch (BackingStoreException e) {
+            throw new IOException("cannot save the XMPP account preferences: " + e.getMessage(), e);
+        }
+    }
+
+    /** @return true when a password has been stored */
+    public boolean hasPassword() {
+        return Files.isRegularFile(passwordFile);
+    }
+
+    /**
+     * @return the stored password, or null when none is stored
+     * @throws IOException when the file is readable by others than its owner (it is not used then)
+     */
+    public char[] loadPassword() throws IOException {
+        if (!Files.isRegularFile(passwordFile)) {
+            return null;
+        }
+        Set<PosixFilePermission> perms = Files.getPosixFilePermissions(passwordFile);
+        if (!OWNER_ONLY.containsAll(perms)) {
+            throw new IOException(passwordFile + " has permissions " + PosixFilePermissions.toString(perms)
+                    + "; it must be rw------- (chmod 600)");
+        }
+        return new String(Files.readAllBytes(passwordFile), StandardCharsets.UTF_8).toCharArray();
+    }
+
+    /** Removes the stored password. */
+    public void forgetPassword() throws IOException {
+        Files.deleteIfExists(passwordFile);
+    }
+
+    /** @return where the password is kept */
+    public Path passwordFile() {
+        return passwordFile;
+    }
+
+    private void writePassword(char[] password) throws IOException {
+        Path dir = passwordFile.toAbsolutePath().getParent();
+        Files.createDirectories(dir, PosixFilePermissions.asFileAttribute(EnumSet.of(PosixFilePermission.OWNER_READ,
+                PosixFilePermission.OWNER_WRITE, PosixFilePermission.OWNER_EXECUTE)));
+        // Created 0600 from the start (no window in which another user could open it), then moved into place.
+        Path tmp = Files.createTempFile(dir, ".xmpp-password", ".tmp", PosixFilePermissions.asFileAttribute(
+                OWNER_ONLY));
+        try {
+            Files.write(tmp, new String(password).getBytes(StandardCharsets.UTF_8));
+            try {
+                Files.move(tmp, passwordFile, StandardCopyOption.REPLACE_EXISTING, StandardCopyOption.ATOMIC_MOVE);
+            } catch (AtomicMoveNotSupportedException e) {
+                Files.move(tmp, passwordFile, StandardCopyOption.REPLACE_EXISTING);
+            }
+        } finally {
+            Files.deleteIfExists(tmp);
+        }
+    }
+}

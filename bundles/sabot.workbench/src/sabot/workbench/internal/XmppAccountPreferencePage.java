@@ -1,0 +1,116 @@
+package sabot.workbench.internal;
+
+import java.io.IOException;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+
+import org.eclipse.core.runtime.preferences.InstanceScope;
+import org.eclipse.jface.layout.GridDataFactory;
+import org.eclipse.jface.layout.GridLayoutFactory;
+import org.eclipse.jface.preference.PreferencePage;
+import org.eclipse.swt.SWT;
+import org.eclipse.swt.widgets.Composite;
+import org.eclipse.swt.widgets.Control;
+import org.eclipse.swt.widgets.Label;
+import org.eclipse.swt.widgets.Text;
+import org.eclipse.ui.IWorkbench;
+import org.eclipse.ui.IWorkbenchPreferencePage;
+
+import sabot.workbench.account.XmppAccount;
+import sabot.workbench.account.XmppAccountStore;
+
+/**
+ * Window &gt; Preferences &gt; XMPP Account: server, port, JID and password of the operator's account. The
+ * password goes to an owner-only (0600) file, never into the preferences; an empty password field keeps the
+ * stored one.
+ */
+public final class XmppAccountPreferencePage extends PreferencePage implements IWorkbenchPreferencePage {
+
+    /** System property overriding the folder of the password file (default ~/.sabot/workbench). */
+    public static final String SECRETS_DIR_PROPERTY = "sabot.workbench.secrets";
+
+    private XmppAccountStore store;
+    private Text server;
+    private Text port;
+    private Text jid;
+    private Text password;
+
+    /** @return the store the workbench uses for the operator's account */
+    public static XmppAccountStore defaultStore() {
+        String dir = System.getProperty(SECRETS_DIR_PROPERTY);
+        Path secrets = dir != null ? Paths.get(dir) : Paths.get(System.getProperty("user.home"), ".sabot",
+                "workbench");
+        return new XmppAccountStore(InstanceScope.INSTANCE.getNode("sabot.workbench"), secrets.resolve(
+                "xmpp-password"));
+    }
+
+    @Override
+    public void init(IWorkbench workbench) {
+        store = defaultStore();
+        setDescription("The account the workbench uses to reach the fleet over XMPP.");
+    }
+
+    @Override
+    protected Control createContents(Composite parent) {
+        Composite c = new Composite(parent, SWT.NONE);
+        GridLayoutFactory.swtDefaults().numColumns(2).applyTo(c);
+        XmppAccount account = store.load();
+        server = field(c, "&Server:", account.server(), SWT.BORDER);
+        port = field(c, "&Port:", Integer.toString(account.port()), SWT.BORDER);
+        jid = field(c, "&JID:", account.jid(), SWT.BORDER);
+        password = field(c, "Pass&word:", "", SWT.BORDER | SWT.PASSWORD);
+        password.setMessage(store.hasPassword() ? "(stored; type to replace)" : "(not stored)");
+        Label where = new Label(c, SWT.WRAP);
+        where.setText("The password is kept in " + store.passwordFile() + ", readable by you only (mode 0600).");
+        GridDataFactory.fillDefaults().span(2, 1).grab(true, false).hint(400, SWT.DEFAULT).applyTo(where);
+        validate();
+        return c;
+    }
+
+    private Text field(Composite parent, String label, String value, int style) {
+        new Label(parent, SWT.NONE).setText(label);
+        Text text = new Text(parent, style);
+        text.setText(value);
+        GridDataFactory.fillDefaults().grab(true, false).applyTo(text);
+        text.addModifyListener(e -> validate());
+        return text;
+    }
+
+    /** @return the account as typed, or null (with the page's error message set) when it is invalid */
+    private XmppAccount validate() {
+        int p;
+        try {
+            p = Integer.parseInt(port.getText().strip());
+        } catch (NumberFormatException e) {
+            p = -1;
+        }
+        XmppAccount account = new XmppAccount(server.getText(), p, jid.getText());
+        String problem = account.problem();
+        setErrorMessage(problem);
+        setValid(problem == null);
+        return problem == null ? account : null;
+    }
+
+    @Override
+    public boolean performOk() {
+        XmppAccount account = validate();
+        if (account == null) {
+            return false;
+        }
+        char[] typed = password.getText().toCharArray();
+        try {
+            store.save(account, typed.length == 0 ? null : typed);
+            password.setText("");
+            return true;
+        } catch (IOException | IllegalArgumentException e) {
+            setErrorMessage("Cannot save the account: " + e.getMessage());
+            return false;
+        }
+    }
+
+    @Override
+    protected void performDefaults() {
+        port.setText(Integer.toString(XmppAccount.DEFAULT_PORT));
+        super.performDefaults();
+    }
+}
