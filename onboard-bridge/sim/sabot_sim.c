@@ -378,6 +378,11 @@ int main(int argc, char **argv)
                        "current_left_a,current_right_a,collisions\n");
     }
 
+    /* Handlers before the announcement: a supervisor may signal as soon as it reads it. */
+    struct sigaction sa = { .sa_handler = on_signal };
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGINT, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN);
     printf("{\"robots\": [");
     for (int i = 0; i < o.robots; i++) {
         printf("%s{\"id\": %d, \"pty\": \"%s\", \"link\": \"%s\", \"tcp\": %d, "
@@ -389,10 +394,6 @@ int main(int argc, char **argv)
            (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD);
     fflush(stdout);
 
-    struct sigaction sa = { .sa_handler = on_signal };
-    sigaction(SIGTERM, &sa, NULL);
-    sigaction(SIGINT, &sa, NULL);
-    signal(SIGPIPE, SIG_IGN);
 
     double start = wall_seconds();
     uint64_t sim_us = 0, next_truth_us = 0;

@@ -1,0 +1,197 @@
+/*
+ * The register map file is the contract: this suite reads docs/sact-modbus-map.json
+ * itself and checks that the boards serve exactly what it says: every record, its
+ * access, bounds and default, and the limits derived from the configuration.
+ */
+#include <math.h>
+
+#include "bus_client.h"
+#include "check.h"
+#include "json_mini.h"
+
+#ifndef MAP_JSON
+#define MAP_JSON "../docs/sact-modbus-map.json"
+#endif
+
+static json_t *doc;
+static arena_t arena;
+static robot_t *slot;
+
+static robot_t *fresh(void)
+{
+    free(slot);
+    return make_robot(11, &arena, &slot);
+}
+
+static const mb_board_desc_t *board_desc(const char *name)
+{
+    if (!strcmp(name, "sact")) return &mb_sact_board;
+    if (!strcmp(name, "ins")) return &mb_ins_board;
+    if (!strcmp(name, "sonar")) return &mb_sonar_board;
+    return NULL;
+}
+
+static const json_t *file_records(const json_t *board, const json_t *file)
+{
+    const char *tmpl = json_str(file, "template");
+    return *tmpl ? json_get(json_get(board, "templates"), tmpl) : json_get(file, "records");
+}
+
+static int words_of(const json_t *rec)
+{
+    const char *t = json_str(rec, "type");
+    int words = (!strcmp(t, "int32") || !strcmp(t, "uint32")) ? 2 : 1;
+    return words * (int)json_num(rec, "count", 1);
+}
+
+/* Calls fn for every record of every file of every board in the JSON map. */
+typedef void (*record_fn)(const json_t *board, const json_t *file, const json_t *rec);
+static void each_record(record_fn fn)
+{
+    const json_t *boards = json_get(doc, "boards");
+    for (int b = 0; boards && b < boards->count; b++) {
+        const json_t *files = json_get(boards->items[b], "files");
+        for (int f = 0; files && f < files->count; f++) {
+            const json_t *recs = file_records(boards->items[b], files->items[f]);
+            for (int r = 0; recs && r < recs->count; r++)
+                fn(boards->items[b], files->items[f], recs->items[r]);
+        }
+    }
+}
+
+static int json_records;
+
+static void check_descriptor(const json_t *board, const json_t *file, const json_t *rec)
+{
+    const mb_board_desc_t *bd = board_desc(json_str(board, "name"));
+    uint16_t fnum = (uint16_t)json_num(file, "file", 0), rnum = (uint16_t)json_num(rec, "record", 0);
+    const mb_record_desc_t *d = bd ? mb_map_find(bd, fnum, rnum) : NULL;
+    json_records++;
+    CHECK(d != NULL, "%s file %u record %u (%s) missing", json_str(board, "name"), fnum, rnum, json_str(rec, "name"));
+    if (!d)
+        return;
+    const char *acc = json_str(rec, "access");
+    int access = (strchr(acc, 'r') ? MB_ACCESS_R : 0) | (strchr(acc, 'w') ? MB_ACCESS_W : 0);
+    CHECK(d->record == rnum && d->words == words_of(rec), "%s span", json_str(rec, "name"));
+    CHECK(d->access == access, "%s access", json_str(rec, "name"));
+    CHECK(d->min == (int32_t)json_num(rec, "min", 0) && d->max == (int32_t)json_num(rec, "max", 0), "%s bounds",
+          json_str(rec, "name"));
+    CHECK(d->def == (int32_t)json_num(rec, "default", 0), "%s default", json_str(rec, "name"));
+    CHECK(bd->address == (uint8_t)json_num(board, "slave_address", 0), "%s address", json_str(board, "name"));
+}
+
+static void everyRecordOfTheMapIsServedAsDescribed(void)
+{
+    json_records = 0;
+    each_record(check_descriptor);
+    int c_records = 0;
+    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board };
+    for (int b = 0; b < 3; b++)
+        for (int f = 0; f < all[b]->n_files; f++)
+            c_records += all[b]->files[f].n_records;
+    CHECK(json_records == c_records, "JSON has %d records, firmware %d", json_records, c_records);
+    CHECK(json_records > 40, "only %d records", json_records);
+}
+
+static void check_default_over_bus(const json_t *board, const json_t *file, const json_t *rec)
+{
+    /* flag registers ("bits") report live state, not a stored default */
+    if (strcmp(json_str(rec, "access"), "rw") || words_of(rec) != 1 || json_get(rec, "bits"))
+        return;
+    robot_t *r = slot;
+    uint8_t addr = (uint8_t)json_num(board, "slave_address", 0);
+    long v = bus_read(r, addr, (uint16_t)json_num(file, "file", 0), (uint16_t)json_num(rec, "record", 0));
+    long expect = (long)json_num(rec, "default", 0);
+    if (!strcmp(json_str(rec, "type"), "int16") && v >= 0x8000)
+        v -= 0x10000;
+    CHECK(v == expect, "%s.%s.%s reads %ld, map default %ld", json_str(board, "name"), json_str(file, "name"),
+          json_str(rec, "name"), v, expect);
+}
+
+static void writableRecordsStartAtTheMapDefaults(void)
+{
+    fresh();
+    each_record(check_default_over_bus);
+}
+
+/* The limit a board derives for records with "max_from", from the map's defaults. */
+static double dynamic_limit(const char *from)
+{
+    const json_t *boards = json_get(doc, "boards");
+    const json_t *cfg = NULL;
+    for (int f = 0; f < json_get(boards->items[0], "files")->count; f++)
+        if (!strcmp(json_str(json_get(boards->items[0], "files")->items[f], "name"), "config"))
+            cfg = json_get(json_get(boards->items[0], "files")->items[f], "records");
+    double val[16] = { 0 };
+    for (int i = 0; i < cfg->count && i < 16; i++)
+        val[i] = json_num(cfg->items[i], "default", 0);
+    double counts_per_m = 4 * val[0] * val[1] / 100.0 / (2 * M_PI * val[3] * 1e-4);
+    double ts = json_num(json_get(doc, "control"), "period_us", 0) * 1e-6;
+    if (!strcmp(from, "max_speed"))
+        return floor(val[4] * 1e-3 * counts_per_m * ts * 256 + 0.5);
+    return floor(val[5] * 1e-3 * counts_per_m * ts * ts * 16777216.0);
+}
+
+static void check_write_bounds(const json_t *board, const json_t *file, const json_t *rec)
+{
+    uint8_t addr = (uint8_t)json_num(board, "slave_address", 0);
+    uint16_t fnum = (uint16_t)json_num(file, "file", 0), rnum = (uint16_t)json_num(rec, "record", 0);
+    const char *name = json_str(rec, "name");
+    bool is_signed = !strcmp(json_str(rec, "type"), "int16");
+    long lo = (long)json_num(rec, "min", 0), hi = (long)json_num(rec, "max", 0);
+    if (!strchr(json_str(rec, "access"), 'w')) {
+        robot_t *r = fresh();
+        CHECK(bus_write(r, addr, fnum, rnum, 1) == MB_EXC_ILLEGAL_DATA_ADDRESS, "read-only %s accepted a write", name);
+        return;
+    }
+    const char *from = json_str(rec, "max_from");
+    if (*from) {
+        hi = (long)dynamic_limit(from);
+        if (lo < 0)
+            lo = -hi;
+    }
+    const long type_lo = is_signed ? -32768 : 0, type_hi = is_signed ? 32767 : 65535;
+    long probes[4] = { lo, hi, lo - 1, hi + 1 };
+    for (int k = 0; k < 4; k++) {
+        if (probes[k] < type_lo || probes[k] > type_hi)
+            continue;   /* not expressible on the wire */
+        robot_t *r = fresh();
+        long before = bus_read(r, addr, fnum, rnum);
+        int e = bus_write(r, addr, fnum, rnum, (uint16_t)probes[k]);
+        long after = bus_read(r, addr, fnum, rnum);
+        if (k < 2) {
+            CHECK(e == 0, "%s = %ld rejected with %d", name, probes[k], e);
+        } else {
+            CHECK(e == MB_EXC_ILLEGAL_DATA_VALUE, "%s = %ld answered %d", name, probes[k], e);
+            CHECK(after == before, "%s changed by a rejected write", name);
+        }
+    }
+}
+
+static void writesAreBoundedExactlyByTheMap(void) { each_record(check_write_bounds); }
+
+static void velocityLimitFollowsTheConfiguration(void)
+{
+    robot_t *r = fresh();
+    CHECK(r->sact.max_velocity_setpoint == (int32_t)dynamic_limit("max_speed"), "speed limit %d vs %g",
+          r->sact.max_velocity_setpoint, dynamic_limit("max_speed"));
+    CHECK(abs(r->sact.max_acceleration - (int32_t)dynamic_limit("max_accel")) <= 1, "accel limit %d vs %g",
+          r->sact.max_acceleration, dynamic_limit("max_accel"));
+}
+
+int main(void)
+{
+    printf("test_map (%s)\n", MAP_JSON);
+    doc = json_load(MAP_JSON);
+    if (!doc) {
+        printf("test_map: 0 passed, 1 failed\n");
+        return 1;
+    }
+    RUN(everyRecordOfTheMapIsServedAsDescribed);
+    RUN(writableRecordsStartAtTheMapDefaults);
+    RUN(writesAreBoundedExactlyByTheMap);
+    RUN(velocityLimitFollowsTheConfiguration);
+    json_free(doc);
+    free(slot);
+    return REPORT("test_map");
+}
