@@ -4,7 +4,7 @@
  * The firmware core calls only these functions. Two ports implement them:
  *   port/host   - the simulator: encoders, PWM and ADC are wired to the motor
  *                 physics, the UART to the simulated RS-485 bus;
- *   port/target - register-level stubs of a Cortex-M target that only has to
+ *   port/stm32f4 - register-level stubs of a Cortex-M target that only has to
  *                 compile (no hardware was available).
  * The port defines struct hal_port; the firmware treats it as opaque. Passing it
  * explicitly (instead of globals) lets the host run several robots in one process;

@@ -1,0 +1,81 @@
+package sabot.products;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
+import java.util.List;
+import java.util.stream.Stream;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * The optional diagnostics plug-in installs from the built p2 update site into a copy of the materialized workbench
+ * with the p2 director, and is active at the next start; the uninstalled copy has no such plug-in (control).
+ * Starts real workbench windows: needs the X display that ./sabot test provides (Xvfb).
+ */
+class PluginInstallTest {
+
+    private static final String FEATURE_IU = "sabot.workbench.diagnostics.feature.feature.group";
+    private static final String ACTIVE_LINE = "Sabot diagnostics plug-in";
+
+    @TempDir
+    Path dir;
+
+    @Test
+    void diagnosticsFeatureInstallsFromTheUpdateSiteAndIsActiveAfterRestart() throws Exception {
+        assertTrue(System.getenv("DISPLAY") != null, "no X display: run under xvfb-run (./sabot test does)");
+        Path workbench = copy(ProductProcess.product("sabot.workbench.product", "sabot-workbench"), dir.resolve(
+                "workbench"));
+        Path site = ProductProcess.root().resolve("product/sabot.site/target/repository");
+        Path director = ProductProcess.product("sabot.director.product", "sabot-director");
+
+        try (ProductProcess before = startWorkbench(workbench)) {
+            assertEquals(0, before.waitFor(), before.output());
+            assertFalse(before.output().contains(ACTIVE_LINE), "plug-in active before it was installed");
+        }
+
+        try (ProductProcess install = ProductProcess.start(director, List.of(), List.of(
+                "-application", "org.eclipse.equinox.p2.director",
+                "-repository", site.toUri().toString(),
+                "-installIU", FEATURE_IU,
+                "-destination", workbench.toString(),
+                "-profile", "DefaultProfile"))) {
+            assertEquals(0, install.waitFor(), install.output());
+            assertTrue(install.output().contains("Operation completed"), install.output());
+        }
+        String bundles = Files.readString(workbench.resolve(
+                "configuration/org.eclipse.equinox.simpleconfigurator/bundles.info"));
+        assertTrue(bundles.lines().anyMatch(l -> l.startsWith("sabot.workbench.diagnostics,") && l.endsWith(
+                ",4,true")), "not in bundles.info as started:\n" + bundles);
+
+        try (ProductProcess after = startWorkbench(workbench)) {
+            assertEquals(0, after.waitFor(), after.output());
+            assertTrue(after.output().contains(ACTIVE_LINE), after.output());
+        }
+    }
+
+    private ProductProcess startWorkbench(Path workbench) throws IOException {
+        return ProductProcess.start(workbench, List.of(), List.of("-data", dir.resolve("workspace").toString(),
+                "-sabot.exit"));
+    }
+
+    private static Path copy(Path from, Path to) throws IOException {
+        try (Stream<Path> files = Files.walk(from)) {
+            for (Path p : (Iterable<Path>) files::iterator) {
+                Path target = to.resolve(from.relativize(p).toString());
+                if (Files.isDirectory(p)) {
+                    Files.createDirectories(target);
+                } else {
+                    Files.copy(p, target, StandardCopyOption.COPY_ATTRIBUTES);
+                }
+            }
+        }
+        return to;
+    }
+}

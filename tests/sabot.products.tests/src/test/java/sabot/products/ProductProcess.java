@@ -1,0 +1,150 @@
+package sabot.products;
+
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.DirectoryStream;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+import java.util.function.Predicate;
+
+/**
+ * A materialized product started the way ./sabot starts it ({@code java -jar plugins/org.eclipse.equinox.launcher_*.jar}),
+ * with its console captured line by line so a test can wait for a log line instead of sleeping.
+ */
+final class ProductProcess implements AutoCloseable {
+
+    static final long TIMEOUT_S = 60;
+
+    private final Process process;
+    private final List<String> lines = new ArrayList<>();
+    private final Thread reader;
+
+    private ProductProcess(Process process) {
+        this.process = process;
+        this.reader = new Thread(this::pump, "product-console");
+        this.reader.setDaemon(true);
+        this.reader.start();
+    }
+
+    /** @return the repository root (system property sabot.root, set by the pom) */
+    static Path root() {
+        return Paths.get(System.getProperty("sabot.root", "../..")).toAbsolutePath().normalize();
+    }
+
+    /** @return the materialized product folder of a product module, e.g. ("sabot.onboard.product", "sabot-onboard") */
+    static Path product(String module, String uid) {
+        Path p = root().resolve("product/" + module + "/target/products/" + uid + "/linux/gtk/x86_64");
+        if (!Files.isDirectory(p.resolve("plugins"))) {
+            throw new IllegalStateException("product not built: " + p + " (run the whole reactor)");
+        }
+        return p;
+    }
+
+    static ProductProcess start(Path productDir, List<String> extraVmArgs, List<String> args) throws IOException {
+        List<String> cmd = new ArrayList<>();
+        cmd.add(Paths.get(System.getProperty("java.home"), "bin", "java").toString());
+        Path logback = productDir.resolve("etc/logback.xml");
+        if (Files.isRegularFile(logback)) {
+            cmd.add("-Dlogback.configurationFile=" + logback);
+        }
+        cmd.addAll(extraVmArgs);
+        cmd.add("-jar");
+        cmd.add(launcherJar(productDir).toString());
+        cmd.add("-consoleLog");
+        cmd.addAll(args);
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(productDir.toFile()).redirectErrorStream(true);
+        return new ProductProcess(pb.start());
+    }
+
+    static Path launcherJar(Path productDir) throws IOException {
+        try (DirectoryStream<Path> s = Files.newDirectoryStream(productDir.resolve("plugins"),
+                "org.eclipse.equinox.launcher_*.jar")) {
+            for (Path p : s) {
+                return p;
+            }
+        }
+        throw new IllegalStateException("no Equinox launcher in " + productDir);
+    }
+
+    private void pump() {
+        try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(),
+                StandardCharsets.UTF_8))) {
+            String line;
+            while ((line = r.readLine()) != null) {
+                System.out.println("  | " + line);
+                synchronized (lines) {
+                    lines.add(line);
+                    lines.notifyAll();
+                }
+            }
+        } catch (IOException e) {
+            // the process ended
+        } finally {
+            synchronized (lines) {
+                lines.notifyAll();
+            }
+        }
+    }
+
+    /** Waits until a console line matches; fails when the process ends first or after the timeout. */
+    String await(Predicate<String> matcher, String what) throws InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        int seen = 0;
+        synchronized (lines) {
+            while (true) {
+                for (; seen < lines.size(); seen++) {
+                    if (matcher.test(lines.get(seen))) {
+                        return lines.get(seen);
+                    }
+                }
+                long left = deadline - System.nanoTime();
+                if (left <= 0 || (!process.isAlive() && !reader.isAlive())) {
+                    throw new AssertionError("no console line " + what + " (process alive=" + process.isAlive()
+                            + "); output:\n" + String.join("\n", lines));
+                }
+                TimeUnit.NANOSECONDS.timedWait(lines, Math.min(left, TimeUnit.MILLISECONDS.toNanos(200)));
+            }
+        }
+    }
+
+    /**
+     * Sends SIGTERM, as a service manager or {@code kill} does. Through the ProcessHandle: Process.destroy() would
+     * also close our end of the console pipe and lose what the product logs while it stops.
+     */
+    void terminate() {
+        process.toHandle().destroy();
+    }
+
+    /** Waits for the process to end and for its console to be read completely; returns the exit status. */
+    int waitFor() throws InterruptedException {
+        if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
+            process.destroyForcibly();
+            throw new AssertionError("product did not exit within " + TIMEOUT_S + " s; output:\n" + output());
+        }
+        reader.join(TimeUnit.SECONDS.toMillis(10));
+        return process.exitValue();
+    }
+
+    List<String> lines() {
+        synchronized (lines) {
+            return List.copyOf(lines);
+        }
+    }
+
+    String output() {
+        return String.join("\n", lines());
+    }
+
+    @Override
+    public void close() {
+        if (process.isAlive()) {
+            process.destroyForcibly();
+        }
+    }
+}
