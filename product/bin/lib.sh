@@ -17,13 +17,14 @@ sabot_java_major() {
 # (newest first). Exits with the install command when there is none.
 sabot_java_home() {
     local c
-    for c in "${SABOT_JAVA_HOME:-}" "${JAVA_HOME:-}" "${TEMURIN25_HOME:-}" $(ls -d /usr/lib/jvm/*/ 2>/dev/null | sort -rV); do
+    for c in "${SABOT_JAVA_HOME:-}" "${JAVA_HOME:-}" "${TEMURIN25_HOME:-}" $(ls -d "${SABOT_JVM_DIR:-/usr/lib/jvm}"/*/ 2>/dev/null | sort -rV); do
         c=${c%/}
         [ -n "$c" ] && [ -x "$c/bin/javac" ] || continue
         if [ "$(sabot_java_major "$c/bin/java")" -ge 21 ]; then echo "$c"; return 0; fi
     done
-    sabot_die "no JDK >= 21 found (looked at \$SABOT_JAVA_HOME, \$JAVA_HOME, \$TEMURIN25_HOME, /usr/lib/jvm/*).
-  Install one, e.g.:  apt-get install -y temurin-25-jdk   (Adoptium's Debian repository)
+    sabot_die "no JDK >= 21 found (looked at \$SABOT_JAVA_HOME, \$JAVA_HOME, \$TEMURIN25_HOME, ${SABOT_JVM_DIR:-/usr/lib/jvm}/*).
+  Debian 12 packages only JDK 17; install Temurin from Adoptium's Debian repository:
+    apt-get install -y wget gpg && wget -qO- https://packages.adoptium.net/artifactory/api/gpg/key/public | gpg --dearmor -o /usr/share/keyrings/adoptium.gpg && echo 'deb [signed-by=/usr/share/keyrings/adoptium.gpg] https://packages.adoptium.net/artifactory/deb bookworm main' > /etc/apt/sources.list.d/adoptium.list && apt-get update && apt-get install -y temurin-25-jdk
   or point SABOT_JAVA_HOME at an unpacked JDK >= 21."
 }
 
