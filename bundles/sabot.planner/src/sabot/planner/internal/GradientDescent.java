@@ -1,0 +1,264 @@
+package sabot.planner.internal;
+
+import java.util.ArrayList;
+import java.util.List;
+
+/**
+ * Path extraction: steepest descent on the interpolated navigation function, from the start point to the goal set,
+ * in grid coordinates (cell (c, r) spans [c, c+1) x [r, r+1)).
+ *
+ * <p>Each step moves {@value #STEP} cell against the gradient of N (central differences at the cell centres, blended
+ * bilinearly, as navfn does; {@value #STEP} is navfn's {@code pathStep}), and is kept only when the segment crosses passable cells alone and N drops by at least
+ * {@value #MIN_DROP_PER_CELL} of the least density per cell moved. Where the gradient is undefined or fails those
+ * tests (next to obstacles, in narrow passages) the path moves to the centre of the current cell's lowest
+ * neighbour instead; such a neighbour always exists because every non-goal value was computed from lower, final
+ * neighbours, and diagonal moves are taken only when both side cells are passable. So every segment is
+ * collision-free, N strictly decreases from waypoint to waypoint, and the descent ends in a goal cell after a bounded
+ * number of steps.
+ */
+public final class GradientDescent {
+
+    /** Step length in cell edges (navfn: {@code pathStep = 0.5}). */
+    static final double STEP = 0.5;
+    /** Least drop of N per cell moved for a gradient step, as a fraction of the least density. */
+    static final double MIN_DROP_PER_CELL = 0.01;
+    /** Longest straight shortcut, in cell edges, the smoothing pass tries. */
+    static final double MAX_SHORTCUT = 8;
+
+    private static final int[] NEIGHBOUR_DX = { 1, -1, 0, 0, 1, 1, -1, -1 };
+    private static final int[] NEIGHBOUR_DY = { 0, 0, 1, -1, 1, -1, 1, -1 };
+
+    private GradientDescent() {
+    }
+
+    /**
+     * @param potential N by padded index as value bits ({@link LpnNavigationFunction#decode}), 0 on goal cells
+     * @param density   density by costmap value ({@code +infinity} impassable)
+     * @param goals     goal points as {x0, y0, x1, y1, ...} in grid coordinates; the path ends at the goal whose cell
+     *                  it reaches
+     * @return waypoints as {x0, y0, x1, y1, ...} in grid coordinates, first the start
+     * @throws IllegalStateException when the start is not reached by N or the descent does not end (both are bugs of
+     *                               the caller or of N, never a property of the map)
+     */
+    public static double[] descend(PlanningGrid grid, int[] potential, float[] density, float minDensity,
+            double startX, double startY, double[] goals) {
+        int stride = grid.stride();
+        byte[] costs = grid.costs();
+        double x = startX;
+        double y = startY;
+        List<double[]> points = new ArrayList<>();
+        points.add(new double[] { x, y });
+        int cell = grid.index((int) x, (int) y);
+        if (value(potential, cell) == Float.POSITIVE_INFINITY) {
+            throw new IllegalStateException("start cell is not reached by the navigation function");
+        }
+        double minDrop = MIN_DROP_PER_CELL * minDensity;
+        // gradient steps drop N by at least minDrop * STEP / 2; fallback steps visit ever lower cells
+        long maxSteps = (long) (value(potential, cell) / (minDrop * STEP / 2)) + grid.paddedSize() + 16;
+        double[] gradient = new double[2];
+        for (long step = 0; ; step++) {
+            if (step > maxSteps) {
+                throw new IllegalStateException("gradient descent did not reach the goal in " + maxSteps + " steps");
+            }
+            cell = grid.index((int) x, (int) y);
+            if (value(potential, cell) == 0f) {
+                finishAtGoal(points, grid, density, goals, x, y);
+                break;
+            }
+            double value = GridField.interpolate(potential, stride, x, y);
+            boolean moved = false;
+            if (gradient(potential, stride, x, y, gradient)) {
+                double norm = Math.hypot(gradient[0], gradient[1]);
+                for (double length = STEP; norm > 0 && length >= STEP / 2; length /= 2) {
+                    double nx = x - length * gradient[0] / norm;
+                    double ny = y - length * gradient[1] / norm;
+                    if (nx >= 0 && ny >= 0 && nx < grid.geometry().width() && ny < grid.geometry().height()
+                            && passable(grid, density, x, y, nx, ny)
+                            && GridField.interpolate(potential, stride, nx, ny) < value - minDrop * length) {
+                        x = nx;
+                        y = ny;
+                        moved = true;
+                        break;
+                    }
+                }
+            }
+            if (!moved) {
+                int next = lowestNeighbour(grid, costs, potential, density, cell, value, x, y);
+                if (next < 0) {
+                    throw new IllegalStateException("navigation function has no lower neighbour at cell ("
+                            + grid.column(cell) + ", " + grid.row(cell) + ")");
+                }
+                x = grid.column(next) + 0.5;
+                y = grid.row(next) + 0.5;
+            }
+            points.add(new double[] { x, y });
+        }
+        return shortcut(grid, density, points);
+    }
+
+    /**
+     * Drops waypoints where a straight segment from the last kept waypoint costs no more than the path it replaces
+     * (line integral of the density) and crosses only passable cells: removes the zig-zag a descent makes across
+     * cost valleys without ever raising the path's cost, and keeps N strictly decreasing (only waypoints are removed).
+     * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length.
+     */
+    private static double[] shortcut(PlanningGrid grid, float[] density, List<double[]> points) {
+        GridTraversal.CellDensity cells = (column, row) -> cellDensity(grid, density, column, row);
+        double[] flat = new double[points.size() * 2];
+        int kept = 0;
+        double[] anchor = points.get(0);
+        flat[kept++] = anchor[0];
+        flat[kept++] = anchor[1];
+        double[] pending = null;
+        double pendingCost = 0;
+        for (int i = 1; i < points.size(); i++) {
+            double[] next = points.get(i);
+            if (pending == null) {
+                pending = next;
+                pendingCost = GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells);
+                continue;
+            }
+            double via = pendingCost + GridTraversal.integrate(pending[0], pending[1], next[0], next[1], cells);
+            double direct = Math.hypot(next[0] - anchor[0], next[1] - anchor[1]) <= MAX_SHORTCUT
+                    ? GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells)
+                    : Double.POSITIVE_INFINITY;
+            if (direct <= via) {
+                pending = next;
+                pendingCost = direct;
+            } else {
+                flat[kept++] = pending[0];
+                flat[kept++] = pending[1];
+                anchor = pending;
+                pending = next;
+                pendingCost = GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells);
+            }
+        }
+        if (pending != null) {
+            flat[kept++] = pending[0];
+            flat[kept++] = pending[1];
+        }
+        return java.util.Arrays.copyOf(flat, kept);
+    }
+
+    private static double cellDensity(PlanningGrid grid, float[] density, int column, int row) {
+        if (column < -1 || row < -1 || column > grid.geometry().width() || row > grid.geometry().height()) {
+            return Double.POSITIVE_INFINITY;
+        }
+        return density[grid.costs()[grid.index(column, row)] & 0xFF];
+    }
+
+    /** Ends the path at the goal point of the goal cell reached, replacing the entry point when the shortcut is clear. */
+    private static void finishAtGoal(List<double[]> points, PlanningGrid grid, float[] density, double[] goals, double x,
+            double y) {
+        int column = (int) x;
+        int row = (int) y;
+        for (int i = 0; i < goals.length; i += 2) {
+            if ((int) goals[i] == column && (int) goals[i + 1] == row) {
+                double[] goal = { goals[i], goals[i + 1] };
+                if (points.size() >= 2) {
+                    double[] before = points.get(points.size() - 2);
+                    if (passable(grid, density, before[0], before[1], goal[0], goal[1])) {
+                        points.set(points.size() - 1, goal);
+                        return;
+                    }
+                }
+                if (goal[0] != x || goal[1] != y || points.size() == 1) {
+                    points.add(goal);
+                }
+                return;
+            }
+        }
+        if (points.size() == 1) {
+            points.add(new double[] { x, y });
+        }
+    }
+
+    /**
+     * Descent direction at (x, y), navfn's way: the normalised central-difference gradient of N at each of the four
+     * cell centres around the point, blended bilinearly, so that the direction turns smoothly between cells instead
+     * of jumping at cell borders (the gradient of the bilinear interpolation itself is discontinuous there, and makes
+     * the path zig-zag in valleys of cost). False when a cell around the point is unreached.
+     */
+    private static boolean gradient(int[] potential, int stride, double x, double y, double[] out) {
+        double u = x - 0.5;
+        double v = y - 0.5;
+        int c0 = (int) Math.floor(u);
+        int r0 = (int) Math.floor(v);
+        double fu = u - c0;
+        double fv = v - r0;
+        int i00 = (r0 + 1) * stride + c0 + 1;
+        double gx = 0;
+        double gy = 0;
+        for (int k = 0; k < 4; k++) {
+            int cell = i00 + (k & 1) + (k >> 1) * stride;
+            double weight = ((k & 1) == 0 ? 1 - fu : fu) * ((k >> 1) == 0 ? 1 - fv : fv);
+            float centre = value(potential, cell);
+            if (centre == Float.POSITIVE_INFINITY) {
+                return false;
+            }
+            double dx = difference(value(potential, cell - 1), centre, value(potential, cell + 1));
+            double dy = difference(value(potential, cell - stride), centre, value(potential, cell + stride));
+            double norm = Math.hypot(dx, dy);
+            if (norm > 0) {
+                gx += weight * dx / norm;
+                gy += weight * dy / norm;
+            }
+        }
+        out[0] = gx;
+        out[1] = gy;
+        return true;
+    }
+
+    /** Central difference of N across a cell, one-sided where a neighbour is unreached. */
+    private static double difference(float before, float centre, float after) {
+        boolean hasBefore = before != Float.POSITIVE_INFINITY;
+        boolean hasAfter = after != Float.POSITIVE_INFINITY;
+        if (hasBefore && hasAfter) {
+            return 0.5 * (after - before);
+        }
+        if (hasAfter) {
+            return after - centre;
+        }
+        if (hasBefore) {
+            return centre - before;
+        }
+        return 0;
+    }
+
+    /** The reachable neighbour of lowest N below {@code value} whose straight move from (x, y) is clear, or -1. */
+    private static int lowestNeighbour(PlanningGrid grid, byte[] costs, int[] potential, float[] density, int cell,
+            double value, double x, double y) {
+        int stride = grid.stride();
+        int best = -1;
+        float bestValue = Float.POSITIVE_INFINITY;
+        for (int k = 0; k < 8; k++) {
+            int dx = NEIGHBOUR_DX[k];
+            int dy = NEIGHBOUR_DY[k];
+            int next = cell + dx + dy * stride;
+            float nextValue = value(potential, next);
+            if (!(nextValue < value) || nextValue >= bestValue) {
+                continue;
+            }
+            if (dx != 0 && dy != 0 && (density[costs[cell + dx] & 0xFF] == Float.POSITIVE_INFINITY
+                    || density[costs[cell + dy * stride] & 0xFF] == Float.POSITIVE_INFINITY)) {
+                continue;
+            }
+            if (!passable(grid, density, x, y, grid.column(next) + 0.5, grid.row(next) + 0.5)) {
+                continue;
+            }
+            best = next;
+            bestValue = nextValue;
+        }
+        return best;
+    }
+
+    private static float value(int[] potential, int index) {
+        return LpnNavigationFunction.decode(potential[index]);
+    }
+
+    /** True when the segment crosses only passable cells (touching a corner does not count). */
+    static boolean passable(PlanningGrid grid, float[] density, double x0, double y0, double x1, double y1) {
+        return GridTraversal.integrate(x0, y0, x1, y1,
+                (column, row) -> cellDensity(grid, density, column, row)) != Double.POSITIVE_INFINITY;
+    }
+}

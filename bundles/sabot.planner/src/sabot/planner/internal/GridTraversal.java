@@ -1,0 +1,78 @@
+package sabot.planner.internal;
+
+/**
+ * Walks the cells a straight segment crosses, in grid coordinates (cell (c, r) spans [c, c+1) x [r, r+1)), after
+ * Amanatides and Woo, "A fast voxel traversal algorithm for ray tracing", Eurographics 1987. A segment that passes
+ * exactly through a cell corner steps diagonally: the two side cells are touched in a point only and do not count.
+ */
+public final class GridTraversal {
+
+    /** Length in cell edges below which a piece of a segment inside a cell is treated as touching it in a point. */
+    private static final double NEGLIGIBLE = 1e-9;
+
+    /** Density of a cell; may be {@code +infinity}. */
+    @FunctionalInterface
+    public interface CellDensity {
+        double at(int column, int row);
+    }
+
+    private GridTraversal() {
+    }
+
+    /**
+     * @return the sum over the cells the segment crosses of (length inside the cell, cell edges) x density;
+     *         {@code +infinity} as soon as a crossed cell has infinite density
+     */
+    public static double integrate(double x0, double y0, double x1, double y1, CellDensity density) {
+        double dx = x1 - x0;
+        double dy = y1 - y0;
+        double length = Math.hypot(dx, dy);
+        int column = (int) Math.floor(x0);
+        int row = (int) Math.floor(y0);
+        int lastColumn = (int) Math.floor(x1);
+        int lastRow = (int) Math.floor(y1);
+        if (length < NEGLIGIBLE) {
+            double d = density.at(column, row);
+            return d == Double.POSITIVE_INFINITY ? d : 0;
+        }
+        int stepX = dx > 0 ? 1 : dx < 0 ? -1 : 0;
+        int stepY = dy > 0 ? 1 : dy < 0 ? -1 : 0;
+        double tDeltaX = stepX == 0 ? Double.POSITIVE_INFINITY : 1.0 / Math.abs(dx);
+        double tDeltaY = stepY == 0 ? Double.POSITIVE_INFINITY : 1.0 / Math.abs(dy);
+        double tMaxX = stepX == 0 ? Double.POSITIVE_INFINITY
+                : ((stepX > 0 ? column + 1 - x0 : x0 - column) / Math.abs(dx));
+        double tMaxY = stepY == 0 ? Double.POSITIVE_INFINITY
+                : ((stepY > 0 ? row + 1 - y0 : y0 - row) / Math.abs(dy));
+        double t = 0;
+        double total = 0;
+        int guard = Math.abs(lastColumn - column) + Math.abs(lastRow - row) + 2;
+        while (guard-- > 0) {
+            double tExit = Math.min(1.0, Math.min(tMaxX, tMaxY));
+            double piece = (tExit - t) * length;
+            if (piece > NEGLIGIBLE) {
+                double d = density.at(column, row);
+                if (d == Double.POSITIVE_INFINITY) {
+                    return d;
+                }
+                total += piece * d;
+            }
+            if (tExit >= 1.0 || column == lastColumn && row == lastRow) {
+                break;
+            }
+            t = tExit;
+            if (Math.abs(tMaxX - tMaxY) < NEGLIGIBLE) {
+                column += stepX;
+                row += stepY;
+                tMaxX += tDeltaX;
+                tMaxY += tDeltaY;
+            } else if (tMaxX < tMaxY) {
+                column += stepX;
+                tMaxX += tDeltaX;
+            } else {
+                row += stepY;
+                tMaxY += tDeltaY;
+            }
+        }
+        return total;
+    }
+}

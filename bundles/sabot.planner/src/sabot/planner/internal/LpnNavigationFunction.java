@@ -1,0 +1,247 @@
+package sabot.planner.internal;
+
+import java.util.Arrays;
+
+import sabot.model.map.CellRegion;
+import sabot.planner.CostModel;
+
+/**
+ * Konolige's LPN navigation function (K. Konolige, "A gradient method for realtime robot control", IROS 2000) over a
+ * {@link PlanningGrid}: every goal cell holds 0, every other reachable cell p the least cost to the goal set,
+ *
+ * <pre>
+ *   N(p) = min over neighbours q of  N(q) + |p - q| * c,   c = (h(p) + h(q)) / 2       (8 neighbours, CostModel)
+ * </pre>
+ *
+ * refined by interpolation so that values are not tied to the eight grid directions: in the triangle (p, a, d) formed
+ * with an axis neighbour a and the adjacent diagonal neighbour d, the wave may cross the edge [a, d] at any point;
+ * the least of {@code (1 - t) N(a) + t N(d) + c sqrt(1 + t^2)} over t in [0, 1] is, with
+ * {@code delta = max(0, N(a) - N(d))},
+ *
+ * <pre>
+ *   N(a) + sqrt(c^2 - delta^2)     when delta &lt; c / sqrt(2)       (crossing inside the edge)
+ *   N(d) + c sqrt(2)               otherwise                         (straight from d)
+ * </pre>
+ *
+ * (J. N. Tsitsiklis, "Efficient algorithms for globally optimal trajectories", IEEE TAC 40(9), 1995; the same
+ * interpolation idea as navfn's quadratic update, on eight neighbours). Of the two triangles sharing the edge
+ * direction, the one whose far corner is lower gives the lower value, so each neighbour update evaluates one square
+ * root. All values are read from final cells only.
+ *
+ * <p>Priority scheme: every update raises N by at least {@code c_min / sqrt(2)} over the values it reads
+ * ({@code c_min} = {@link CostModel#minDensity()}), so with buckets of that width (R. Dial, CACM 12(11), 1969) all
+ * cells in the lowest non-empty bucket are final and can be expanded in any order: each cell is expanded once, in
+ * O(1) per queue operation, and never revisited. Buckets form a ring because no update reaches further than
+ * {@code sqrt(2) * c_max} ahead.
+ *
+ * <p>Storage: one {@code int} per padded cell holds the IEEE bits of N (for non-negative floats the bit patterns order
+ * like the values, so they compare as ints) with the sign bit set once the value is final. Impassable cells are
+ * stored as final {@code +infinity}, so one load and one sign test reject both final and impassable neighbours.
+ * The loops allocate nothing once the buckets have grown to the map's wavefront size.
+ */
+public final class LpnNavigationFunction {
+
+    /** Bits of an unreached passable cell: +infinity, not final. */
+    public static final int UNREACHED = 0x7F800000;
+    /** Bits of an impassable cell: +infinity, final. */
+    public static final int IMPASSABLE = 0xFF800000;
+    private static final int FINAL = 0x80000000;
+    private static final int VALUE = 0x7FFFFFFF;
+
+    private static final float SQRT2 = (float) Math.sqrt(2);
+    private static final float INV_SQRT2 = (float) (1 / Math.sqrt(2));
+    /** Bucket width as a fraction of the least increment, a margin for float rounding. */
+    private static final float BUCKET_MARGIN = 0.99f;
+    private static final int INITIAL_BUCKET_CAPACITY = 1024;
+
+    private final float[] density;
+    private final float maxDensity;
+    private final float bucketWidth;
+    private final float inverseBucketWidth;
+    private final int bucketMask;
+    private final int[][] buckets;
+    private final int[] bucketSizes;
+
+    private PlanningGrid grid;
+    private int[] potential = new int[0];
+    private float[] cellDensity = new float[0];
+    private int[] touched = new int[0];
+    private int touchedCount;
+    private int finalizedCount;
+    private int queued;
+    private int currentBucket;
+
+    public LpnNavigationFunction(CostModel costModel) {
+        this.density = costModel.densityTable();
+        this.maxDensity = costModel.maxDensity();
+        this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
+        this.inverseBucketWidth = 1f / bucketWidth;
+        int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
+        int ring = Integer.highestOneBit(reach) << 1;
+        this.bucketMask = ring - 1;
+        this.buckets = new int[ring][];
+        for (int i = 0; i < ring; i++) {
+            buckets[i] = new int[INITIAL_BUCKET_CAPACITY];
+        }
+        this.bucketSizes = new int[ring];
+    }
+
+    /** @return the value of stored bits: N in cost units, {@code +infinity} for unreached or impassable cells */
+    public static float decode(int bits) {
+        return Float.intBitsToFloat(bits & VALUE);
+    }
+
+    /** @return N by padded index as stored bits (see {@link #decode}); valid until the next computation */
+    public int[] potential() {
+        return potential;
+    }
+
+    /** @return number of cells holding a final value after the last computation */
+    public int finalizedCount() {
+        return finalizedCount;
+    }
+
+    /** @return true when the cell holds a final, finite value */
+    public boolean isReached(int index) {
+        int bits = potential[index];
+        return bits < 0 && bits != IMPASSABLE;
+    }
+
+    /**
+     * Takes note of changed cells of the grid (after {@link PlanningGrid#sync}); must be called for every change
+     * between computations.
+     */
+    public void gridChanged(PlanningGrid planningGrid, CellRegion changed) {
+        if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
+            grid = planningGrid;
+            potential = new int[planningGrid.paddedSize()];
+            cellDensity = new float[planningGrid.paddedSize()];
+            touched = new int[planningGrid.paddedSize()];
+            touchedCount = 0;
+            byte[] costs = planningGrid.costs();
+            for (int i = 0; i < potential.length; i++) {
+                cellDensity[i] = density[costs[i] & 0xFF];
+                potential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+            }
+            return;
+        }
+        resetTouched();
+        byte[] costs = planningGrid.costs();
+        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
+            int from = planningGrid.index(changed.minColumn(), row);
+            int to = planningGrid.index(changed.maxColumn(), row);
+            for (int i = from; i <= to; i++) {
+                cellDensity[i] = density[costs[i] & 0xFF];
+                potential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+            }
+        }
+    }
+
+    /**
+     * Computes N over everything reachable from the goal cells.
+     *
+     * @param goals      padded indices of passable goal cells
+     * @param stopAtCell padded index after whose value (plus a margin of two diagonal steps) the computation may
+     *                   stop, or -1 for the whole reachable grid
+     */
+    public void compute(int[] goals, int stopAtCell) {
+        resetTouched();
+        finalizedCount = 0;
+        queued = 0;
+        currentBucket = 0;
+        Arrays.fill(bucketSizes, 0);
+        for (int goal : goals) {
+            if (potential[goal] == UNREACHED) {
+                touched[touchedCount++] = goal;
+                potential[goal] = 0;
+                push(goal, 0f);
+            }
+        }
+        propagate(stopAtCell);
+    }
+
+    private void resetTouched() {
+        for (int i = 0; i < touchedCount; i++) {
+            potential[touched[i]] = UNREACHED;
+        }
+        touchedCount = 0;
+    }
+
+    private void propagate(int stopAtCell) {
+        final int[] potential = this.potential;
+        final float[] density = this.cellDensity;
+        final int stride = grid.stride();
+        float stopAbove = Float.POSITIVE_INFINITY;
+        while (queued > 0 && currentBucket * bucketWidth <= stopAbove) {
+            int slot = currentBucket & bucketMask;
+            while (bucketSizes[slot] > 0) {
+                int cell = buckets[slot][--bucketSizes[slot]];
+                queued--;
+                int bits = potential[cell];
+                if (bits < 0) {
+                    continue;
+                }
+                potential[cell] = bits | FINAL;
+                finalizedCount++;
+                float value = Float.intBitsToFloat(bits);
+                if (cell == stopAtCell) {
+                    stopAbove = value + 2 * SQRT2 * maxDensity;
+                }
+                float ownDensity = density[cell];
+                relaxAxis(cell + 1, cell + stride, cell - stride, value, ownDensity, potential, density);
+                relaxAxis(cell - 1, cell + stride, cell - stride, value, ownDensity, potential, density);
+                relaxAxis(cell + stride, cell + 1, cell - 1, value, ownDensity, potential, density);
+                relaxAxis(cell - stride, cell + 1, cell - 1, value, ownDensity, potential, density);
+            }
+            currentBucket++;
+        }
+    }
+
+    /**
+     * Updates {@code target}, an axis neighbour of the just-finalised cell (value {@code value}), through the
+     * triangles (target, cell, corner) with the two diagonal corners of the target next to the cell. Branch-free
+     * but for the final comparison: for a final or impassable target the stored bits are negative, so no candidate
+     * is ever below them.
+     */
+    private void relaxAxis(int target, int corner1, int corner2, float value, float ownDensity, int[] potential,
+            float[] density) {
+        int targetBits = potential[target];
+        if (targetBits < 0) {
+            return;
+        }
+        float c = 0.5f * (density[target] + ownDensity);
+        float corner = Math.min(decode(potential[corner1]), decode(potential[corner2]));
+        float limit = c * INV_SQRT2;
+        float delta = Math.min(Math.max(0f, value - corner), limit);
+        // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner
+        float best = Math.min(value + (float) Math.sqrt(c * c - delta * delta), corner + c * SQRT2);
+        if (Float.floatToRawIntBits(best) < targetBits) {
+            lower(target, targetBits, best);
+        }
+    }
+
+    private void lower(int target, int oldBits, float newValue) {
+        if (oldBits == UNREACHED) {
+            touched[touchedCount++] = target;
+        }
+        potential[target] = Float.floatToRawIntBits(newValue);
+        push(target, newValue);
+    }
+
+    private void push(int cell, float value) {
+        int bucket = (int) (value * inverseBucketWidth);
+        if (bucket < currentBucket) {
+            bucket = currentBucket;
+        }
+        int slot = bucket & bucketMask;
+        int size = bucketSizes[slot];
+        int[] items = buckets[slot];
+        if (size == items.length) {
+            items = Arrays.copyOf(items, size * 2);
+            buckets[slot] = items;
+        }
+        items[size] = cell;
+        bucketSizes[slot] = size + 1;
+        queued++;
+    }
+}

@@ -1,0 +1,67 @@
+package sabot.planner.internal;
+
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Optional;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.map.Costmap;
+import sabot.model.map.GridGeometry;
+import sabot.planner.CostModel;
+import sabot.planner.PlanResult;
+import sabot.planner.PlannedPath;
+import sabot.planner.Planner;
+
+/** The LPN planner: navigation function ({@link LpnNavigationFunction}) then gradient descent ({@link GradientDescent}). */
+public final class LpnPlanner implements Planner {
+
+    private final CostModel costModel;
+    private final boolean wholeGrid;
+    private final float[] density;
+    private final PlanningGrid grid = new PlanningGrid();
+    private final LpnNavigationFunction navigationFunction;
+
+    /**
+     * @param wholeGrid true to compute N over the whole reachable grid (a navigation function valid from anywhere);
+     *                  false to stop once the start's value and its neighbourhood are final (cheaper re-planning)
+     */
+    public LpnPlanner(CostModel costModel, boolean wholeGrid) {
+        this.costModel = costModel;
+        this.wholeGrid = wholeGrid;
+        this.density = costModel.densityTable();
+        this.navigationFunction = new LpnNavigationFunction(costModel);
+    }
+
+    @Override
+    public String name() {
+        return wholeGrid ? "lpn" : "lpn-bounded";
+    }
+
+    @Override
+    public PlanResult plan(Costmap costmap, Point2D start, List<Point2D> goals) {
+        Optional<PlanResult.Unreachable> problem = PlanRequest.problem(costmap, costModel, start, goals);
+        if (problem.isPresent()) {
+            return problem.get();
+        }
+        navigationFunction.gridChanged(grid, grid.sync(costmap));
+        PlanRequest request = PlanRequest.resolve(grid, start, goals);
+        navigationFunction.compute(request.goalCells(), wholeGrid ? -1 : request.startCell());
+        if (!navigationFunction.isReached(request.startCell())) {
+            return PlanRequest.enclosed(navigationFunction.finalizedCount());
+        }
+        double[] points = GradientDescent.descend(grid, navigationFunction.potential(), density,
+                costModel.minDensity(), request.startX(), request.startY(), request.goalPoints());
+        List<Point2D> waypoints = toMap(grid.geometry(), points);
+        PlannedPath path = new PlannedPath(waypoints, CostModel.length(waypoints), costModel.pathCost(costmap, waypoints));
+        return new PlanResult.Found(path,
+                new GridField(grid.geometry(), navigationFunction.potential(), navigationFunction.finalizedCount()));
+    }
+
+    static List<Point2D> toMap(GridGeometry geometry, double[] gridPoints) {
+        List<Point2D> waypoints = new ArrayList<>(gridPoints.length / 2);
+        for (int i = 0; i < gridPoints.length; i += 2) {
+            waypoints.add(geometry.toMap(gridPoints[i], gridPoints[i + 1]));
+        }
+        return waypoints;
+    }
+}

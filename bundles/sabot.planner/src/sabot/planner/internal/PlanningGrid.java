@@ -1,0 +1,84 @@
+package sabot.planner.internal;
+
+import sabot.model.map.CellRegion;
+import sabot.model.map.Costmap;
+import sabot.model.map.GridGeometry;
+
+/**
+ * A planner's own copy of a costmap with a one-cell border of lethal cells around it, so that the hot loops reach all
+ * eight neighbours of any cell by a fixed index offset without bounds checks. Kept in step with the costmap by copying
+ * only the cells that changed since the last {@link #sync}.
+ *
+ * <p>Padded index of cell (column, row): {@code (row + 1) * stride + column + 1}.
+ */
+public final class PlanningGrid {
+
+    private Costmap source;
+    private long sourceVersion;
+    private GridGeometry geometry;
+    private int stride;
+    private byte[] costs = new byte[0];
+
+    /**
+     * Brings the copy up to date with {@code costmap}.
+     *
+     * @return the cells that changed (unpadded coordinates): the whole grid the first time or after a geometry change,
+     *         empty when nothing changed
+     */
+    public CellRegion sync(Costmap costmap) {
+        CellRegion changed;
+        if (costmap != source || !costmap.geometry().equals(geometry)) {
+            geometry = costmap.geometry();
+            stride = geometry.width() + 2;
+            int padded = stride * (geometry.height() + 2);
+            if (costs.length != padded) {
+                costs = new byte[padded];
+            }
+            java.util.Arrays.fill(costs, (byte) Costmap.LETHAL);
+            changed = geometry.bounds();
+        } else {
+            changed = costmap.changedSince(sourceVersion);
+        }
+        source = costmap;
+        sourceVersion = costmap.version();
+        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
+            costmap.copyRow(row, changed.minColumn(), changed.maxColumn(), costs, index(changed.minColumn(), row));
+        }
+        return changed;
+    }
+
+    /** @return the geometry of the costmap last synced */
+    public GridGeometry geometry() {
+        return geometry;
+    }
+
+    /** @return padded row length: width + 2 */
+    public int stride() {
+        return stride;
+    }
+
+    /** @return padded cell count: (width + 2) * (height + 2) */
+    public int paddedSize() {
+        return costs.length;
+    }
+
+    /** @return the padded cost array (unsigned bytes); read-only for callers */
+    public byte[] costs() {
+        return costs;
+    }
+
+    /** @return padded index of an in-grid cell */
+    public int index(int column, int row) {
+        return (row + 1) * stride + column + 1;
+    }
+
+    /** @return column of a padded index (-1 or width on the border) */
+    public int column(int index) {
+        return index % stride - 1;
+    }
+
+    /** @return row of a padded index (-1 or height on the border) */
+    public int row(int index) {
+        return index / stride - 1;
+    }
+}
