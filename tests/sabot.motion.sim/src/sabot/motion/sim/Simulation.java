@@ -62,7 +62,7 @@ public final class Simulation {
         if (c.scenario() == Scenario.STABILIZE) {
             metrics = stabilize(c, limits, geometry, trace);
         } else {
-            Trajectory ref = c.scenario().trajectory(limits);
+            Trajectory ref = c.scenario().trajectory(limits, c.fromVertex());
             Pose2D refStart = ref.startPose();
             Pose2D start = c.scenario() == Scenario.OFFSET
                     ? new Pose2D(refStart.x() + Scenario.OFFSET_ERROR.x(), refStart.y() + Scenario.OFFSET_ERROR.y(),

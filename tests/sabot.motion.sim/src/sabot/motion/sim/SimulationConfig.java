@@ -18,10 +18,11 @@ import sabot.model.robot.RobotDescriptions;
  * @param settleTime       seconds at rest before the reference starts (IMU bias estimation at start-up)
  * @param holdTime         seconds the reference holds its end pose before the run stops
  * @param odometryDropout  time (s, reference clock) after which the encoders stop reporting; NaN for never
+ * @param fromVertex       start the lemniscate at its vertex instead of its crossing point
  */
 public record SimulationConfig(Scenario scenario, ControllerKind controller, Feedback feedback, long seed,
         double slipNoise, double slipBias, boolean calibrated, RobotDescription robot, MemsFigures mems,
-        double settleTime, double holdTime, double odometryDropout) {
+        double settleTime, double holdTime, double odometryDropout, boolean fromVertex) {
 
     public SimulationConfig {
         if (scenario == null || controller == null || feedback == null || robot == null || mems == null) {
@@ -41,31 +42,41 @@ public record SimulationConfig(Scenario scenario, ControllerKind controller, Fee
     /** @return the defaults: seed 1, no slip, the reference robot, BMI088 figures, 2 s settle, 2 s hold */
     public static SimulationConfig of(Scenario scenario, ControllerKind controller, Feedback feedback) {
         return new SimulationConfig(scenario, controller, feedback, 1, 0, 0, false, RobotDescriptions.defaults(),
-                MemsFigures.bmi088(), 2.0, 2.0, Double.NaN);
+                MemsFigures.bmi088(), 2.0, 2.0, Double.NaN, false);
     }
 
     public SimulationConfig withSeed(long s) {
         return new SimulationConfig(scenario, controller, feedback, s, slipNoise, slipBias, calibrated, robot, mems,
-                settleTime, holdTime, odometryDropout);
+                settleTime, holdTime, odometryDropout, fromVertex);
     }
 
     public SimulationConfig withSlip(double noise, double bias) {
         return new SimulationConfig(scenario, controller, feedback, seed, noise, bias, calibrated, robot, mems,
-                settleTime, holdTime, odometryDropout);
+                settleTime, holdTime, odometryDropout, fromVertex);
     }
 
     public SimulationConfig withCalibrated(boolean c) {
         return new SimulationConfig(scenario, controller, feedback, seed, slipNoise, slipBias, c, robot, mems,
-                settleTime, holdTime, odometryDropout);
+                settleTime, holdTime, odometryDropout, fromVertex);
     }
 
     public SimulationConfig withOdometryDropout(double t) {
         return new SimulationConfig(scenario, controller, feedback, seed, slipNoise, slipBias, calibrated, robot, mems,
-                settleTime, holdTime, t);
+                settleTime, holdTime, t, fromVertex);
     }
 
     public SimulationConfig with(Scenario s, ControllerKind c, Feedback f) {
         return new SimulationConfig(s, c, f, seed, slipNoise, slipBias, calibrated, robot, mems, settleTime, holdTime,
-                odometryDropout);
+                odometryDropout, fromVertex);
+    }
+
+    public SimulationConfig withFromVertex(boolean v) {
+        return new SimulationConfig(scenario, controller, feedback, seed, slipNoise, slipBias, calibrated, robot, mems,
+                settleTime, holdTime, odometryDropout, v);
+    }
+
+    public SimulationConfig withRobot(RobotDescription r) {
+        return new SimulationConfig(scenario, controller, feedback, seed, slipNoise, slipBias, calibrated, r, mems,
+                settleTime, holdTime, odometryDropout, fromVertex);
     }
 }
