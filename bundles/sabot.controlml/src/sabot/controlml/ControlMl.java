@@ -1,0 +1,34 @@
+package sabot.controlml;
+
+/**
+ * Names and limits of the ControlML wire format (see {@code docs/CONTROLML.md} and {@code docs/controlml.xsd}).
+ * <p>
+ * A {@code <control-ml/>} element in namespace {@value #NAMESPACE} travels inside an {@code <iq/>} (requests and
+ * their answers), a {@code <message/>} (commands queued for an offline robot, and their answers) or a PEP item
+ * (telemetry). Its attributes are exactly {@code type} (get|set|result|error), {@code id} ({@code YYYYMMDD:UINT32})
+ * and {@code res} (a resource name such as {@code cm.position}); its content is at most one SWE Common 2.0
+ * component (the payload) or, for {@code type='error'}, one {@code <failure/>}.
+ */
+public final class ControlMl {
+
+    /** Namespace of {@code control-ml}, {@code failure} and {@code presence-level}. */
+    public static final String NAMESPACE = "urn:sabot:controlml:1";
+    /** Namespace of the application-specific error conditions inside a stanza {@code <error/>}. */
+    public static final String ERRORS_NAMESPACE = "urn:sabot:controlml:1:errors";
+    /** The element name. */
+    public static final String ELEMENT = "control-ml";
+    /** Largest payload accepted, in characters of XML as received (names, attribute values, text, markup). */
+    public static final int MAX_PAYLOAD_CHARS = 64 * 1024;
+    /** Prefix of the PEP node of a resource's telemetry: node = prefix + resource name. */
+    public static final String TELEMETRY_NODE_PREFIX = NAMESPACE + ":telemetry:";
+    /** Service discovery feature a ControlML endpoint announces. */
+    public static final String FEATURE = NAMESPACE;
+
+    private ControlMl() {
+    }
+
+    /** @return the PEP node carrying a resource's telemetry, e.g. {@code urn:sabot:controlml:1:telemetry:cm.position} */
+    public static String telemetryNode(String resourceName) {
+        return TELEMETRY_NODE_PREFIX + resourceName;
+    }
+}

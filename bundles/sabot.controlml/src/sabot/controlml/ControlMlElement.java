@@ -1,0 +1,213 @@
+package sabot.controlml;
+
+import java.util.Objects;
+import java.util.regex.Pattern;
+
+import javax.xml.namespace.QName;
+
+import org.jivesoftware.smack.packet.ExtensionElement;
+import org.jivesoftware.smack.packet.StanzaError;
+import org.jivesoftware.smack.packet.XmlEnvironment;
+
+import sabot.controlml.swe.SweComponent;
+import sabot.controlml.swe.SweXml;
+
+/**
+ * The {@code <control-ml/>} element, immutable. Built by the factory methods for sending, or by
+ * {@link sabot.controlml.provider.ControlMlElementProvider} when received.
+ * <p>
+ * A received element the reader could not accept is still an element: {@link #defect()} says what was wrong (an
+ * error value to answer with), and the attributes it could read are kept for the answer. The reader never throws
+ * for ControlML-level problems, so a bad request cannot break the XMPP connection that carried it.
+ */
+public final class ControlMlElement implements ExtensionElement {
+
+    /** The qualified name (Smack looks extension classes up by it). */
+    public static final QName QNAME = new QName(ControlMl.NAMESPACE, ControlMl.ELEMENT);
+
+    /** Syntax of {@code res}: {@code cm} and dot-separated lower-case words, e.g. {@code cm.fs.read}. */
+    public static final Pattern RESOURCE_SYNTAX = Pattern.compile("cm(\\.[a-z][a-z0-9-]{0,30}){1,4}");
+
+    private final ControlMlType type;
+    private final RequestId id;
+    private final String res;
+    private final SweComponent payload;
+    private final ControlMlError failure;
+    private final ControlMlError defect;
+
+    private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect) {
+        this.type = type;
+        this.id = id;
+        this.res = res;
+        this.payload = payload;
+        this.failure = failure;
+        this.defect = defect;
+    }
+
+    /**
+     * @param type    get or set
+     * @param id      a fresh id of the requester
+     * @param res     resource name, matching {@link #RESOURCE_SYNTAX}
+     * @param payload the value of a set, the query of a get on a resource that takes one, else null
+     * @return a request element
+     */
+    public static ControlMlElement request(ControlMlType type, RequestId id, String res, SweComponent payload) {
+        if (!type.isRequest()) {
+            throw new IllegalArgumentException("not a request type: " + type);
+        }
+        return new ControlMlElement(type, Objects.requireNonNull(id), checkRes(res), payload, null, null);
+    }
+
+    /** @return a result (answer to a request, or a telemetry item); payload null for a bare acknowledgement */
+    public static ControlMlElement result(RequestId id, String res, SweComponent payload) {
+        return new ControlMlElement(ControlMlType.RESULT, Objects.requireNonNull(id), checkRes(res), payload, null,
+                null);
+    }
+
+    /** @return an error answer */
+    public static ControlMlElement error(RequestId id, String res, ControlMlError failure) {
+        return new ControlMlElement(ControlMlType.ERROR, Objects.requireNonNull(id), checkRes(res), null,
+                Objects.requireNonNull(failure), null);
+    }
+
+    /**
+     * For providers: an element as read. Exactly one of the readable parts may be missing when {@code defect} is
+     * set.
+     */
+    public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect) {
+        return new ControlMlElement(type, id, res, payload, failure, defect);
+    }
+
+    private static String checkRes(String res) {
+        if (res == null || !RESOURCE_SYNTAX.matcher(res).matches()) {
+            throw new IllegalArgumentException("not a resource name: " + res);
+        }
+        return res;
+    }
+
+    /** @return the type; null only on a defective element whose type could not be read */
+    public ControlMlType type() {
+        return type;
+    }
+
+    /** @return the id; null only on a defective element whose id could not be read */
+    public RequestId id() {
+        return id;
+    }
+
+    /** @return the resource name; null only on a defective element whose res could not be read */
+    public String res() {
+        return res;
+    }
+
+    /** @return the payload, or null when there is none */
+    public SweComponent payload() {
+        return payload;
+    }
+
+    /** @return the failure of an error answer, or null */
+    public ControlMlError failure() {
+        return failure;
+    }
+
+    /** @return what made a received element unacceptable, or null when it is well-formed ControlML */
+    public ControlMlError defect() {
+        return defect;
+    }
+
+    /** @return true when the attributes could all be read, so an answer can echo them */
+    public boolean hasValidAttributes() {
+        return type != null && id != null && res != null;
+    }
+
+    @Override
+    public String getElementName() {
+        return ControlMl.ELEMENT;
+    }
+
+    @Override
+    public String getNamespace() {
+        return ControlMl.NAMESPACE;
+    }
+
+    @Override
+    public CharSequence toXML(XmlEnvironment xmlEnvironment) {
+        StringBuilder sb = new StringBuilder(payload == null ? 128 : 1024);
+        sb.append("<control-ml xmlns='").append(ControlMl.NAMESPACE).append('\'');
+        appendAttributesAndContent(sb);
+        return sb;
+    }
+
+    /** Appends {@code type='..' id='..' res='..'} and then either {@code />} or {@code >content</control-ml>}. */
+    public void appendAttributesAndContent(StringBuilder sb) {
+        appendAttributes(sb);
+        String content = contentXml();
+        if (content.isEmpty()) {
+            sb.append("/>");
+        } else {
+            sb.append('>').append(content).append("</control-ml>");
+        }
+    }
+
+    /** Appends the three attributes, each preceded by a space. */
+    public void appendAttributes(StringBuilder sb) {
+        if (type != null) {
+            sb.append(" type='").append(type.attribute()).append('\'');
+        }
+        if (id != null) {
+            sb.append(" id='").append(id).append('\'');
+        }
+        if (res != null) {
+            sb.append(" res='").append(res).append('\'');
+        }
+    }
+
+    /** @return the element's content (payload or failure) as XML, or the empty string */
+    public String contentXml() {
+        StringBuilder sb = new StringBuilder();
+        if (payload != null) {
+            SweXml.write(payload, sb);
+        }
+        if (failure != null) {
+            sb.append("<failure condition='").append(failure.condition()).append("' reason='").append(failure
+                    .cmCondition().element()).append('\'');
+            if (failure.text().isEmpty()) {
+                sb.append("/>");
+            } else {
+                sb.append('>');
+                SweXml.escape(failure.text(), sb);
+                sb.append("</failure>");
+            }
+        }
+        return sb.toString();
+    }
+
+    /** @return the RFC 6120 condition for a failure element's {@code condition} attribute, or null */
+    public static StanzaError.Condition conditionFromAttribute(String value) {
+        try {
+            return value == null ? null : StanzaError.Condition.fromString(value);
+        } catch (IllegalArgumentException e) {
+            return null;
+        }
+    }
+
+    @Override
+    public boolean equals(Object o) {
+        return o instanceof ControlMlElement e && type == e.type && Objects.equals(id, e.id) && Objects.equals(res,
+                e.res) && Objects.equals(payload, e.payload) && Objects.equals(failure, e.failure) && Objects
+                        .equals(defect, e.defect);
+    }
+
+    @Override
+    public int hashCode() {
+        return Objects.hash(type, id, res, payload, failure, defect);
+    }
+
+    @Override
+    public String toString() {
+        return "control-ml[" + type + " " + id + " " + res + (payload == null ? "" : " +payload") + (failure == null
+                ? "" : " failure=" + failure) + (defect == null ? "" : " defect=" + defect) + "]";
+    }
+}

@@ -1,0 +1,551 @@
+package sabot.controlml;
+
+import java.time.Clock;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.Date;
+import java.util.LinkedHashMap;
+import java.util.Map;
+import java.util.Objects;
+import java.util.WeakHashMap;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
+import java.util.concurrent.ScheduledThreadPoolExecutor;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Supplier;
+import java.util.logging.Level;
+import java.util.logging.Logger;
+
+import org.jivesoftware.smack.Manager;
+import org.jivesoftware.smack.SmackException.NotConnectedException;
+import org.jivesoftware.smack.StanzaCollector;
+import org.jivesoftware.smack.StanzaListener;
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.filter.StanzaFilter;
+import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
+import org.jivesoftware.smack.iqrequest.IQRequestHandler.Mode;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.Message;
+import org.jivesoftware.smack.packet.MessageBuilder;
+import org.jivesoftware.smack.packet.Stanza;
+import org.jivesoftware.smack.packet.StandardExtensionElement;
+import org.jivesoftware.smack.packet.StanzaError;
+import org.jivesoftware.smackx.delay.DelayInformationManager;
+import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
+import org.jivesoftware.smackx.pep.PepManager;
+import org.jivesoftware.smackx.pubsub.PayloadItem;
+import org.jivesoftware.smackx.pubsub.PublishItem;
+import org.jivesoftware.smackx.pubsub.packet.PubSub;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.Jid;
+
+import sabot.controlml.internal.Endpoint;
+import sabot.controlml.internal.SchemaValidator;
+import sabot.controlml.payload.NoQuery;
+import sabot.controlml.payload.PayloadCodec;
+import sabot.controlml.payload.PayloadException;
+import sabot.controlml.provider.ControlMlProviders;
+import sabot.controlml.swe.SweComponent;
+
+/**
+ * ControlML on one XMPP connection, in Smack's manager style ({@link #getInstanceFor(XMPPConnection)}).
+ * <p>
+ * <b>Requester</b> (workbench): {@link #get}, {@link #set} send a request in an {@code <iq/>} and wait for the answer
+ * up to {@link #setRequestTimeout request timeout}; {@link #sendCommandMessage} queues a set for an offline device
+ * in a {@code <message/>}. Every call returns an {@link Outcome}: no ControlML exception reaches the caller.
+ * <p>
+ * <b>Endpoint</b> (robot): {@link #onGet} and {@link #onSet} register typed handlers per resource. Every request is
+ * checked in this order before a handler runs: readable element (else {@code bad-request}, {@code not-acceptable}
+ * for an oversized payload), {@link AccessPolicy} ({@code forbidden}), carrier/type agreement, duplicate id from the
+ * same requester (answered again from the replay cache, never re-applied), known resource and operation
+ * ({@code item-not-found} / {@code service-unavailable}), payload schema, units and values ({@code bad-request} /
+ * {@code not-acceptable}), XSD validation when enabled, and for sets the {@link StaleCommandPolicy}. A refused
+ * request leaves the device's state unchanged, and no bad request breaks the connection.
+ * <p>
+ * <b>Telemetry</b>: {@link #publishTelemetry} publishes a resource's value to the device's PEP node at a fixed rate;
+ * {@link #addTelemetryListener} receives it (register before login so that the {@code +notify} feature is in the
+ * client's entity caps).
+ */
+public final class ControlMlManager extends Manager {
+
+    private static final Logger LOGGER = Logger.getLogger(ControlMlManager.class.getName());
+    private static final Map<XMPPConnection, ControlMlManager> INSTANCES = new WeakHashMap<>();
+    private static final int SENT_IDS_REMEMBERED = 16_384;
+
+    static {
+        ControlMlProviders.register();
+    }
+
+    private final RequestIdGenerator ids;
+    private final Endpoint endpoint;
+    private final Map<RequestId, PendingMessage<?>> pendingMessages = new ConcurrentHashMap<>();
+    private final Map<String, Boolean> sentStanzaIds = new LinkedHashMap<>(1024, 0.75f, false) {
+        private static final long serialVersionUID = 1L;
+
+        @Override
+        protected boolean removeEldestEntry(Map.Entry<String, Boolean> eldest) {
+            return size() > SENT_IDS_REMEMBERED;
+        }
+    };
+
+    private volatile Duration requestTimeout = Duration.ofSeconds(10);
+    private volatile boolean validateResultsWithSchema = false;
+
+    private final AtomicLong unsolicitedDropped = new AtomicLong();
+    private final AtomicLong telemetryPublished = new AtomicLong();
+    private final AtomicLong telemetryFailed = new AtomicLong();
+    private final AtomicLong telemetryReceived = new AtomicLong();
+    private final AtomicLong telemetryRejected = new AtomicLong();
+
+    private ScheduledExecutorService scheduler;
+    private final AtomicInteger activePublications = new AtomicInteger();
+
+    private record PendingMessage<T>(Resource<T, ?> resource, CompletableFuture<Outcome<T>> future) {
+    }
+
+    /** @return the manager of a connection, created on first use */
+    public static synchronized ControlMlManager getInstanceFor(XMPPConnection connection) {
+        return INSTANCES.computeIfAbsent(connection, c -> new ControlMlManager(c, Clock.systemUTC()));
+    }
+
+    private ControlMlManager(XMPPConnection connection, Clock clock) {
+        super(connection);
+        this.ids = new RequestIdGenerator(clock);
+        this.endpoint = new Endpoint(clock);
+        ServiceDiscoveryManager.getInstanceFor(connection).addFeature(ControlMl.FEATURE);
+        connection.registerIQRequestHandler(new RequestHandler(IQ.Type.get));
+        connection.registerIQRequestHandler(new RequestHandler(IQ.Type.set));
+        connection.addSyncStanzaListener(this::onMessage, CONTROL_ML_MESSAGE);
+        connection.addAsyncStanzaListener(this::onIqAnswer, CONTROL_ML_IQ_ANSWER);
+    }
+
+    private static final StanzaFilter CONTROL_ML_MESSAGE = stanza -> stanza instanceof Message && stanza.getExtension(
+            ControlMlElement.QNAME) != null;
+
+    private static final StanzaFilter CONTROL_ML_IQ_ANSWER = stanza -> stanza instanceof ControlMlIQ iq && !iq
+            .isRequestIQ();
+
+    // ---------------------------------------------------------------------------------------------- settings
+
+    /** @param policy who may get and set on this device; the default is {@link AccessPolicy#CLOSED} */
+    public void setAccessPolicy(AccessPolicy policy) {
+        endpoint.setAccessPolicy(policy);
+    }
+
+    /** @return the access policy in force */
+    public AccessPolicy accessPolicy() {
+        return endpoint.accessPolicy();
+    }
+
+    /** @param policy what to do with sets that waited at the server; default {@link StaleCommandPolicy#DEFAULT} */
+    public void setStaleCommandPolicy(StaleCommandPolicy policy) {
+        endpoint.setStaleCommandPolicy(policy);
+    }
+
+    /** @param timeout how long {@link #get}/{@link #set} wait for an answer; default 10 s */
+    public void setRequestTimeout(Duration timeout) {
+        if (timeout.isNegative() || timeout.isZero()) {
+            throw new IllegalArgumentException("timeout must be positive");
+        }
+        this.requestTimeout = timeout;
+    }
+
+    /**
+     * @param requests validate incoming requests' payloads against {@code controlml.xsd} (with the OGC SWE Common
+     *                 2.0 schema) in addition to the schema checks of the codecs; default true
+     * @param results  validate answers received by this requester the same way; default false
+     */
+    public void setSchemaValidation(boolean requests, boolean results) {
+        endpoint.setSchemaValidation(requests);
+        this.validateResultsWithSchema = results;
+    }
+
+    /** @return a snapshot of this connection's counters */
+    public ControlMlStatistics statistics() {
+        return new ControlMlStatistics(endpoint.requestsServed(), endpoint.errorsAnswered(), endpoint
+                .duplicatesReplayed(),
+                unsolicitedDropped.get(), telemetryPublished.get(), telemetryFailed.get(), telemetryReceived.get(),
+                telemetryRejected.get());
+    }
+
+    // ---------------------------------------------------------------------------------------------- requester
+
+    /**
+     * Gets a resource that takes no query.
+     *
+     * @param device the device's full JID (IQs go to a resource, RFC 6120 section 8.5.2)
+     * @return the value, or why not
+     */
+    public <T> Outcome<T> get(Jid device, Resource<T, NoQuery> resource) {
+        return get(device, resource, NoQuery.NONE);
+    }
+
+    /**
+     * Gets a resource with a query (e.g. {@code cm.fs.read}).
+     *
+     * @return the value, or why not
+     */
+    public <T, Q> Outcome<T> get(Jid device, Resource<T, Q> resource, Q query) {
+        SweComponent payload = null;
+        if (resource.queryCodec() != null) {
+            payload = resource.queryCodec().encode(Objects.requireNonNull(query, "query"));
+        }
+        return exchange(device, resource, ControlMlType.GET, payload);
+    }
+
+    /**
+     * Sets a resource and waits for the acknowledgement.
+     *
+     * @return a success (whose value is the device's read-back, or null) or why not
+     */
+    public <T> Outcome<T> set(Jid device, Resource<T, ?> resource, T value) {
+        return exchange(device, resource, ControlMlType.SET, resource.codec().encode(Objects.requireNonNull(value,
+                "value")));
+    }
+
+    private <T> Outcome<T> exchange(Jid device, Resource<T, ?> resource, ControlMlType type, SweComponent payload) {
+        ControlMlElement request = ControlMlElement.request(type, ids.next(), resource.name(), payload);
+        Outcome<ControlMlElement> answer = exchange(device, request);
+        if (answer instanceof Outcome.Failure<ControlMlElement> f) {
+            return Outcome.failure(f.error());
+        }
+        return decodeAnswer(resource, type, answer.orElseThrow());
+    }
+
+    /**
+     * Sends a request element as is and waits for the answer element: the low-level form of {@link #get} and
+     * {@link #set}, for tools and tests.
+     *
+     * @return the answer element (a result; errors arrive as a failure), or why there is none
+     */
+    public Outcome<ControlMlElement> exchange(Jid device, ControlMlElement request) {
+        ControlMlIQ iq = new ControlMlIQ(request);
+        iq.setTo(device);
+        String stanzaId = iq.setStanzaId();
+        synchronized (sentStanzaIds) {
+            sentStanzaIds.put(stanzaId, Boolean.TRUE);
+        }
+        XMPPConnection connection = connection();
+        StanzaCollector collector;
+        try {
+            collector = connection.createStanzaCollectorAndSend(iq);
+        } catch (NotConnectedException e) {
+            return Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected: " + e.getMessage());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return Outcome.failure(ControlMlCondition.NOT_CONNECTED, "interrupted while sending");
+        }
+        IQ answer;
+        try {
+            answer = collector.nextResult(requestTimeout.toMillis());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "interrupted while waiting for " + device);
+        } finally {
+            collector.cancel();
+        }
+        if (answer == null) {
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from " + device + " within "
+                    + requestTimeout.toMillis() + " ms");
+        }
+        if (answer.getType() == IQ.Type.error) {
+            StanzaError error = answer.getError();
+            if (error == null) {
+                return Outcome.failure(ControlMlCondition.UNSPECIFIED, "error answer without <error/>");
+            }
+            return Outcome.failure(ControlMlError.fromStanzaError(error));
+        }
+        if (!(answer instanceof ControlMlIQ cm)) {
+            return Outcome.failure(ControlMlCondition.MALFORMED_PAYLOAD, "answer without control-ml from " + device);
+        }
+        ControlMlElement element = cm.element();
+        if (element.defect() != null) {
+            return Outcome.failure(element.defect());
+        }
+        if (element.type() != ControlMlType.RESULT || !Objects.equals(element.id(), request.id())) {
+            return Outcome.failure(ControlMlCondition.MALFORMED_PAYLOAD, "answer is not a result for id "
+                    + request.id());
+        }
+        return Outcome.success(element);
+    }
+
+    private <T> Outcome<T> decodeAnswer(Resource<T, ?> resource, ControlMlType type, ControlMlElement answer) {
+        if (answer.payload() == null) {
+            if (type == ControlMlType.GET) {
+                return Outcome.failure(ControlMlCondition.PAYLOAD_MISMATCH, "result of a get without payload");
+            }
+            return Outcome.done();
+        }
+        if (validateResultsWithSchema) {
+            String problem = SchemaValidator.shared().problemWith(answer);
+            if (problem != null) {
+                return Outcome.failure(ControlMlCondition.MALFORMED_PAYLOAD, problem);
+            }
+        }
+        try {
+            return Outcome.success(resource.codec().decode(answer.payload()));
+        } catch (PayloadException e) {
+            return Outcome.failure(e.error());
+        }
+    }
+
+    /**
+     * Queues a set for a device that may be offline: a {@code <message type='normal'/>} to its bare JID with a
+     * XEP-0334 store hint (so the server keeps it offline and archives it) and a plain-text fallback body. The server
+     * stamps it with a XEP-0203 delay when it holds it; the device applies its {@link StaleCommandPolicy} and answers
+     * with a message.
+     *
+     * @param device the device's bare JID
+     * @return the pending command; its outcome completes when the answer message arrives
+     */
+    public <T> PendingCommand<T> sendCommandMessage(EntityBareJid device, Resource<T, ?> resource, T value) {
+        RequestId id = ids.next();
+        ControlMlElement element = ControlMlElement.request(ControlMlType.SET, id, resource.name(), resource.codec()
+                .encode(Objects.requireNonNull(value)));
+        CompletableFuture<Outcome<T>> future = new CompletableFuture<>();
+        pendingMessages.put(id, new PendingMessage<>(resource, future));
+        Message message = messageTo(device, element, "ControlML command " + resource.name() + " " + id
+                + " (needs a ControlML endpoint)");
+        try {
+            connection().sendStanza(message);
+        } catch (NotConnectedException e) {
+            pendingMessages.remove(id);
+            future.complete(Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected"));
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            pendingMessages.remove(id);
+            future.complete(Outcome.failure(ControlMlCondition.NOT_CONNECTED, "interrupted while sending"));
+        }
+        return new PendingCommand<>(id, future);
+    }
+
+    private Message messageTo(Jid to, ControlMlElement element, String body) {
+        MessageBuilder b = connection().getStanzaFactory().buildMessageStanza().to(to).ofType(Message.Type.normal)
+                .setBody(body).addExtension(element).addExtension(StandardExtensionElement.builder("store",
+                        "urn:xmpp:hints").build());
+        return b.build();
+    }
+
+    // ---------------------------------------------------------------------------------------------- endpoint
+
+    /** Serves gets of a resource on this device (replaces an earlier handler). */
+    public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
+        endpoint.onGet(resource, handler);
+    }
+
+    /** Applies sets of a resource on this device (replaces an earlier handler). */
+    public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
+        endpoint.onSet(resource, handler);
+    }
+
+    /** Stops serving a resource (gets and sets). */
+    public void removeHandlers(Resource<?, ?> resource) {
+        endpoint.removeHandlers(resource);
+    }
+
+    private final class RequestHandler extends AbstractIqRequestHandler {
+        RequestHandler(IQ.Type type) {
+            super(ControlMl.ELEMENT, ControlMl.NAMESPACE, type, Mode.sync);
+        }
+
+        @Override
+        public IQ handleIQRequest(IQ iq) {
+            ControlMlElement request = ((ControlMlIQ) iq).element();
+            ControlMlType carrierType = iq.getType() == IQ.Type.get ? ControlMlType.GET : ControlMlType.SET;
+            Endpoint.Answer answer = endpoint.serve(request, carrierType, iq.getFrom(), delayOf(iq), Carrier.IQ);
+            if (answer.element() != null) {
+                return new ControlMlIQ(answer.element());
+            }
+            return IQ.createErrorResponse(iq, answer.bareError().toStanzaError());
+        }
+    }
+
+    private static Instant delayOf(Stanza stanza) {
+        Date stamp = DelayInformationManager.getDelayTimestamp(stanza);
+        return stamp == null ? null : stamp.toInstant();
+    }
+
+    // ---------------------------------------------------------------------------------------------- messages
+
+    private void onMessage(Stanza stanza) {
+        Message message = (Message) stanza;
+        if (message.getType() == Message.Type.error) {
+            ControlMlElement element = message.getExtension(ControlMlElement.class);
+            PendingMessage<?> pending = element == null || element.id() == null ? null : pendingMessages.remove(
+                    element.id());
+            if (pending != null) {
+                StanzaError error = message.getError();
+                pending.future().complete(Outcome.failure(error != null ? ControlMlError.fromStanzaError(error)
+                        : ControlMlError.of(ControlMlCondition.UNSPECIFIED, "message bounced")));
+            }
+            return;
+        }
+        ControlMlElement element = message.getExtension(ControlMlElement.class);
+        Jid from = message.getFrom();
+        if (element == null || from == null) {
+            return;
+        }
+        if (element.type() != null && element.type().isRequest()) {
+            Endpoint.Answer answer = endpoint.serve(element, element.type(), from, delayOf(message), Carrier.MESSAGE);
+            Message reply;
+            if (answer.element() != null) {
+                reply = messageTo(from, answer.element(), "ControlML answer " + answer.element().res() + " "
+                        + answer.element().id());
+            } else {
+                // unreadable attributes: nothing to correlate with but the message itself, so bounce it (RFC 6120 8.3)
+                reply = org.jivesoftware.smack.packet.StanzaBuilder.buildMessage(message.getStanzaId()).to(from)
+                        .ofType(Message.Type.error).setError(answer.bareError().toStanzaError()).build();
+            }
+            try {
+                connection().sendStanza(reply);
+            } catch (NotConnectedException e) {
+                LOGGER.log(Level.INFO, "answer to " + from + " not sent: not connected");
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            return;
+        }
+        PendingMessage<?> pending = element.id() == null ? null : pendingMessages.remove(element.id());
+        if (pending == null) {
+            unsolicitedDropped.incrementAndGet();
+            LOGGER.warning("dropped unsolicited ControlML answer " + element + " from " + from);
+            return;
+        }
+        completeFromMessage(pending, element);
+    }
+
+    private <T> void completeFromMessage(PendingMessage<T> pending, ControlMlElement element) {
+        if (element.defect() != null) {
+            pending.future().complete(Outcome.failure(element.defect()));
+        } else if (element.type() == ControlMlType.ERROR) {
+            pending.future().complete(Outcome.failure(element.failure()));
+        } else {
+            pending.future().complete(decodeAnswer(pending.resource(), ControlMlType.SET, element));
+        }
+    }
+
+    private void onIqAnswer(Stanza stanza) {
+        String id = stanza.getStanzaId();
+        boolean ours;
+        synchronized (sentStanzaIds) {
+            ours = id != null && sentStanzaIds.containsKey(id);
+        }
+        if (!ours) {
+            unsolicitedDropped.incrementAndGet();
+            LOGGER.warning("dropped unsolicited ControlML answer " + ((ControlMlIQ) stanza).element() + " from "
+                    + stanza.getFrom());
+        }
+    }
+
+    // ---------------------------------------------------------------------------------------------- telemetry
+
+    /**
+     * Publishes a resource's value to this device's PEP node {@link ControlMl#telemetryNode} at a fixed rate. Each
+     * publication is sent without waiting for the server's acknowledgement (counted in {@link #statistics()}); a
+     * null from {@code source} skips that tick.
+     *
+     * @param rateHz publications per second, &gt; 0 and at most 1000
+     * @return the running publication
+     */
+    public <T> TelemetryPublication publishTelemetry(Resource<T, ?> resource, Supplier<? extends T> source,
+            double rateHz) {
+        if (!(rateHz > 0 && rateHz <= 1000)) {
+            throw new IllegalArgumentException("rate must be in (0, 1000] Hz, was " + rateHz);
+        }
+        long period = Math.round(1e9 / rateHz);
+        ScheduledFuture<?> task;
+        synchronized (this) {
+            if (scheduler == null) {
+                ScheduledThreadPoolExecutor s = new ScheduledThreadPoolExecutor(1, r -> {
+                    Thread t = new Thread(r, "controlml-telemetry-" + connection().getXMPPServiceDomain());
+                    t.setDaemon(true);
+                    return t;
+                });
+                s.setRemoveOnCancelPolicy(true);
+                scheduler = s;
+            }
+            activePublications.incrementAndGet();
+            task = scheduler.scheduleAtFixedRate(() -> {
+                T value = source.get();
+                if (value != null) {
+                    publishTelemetryNow(resource, value);
+                }
+            }, 0, period, TimeUnit.NANOSECONDS);
+        }
+        return new TelemetryPublication() {
+            private boolean stopped;
+
+            @Override
+            public String resource() {
+                return resource.name();
+            }
+
+            @Override
+            public long periodNanos() {
+                return period;
+            }
+
+            @Override
+            public void stop() {
+                synchronized (ControlMlManager.this) {
+                    if (stopped) {
+                        return;
+                    }
+                    stopped = true;
+                    task.cancel(false);
+                    if (activePublications.decrementAndGet() == 0 && scheduler != null) {
+                        scheduler.shutdown();
+                        scheduler = null;
+                    }
+                }
+            }
+        };
+    }
+
+    /** Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. */
+    public <T> void publishTelemetryNow(Resource<T, ?> resource, T value) {
+        ControlMlElement element = ControlMlElement.result(ids.next(), resource.name(), resource.codec().encode(
+                value));
+        PubSub publish = PubSub.createPubsubPacket(null, IQ.Type.set, new PublishItem<>(ControlMl.telemetryNode(
+                resource.name()), new PayloadItem<>("current", element)));
+        try {
+            connection().sendIqRequestAsync(publish).onSuccess(r -> telemetryPublished.incrementAndGet()).onError(
+                    e -> {
+                        telemetryFailed.incrementAndGet();
+                        LOGGER.log(Level.FINE, "telemetry publication failed", e);
+                    });
+        } catch (RuntimeException e) {
+            telemetryFailed.incrementAndGet();
+        }
+    }
+
+    /**
+     * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
+     * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence.
+     */
+    public <T> void addTelemetryListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
+        PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
+                ControlMlElement.class, (from, element, itemId, message) -> {
+                    if (element.defect() != null || element.payload() == null || !resource.name().equals(element
+                            .res())) {
+                        telemetryRejected.incrementAndGet();
+                        LOGGER.fine("rejected telemetry " + element + " from " + from);
+                        return;
+                    }
+                    T value;
+                    try {
+                        value = resource.codec().decode(element.payload());
+                    } catch (PayloadException e) {
+                        telemetryRejected.incrementAndGet();
+                        LOGGER.fine("rejected telemetry from " + from + ": " + e.getMessage());
+                        return;
+                    }
+                    telemetryReceived.incrementAndGet();
+                    listener.onTelemetry(from, value);
+                });
+    }
+}

@@ -1,0 +1,29 @@
+package sabot.controlml;
+
+import java.time.Duration;
+import java.time.Instant;
+import java.util.Objects;
+
+import org.jxmpp.jid.Jid;
+
+/**
+ * A request as a handler sees it: who, which id, and how old.
+ *
+ * @param from     the requester's JID as stamped by the server; never null
+ * @param id       the ControlML id; never null
+ * @param resource the resource name; never null
+ * @param carrier  what it arrived in; never null
+ * @param sent     when it was sent: the XEP-0203 delay stamp the server added while holding it, else the time it
+ *                 arrived; never null
+ * @param age      how long it waited before it arrived (zero when it carried no delay stamp); never null
+ */
+public record Request(Jid from, RequestId id, String resource, Carrier carrier, Instant sent, Duration age) {
+    public Request {
+        Objects.requireNonNull(from, "from");
+        Objects.requireNonNull(id, "id");
+        Objects.requireNonNull(resource, "resource");
+        Objects.requireNonNull(carrier, "carrier");
+        Objects.requireNonNull(sent, "sent");
+        Objects.requireNonNull(age, "age");
+    }
+}

@@ -1,0 +1,296 @@
+package sabot.controlml.internal;
+
+import java.time.Clock;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.Map;
+import java.util.Objects;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.logging.Level;
+import java.util.logging.Logger;
+
+import org.jxmpp.jid.Jid;
+
+import sabot.controlml.AccessLevel;
+import sabot.controlml.AccessPolicy;
+import sabot.controlml.Carrier;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
+import sabot.controlml.ControlMlError;
+import sabot.controlml.ControlMlType;
+import sabot.controlml.GetHandler;
+import sabot.controlml.Outcome;
+import sabot.controlml.Request;
+import sabot.controlml.Resource;
+import sabot.controlml.Resources;
+import sabot.controlml.SetHandler;
+import sabot.controlml.StaleCommandPolicy;
+import sabot.controlml.payload.NoQuery;
+import sabot.controlml.payload.PayloadCodec;
+import sabot.controlml.payload.PayloadException;
+
+/**
+ * The device side of ControlML without the connection: typed handlers per resource, the access and stale-command
+ * policies, the replay cache, and the checks every request passes. {@link sabot.controlml.ControlMlManager} feeds
+ * it requests from IQs and messages; tests and the fuzzer feed it elements directly. Thread-safe.
+ */
+public final class Endpoint {
+
+    private static final Logger LOGGER = Logger.getLogger(Endpoint.class.getName());
+
+    private final Clock clock;
+    private final Map<String, GetHandler<?, ?>> getHandlers = new ConcurrentHashMap<>();
+    private final Map<String, SetHandler<?>> setHandlers = new ConcurrentHashMap<>();
+    private final ReplayCache replayCache = new ReplayCache(4096);
+    private final Object setLock = new Object();
+    private volatile AccessPolicy accessPolicy = AccessPolicy.CLOSED;
+    private volatile StaleCommandPolicy stalePolicy = StaleCommandPolicy.DEFAULT;
+    private volatile boolean validateWithSchema = true;
+    private final AtomicLong requestsServed = new AtomicLong();
+    private final AtomicLong errorsAnswered = new AtomicLong();
+    private final AtomicLong duplicatesReplayed = new AtomicLong();
+
+    /** @param clock the device's clock (request ages are measured with it) */
+    public Endpoint(Clock clock) {
+        this.clock = Objects.requireNonNull(clock);
+    }
+
+    /** Serves gets of a resource (replaces an earlier handler). */
+    public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
+        if (!resource.isGettable()) {
+            throw new IllegalArgumentException(resource + " has no get");
+        }
+        getHandlers.put(resource.name(), Objects.requireNonNull(handler));
+    }
+
+    /** Applies sets of a resource (replaces an earlier handler). */
+    public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
+        if (!resource.isSettable()) {
+            throw new IllegalArgumentException(resource + " has no set");
+        }
+        setHandlers.put(resource.name(), Objects.requireNonNull(handler));
+    }
+
+    /** Stops serving a resource. */
+    public void removeHandlers(Resource<?, ?> resource) {
+        getHandlers.remove(resource.name());
+        setHandlers.remove(resource.name());
+    }
+
+    /** @param policy who may do what; default {@link AccessPolicy#CLOSED} */
+    public void setAccessPolicy(AccessPolicy policy) {
+        this.accessPolicy = Objects.requireNonNull(policy);
+    }
+
+    /** @return the access policy */
+    public AccessPolicy accessPolicy() {
+        return accessPolicy;
+    }
+
+    /** @param policy the stale-command policy; default {@link StaleCommandPolicy#DEFAULT} */
+    public void setStaleCommandPolicy(StaleCommandPolicy policy) {
+        this.stalePolicy = Objects.requireNonNull(policy);
+    }
+
+    /** @param enabled validate request payloads against controlml.xsd as well; default true */
+    public void setSchemaValidation(boolean enabled) {
+        this.validateWithSchema = enabled;
+    }
+
+    /** @return requests served */
+    public long requestsServed() {
+        return requestsServed.get();
+    }
+
+    /** @return requests answered with an error */
+    public long errorsAnswered() {
+        return errorsAnswered.get();
+    }
+
+    /** @return sets answered from the replay cache */
+    public long duplicatesReplayed() {
+        return duplicatesReplayed.get();
+    }
+
+    /** An answer: an element echoing the request's attributes, or (when they were unreadable) a bare error. */
+    public record Answer(ControlMlElement element, ControlMlError bareError) {
+        static Answer of(ControlMlElement e) {
+            return new Answer(e, null);
+        }
+    }
+
+    /**
+     * Checks and serves one request (see {@link sabot.controlml.ControlMlManager} for the order of checks). Never
+     * throws: a failing handler is answered with {@link ControlMlCondition#DEVICE_FAULT}.
+     *
+     * @param request     the element as received (possibly defective)
+     * @param carrierType for an IQ, the control-ml type its IQ type implies; for a message, the element's own type
+     * @param from        the requester as stamped by the server
+     * @param delayStamp  the XEP-0203 delay stamp, or null
+     * @param carrier     what carried the request
+     * @return the answer to send
+     */
+    public Answer serve(ControlMlElement request, ControlMlType carrierType, Jid from, Instant delayStamp,
+            Carrier carrier) {
+        requestsServed.incrementAndGet();
+        Answer answer;
+        try {
+            answer = serveChecked(request, carrierType, from, delayStamp, carrier);
+        } catch (RuntimeException e) {
+            LOGGER.log(Level.WARNING, "ControlML request " + request + " from " + from + " failed", e);
+            answer = refuse(request, ControlMlError.of(ControlMlCondition.DEVICE_FAULT, "the device failed: " + e));
+        }
+        if (answer.bareError() != null || answer.element().type() == ControlMlType.ERROR) {
+            errorsAnswered.incrementAndGet();
+        }
+        return answer;
+    }
+
+    private Answer refuse(ControlMlElement request, ControlMlError error) {
+        if (request.hasValidAttributes()) {
+            return Answer.of(ControlMlElement.error(request.id(), request.res(), error));
+        }
+        return new Answer(null, error);
+    }
+
+    private Answer serveChecked(ControlMlElement request, ControlMlType carrierType, Jid from, Instant delayStamp,
+            Carrier carrier) {
+        if (request.defect() != null) {
+            return refuse(request, request.defect());
+        }
+        AccessLevel level = accessPolicy.levelOf(from);
+        if (level == null || level == AccessLevel.NONE) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.ACCESS_DENIED, from.asBareJid()
+                    + " may not use ControlML on this device"));
+        }
+        if (request.type() != carrierType) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.TYPE_MISMATCH, "control-ml type '" + request
+                    .type().attribute() + "' in a " + carrier.name().toLowerCase(java.util.Locale.ROOT)
+                    + " carrying a " + carrierType.attribute()));
+        }
+        if (!level.allows(request.type())) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.SET_NOT_PERMITTED, from.asBareJid()
+                    + " may get but not set"));
+        }
+        if (request.type() == ControlMlType.GET) {
+            return serveGet(request, from, delayStamp, carrier);
+        }
+        synchronized (setLock) {
+            // The duplicate check and the application are atomic: a retransmitted set is never applied twice.
+            ControlMlElement earlier = replayCache.get(from, request.id());
+            if (earlier != null) {
+                duplicatesReplayed.incrementAndGet();
+                return Answer.of(earlier);
+            }
+            Answer answer = serveSet(request, from, delayStamp, carrier);
+            replayCache.put(from, request.id(), answer.element());
+            return answer;
+        }
+    }
+
+    private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+        Instant now = clock.instant();
+        Instant sent = delayStamp != null ? delayStamp : now;
+        Duration age = Duration.between(sent, now);
+        return new Request(from, request.id(), request.res(), carrier, sent, age.isNegative() ? Duration.ZERO : age);
+    }
+
+    @SuppressWarnings("unchecked")
+    private Answer serveGet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+        Resource<Object, Object> resource = (Resource<Object, Object>) Resources.byName(request.res());
+        if (resource == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
+                    + request.res()));
+        }
+        GetHandler<Object, Object> handler = (GetHandler<Object, Object>) getHandlers.get(resource.name());
+        if (!resource.isGettable() || handler == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no get of "
+                    + resource.name()));
+        }
+        Object query = NoQuery.NONE;
+        PayloadCodec<Object> queryCodec = resource.queryCodec();
+        if (queryCodec == null) {
+            if (request.payload() != null) {
+                return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_MISMATCH, "a get of "
+                        + resource.name() + " carries no payload"));
+            }
+        } else {
+            if (request.payload() == null) {
+                return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_MISMATCH, "a get of "
+                        + resource.name() + " needs its query payload"));
+            }
+            String problem = schemaProblem(request);
+            if (problem != null) {
+                return refuse(request, ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, problem));
+            }
+            try {
+                query = queryCodec.decode(request.payload());
+            } catch (PayloadException e) {
+                return refuse(request, e.error());
+            }
+        }
+        Outcome<Object> outcome = handler.get(requestOf(request, from, delayStamp, carrier), query);
+        return answerFor(request, resource, outcome, true);
+    }
+
+    @SuppressWarnings("unchecked")
+    private Answer serveSet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+        Resource<Object, Object> resource = (Resource<Object, Object>) Resources.byName(request.res());
+        if (resource == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
+                    + request.res()));
+        }
+        SetHandler<Object> handler = (SetHandler<Object>) setHandlers.get(resource.name());
+        if (!resource.isSettable() || handler == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no set of "
+                    + resource.name()));
+        }
+        if (request.payload() == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_MISMATCH, "a set of "
+                    + resource.name() + " needs a payload"));
+        }
+        String problem = schemaProblem(request);
+        if (problem != null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, problem));
+        }
+        Object value;
+        try {
+            value = resource.codec().decode(request.payload());
+        } catch (PayloadException e) {
+            return refuse(request, e.error());
+        }
+        Request r = requestOf(request, from, delayStamp, carrier);
+        StaleCommandPolicy policy = stalePolicy;
+        if (policy.isStale(r.age())) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.STALE_COMMAND, "command sent " + r.sent()
+                    + " waited " + r.age().toMillis() + " ms, longer than the device accepts ("
+                    + policy.maxAge().toMillis() + " ms)"));
+        }
+        return answerFor(request, resource, handler.set(r, value), false);
+    }
+
+    private Answer answerFor(ControlMlElement request, Resource<Object, Object> resource, Outcome<Object> outcome,
+            boolean valueRequired) {
+        if (outcome == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.DEVICE_FAULT, "the handler gave no outcome"));
+        }
+        if (outcome instanceof Outcome.Failure<Object> f) {
+            return refuse(request, f.error());
+        }
+        Object value = outcome.orElseThrow();
+        if (value == null) {
+            if (valueRequired) {
+                return refuse(request, ControlMlError.of(ControlMlCondition.DEVICE_FAULT, "the device has no value for "
+                        + resource.name()));
+            }
+            return Answer.of(ControlMlElement.result(request.id(), request.res(), null));
+        }
+        return Answer.of(ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value)));
+    }
+
+
+    private String schemaProblem(ControlMlElement request) {
+        return validateWithSchema ? SchemaValidator.shared().problemWith(request) : null;
+    }
+}

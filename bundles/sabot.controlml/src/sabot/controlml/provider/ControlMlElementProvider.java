@@ -1,0 +1,223 @@
+package sabot.controlml.provider;
+
+import java.io.IOException;
+
+import org.jivesoftware.smack.packet.StanzaError;
+import org.jivesoftware.smack.packet.XmlEnvironment;
+import org.jivesoftware.smack.provider.ExtensionElementProvider;
+import org.jivesoftware.smack.xml.XmlPullParser;
+import org.jivesoftware.smack.xml.XmlPullParserException;
+
+import sabot.controlml.ControlMl;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
+import sabot.controlml.ControlMlError;
+import sabot.controlml.ControlMlType;
+import sabot.controlml.RequestId;
+import sabot.controlml.swe.Swe;
+import sabot.controlml.swe.SweComponent;
+import sabot.controlml.swe.SweFormatException;
+import sabot.controlml.swe.SweXml;
+
+/**
+ * Reads {@code <control-ml/>} (in messages and PEP items; {@link ControlMlIQProvider} delegates here for IQs).
+ * <p>
+ * Strict and total: every ControlML-level problem (attributes missing, extra or invalid, a bad id, content that is
+ * not one SWE component, a payload over {@link ControlMl#MAX_PAYLOAD_CHARS}, a bad failure element) becomes the
+ * element's {@link ControlMlElement#defect() defect}, the rest of the element is skipped, and the parser is left on
+ * the element's end tag as Smack requires. Only XML that is not well-formed (which a server never forwards) makes
+ * the underlying parser throw.
+ */
+public final class ControlMlElementProvider extends ExtensionElementProvider<ControlMlElement> {
+
+    @Override
+    public ControlMlElement parse(XmlPullParser parser, int initialDepth, XmlEnvironment xmlEnvironment)
+            throws XmlPullParserException, IOException {
+        return parseElement(parser, initialDepth);
+    }
+
+    /**
+     * @param parser       positioned on the {@code control-ml} start tag
+     * @param initialDepth the parser's depth there
+     * @return the element, possibly with a defect; the parser is on its end tag
+     */
+    public static ControlMlElement parseElement(XmlPullParser parser, int initialDepth) throws XmlPullParserException,
+            IOException {
+        ControlMlType type = null;
+        RequestId id = null;
+        String res = null;
+        ControlMlError defect = null;
+        String typeText = null;
+        String idText = null;
+        for (int i = 0; i < parser.getAttributeCount(); i++) {
+            String name = parser.getAttributeName(i);
+            String value = parser.getAttributeValue(i);
+            if (!SweXml.noNamespace(parser.getAttributeNamespace(i))) {
+                defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "unexpected attribute " + name);
+                continue;
+            }
+            switch (name) {
+                case "type" -> typeText = value;
+                case "id" -> idText = value;
+                case "res" -> res = value;
+                default -> defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "unexpected attribute "
+                        + abbreviate(name) + " (control-ml has exactly type, id and res)");
+            }
+        }
+        if (typeText == null || idText == null || res == null) {
+            defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "missing attribute"
+                    + (typeText == null ? " type" : "") + (idText == null ? " id" : "") + (res == null ? " res" : ""));
+        }
+        if (typeText != null) {
+            type = ControlMlType.fromAttribute(typeText);
+            if (type == null) {
+                defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "type must be get, set, result or error, not '"
+                        + abbreviate(typeText) + "'");
+            }
+        }
+        if (idText != null) {
+            id = RequestId.parse(idText);
+            if (id == null) {
+                defect = first(defect, ControlMlCondition.BAD_ID, "id must be YYYYMMDD:UINT32, not '" + abbreviate(
+                        idText) + "'");
+            }
+        }
+        if (res != null && !ControlMlElement.RESOURCE_SYNTAX.matcher(res).matches()) {
+            defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "res '" + abbreviate(res)
+                    + "' is not a resource name (cm.<name>)");
+            res = null;
+        }
+
+        SweComponent payload = null;
+        ControlMlError failure = null;
+        if (defect == null) {
+            SweXml.Budget budget = new SweXml.Budget(ControlMl.MAX_PAYLOAD_CHARS);
+            try {
+                content: while (true) {
+                    XmlPullParser.Event e = parser.next();
+                    switch (e) {
+                        case START_ELEMENT -> {
+                            if (Swe.NAMESPACE.equals(parser.getNamespace())) {
+                                if (payload != null || failure != null) {
+                                    defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                                            "control-ml holds at most one payload component");
+                                    break content;
+                                }
+                                payload = SweXml.read(parser, budget);
+                            } else if (ControlMl.NAMESPACE.equals(parser.getNamespace()) && "failure".equals(parser
+                                    .getName()) && type == ControlMlType.ERROR && failure == null && payload == null) {
+                                failure = readFailure(parser);
+                                if (failure == null) {
+                                    defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                                            "failure needs condition and reason attributes and text only");
+                                    break content;
+                                }
+                            } else {
+                                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unexpected element "
+                                        + abbreviate(parser.getName()) + " in namespace '" + abbreviate(String.valueOf(parser
+                                                .getNamespace())) + "'");
+                                break content;
+                            }
+                        }
+                        case END_ELEMENT -> {
+                            if (parser.getDepth() == initialDepth) {
+                                break content;
+                            }
+                        }
+                        case TEXT_CHARACTERS, ENTITY_REFERENCE -> {
+                            if (!parser.getText().isBlank()) {
+                                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                                        "text where a payload element belongs");
+                                break content;
+                            }
+                        }
+                        case END_DOCUMENT -> throw new XmlPullParserException("document ended inside control-ml");
+                        default -> {
+                            // whitespace, comments
+                        }
+                    }
+                }
+            } catch (SweFormatException e) {
+                defect = ControlMlError.of(e.problem() == SweFormatException.Problem.TOO_LARGE
+                        ? ControlMlCondition.PAYLOAD_TOO_LARGE : ControlMlCondition.MALFORMED_PAYLOAD, e.getMessage());
+            } catch (RuntimeException e) {
+                // A reader bug must not take the connection down: report it as a malformed payload.
+                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unreadable payload: " + e);
+            }
+            if (defect == null && type == ControlMlType.ERROR && failure == null) {
+                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "an error answer needs a failure");
+            }
+            if (defect == null && type != ControlMlType.ERROR && failure != null) {
+                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "failure only in error answers");
+            }
+        }
+        if (defect != null) {
+            skipToEnd(parser, initialDepth);
+            payload = null;
+        }
+        return ControlMlElement.received(type, id, res, payload, failure, defect);
+    }
+
+    private static ControlMlError readFailure(XmlPullParser parser) throws XmlPullParserException, IOException {
+        StanzaError.Condition condition = null;
+        ControlMlCondition reason = null;
+        for (int i = 0; i < parser.getAttributeCount(); i++) {
+            switch (parser.getAttributeName(i)) {
+                case "condition" -> condition = ControlMlElement.conditionFromAttribute(parser.getAttributeValue(i));
+                case "reason" -> reason = ControlMlCondition.fromElement(parser.getAttributeValue(i));
+                default -> {
+                    return null;
+                }
+            }
+        }
+        int depth = parser.getDepth();
+        StringBuilder text = new StringBuilder();
+        while (true) {
+            XmlPullParser.Event e = parser.next();
+            if (e == XmlPullParser.Event.END_ELEMENT && parser.getDepth() == depth) {
+                break;
+            }
+            if (e == XmlPullParser.Event.START_ELEMENT) {
+                skipToEnd(parser, parser.getDepth());
+                return null;
+            }
+            if (e == XmlPullParser.Event.TEXT_CHARACTERS || e == XmlPullParser.Event.ENTITY_REFERENCE) {
+                text.append(parser.getText());
+                if (text.length() > 4096) {
+                    return null;
+                }
+            }
+            if (e == XmlPullParser.Event.END_DOCUMENT) {
+                throw new XmlPullParserException("document ended inside failure");
+            }
+        }
+        if (condition == null || reason == null) {
+            return null;
+        }
+        return new ControlMlError(condition, reason, text.toString());
+    }
+
+    /** Advances to the end tag at {@code depth} (the current element's, if the parser is on a start tag there). */
+    static void skipToEnd(XmlPullParser parser, int depth) throws XmlPullParserException, IOException {
+        if (parser.getEventType() == XmlPullParser.Event.END_ELEMENT && parser.getDepth() == depth) {
+            return;
+        }
+        while (true) {
+            XmlPullParser.Event e = parser.next();
+            if (e == XmlPullParser.Event.END_ELEMENT && parser.getDepth() == depth) {
+                return;
+            }
+            if (e == XmlPullParser.Event.END_DOCUMENT) {
+                throw new XmlPullParserException("document ended inside control-ml");
+            }
+        }
+    }
+
+    private static ControlMlError first(ControlMlError existing, ControlMlCondition condition, String text) {
+        return existing != null ? existing : ControlMlError.of(condition, text);
+    }
+
+    private static String abbreviate(String s) {
+        return s.length() <= 40 ? s : s.substring(0, 40) + "...";
+    }
+}
