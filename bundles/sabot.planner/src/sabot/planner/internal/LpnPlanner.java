@@ -51,17 +51,31 @@ public final class LpnPlanner implements Planner {
         }
         double[] points = GradientDescent.descend(grid, navigationFunction.potential(), density,
                 costModel.minDensity(), request.startX(), request.startY(), request.goalPoints());
-        List<Point2D> waypoints = toMap(grid.geometry(), points);
+        List<Point2D> waypoints = toMap(grid.geometry(), points, start, goals, request.goalPoints());
         PlannedPath path = new PlannedPath(waypoints, CostModel.length(waypoints), costModel.pathCost(costmap, waypoints));
         return new PlanResult.Found(path,
                 new GridField(grid.geometry(), navigationFunction.potential(), navigationFunction.finalizedCount()));
     }
 
-    static List<Point2D> toMap(GridGeometry geometry, double[] gridPoints) {
+    /**
+     * @return the waypoints in map coordinates; the first is {@code start} itself and the last the goal point itself
+     *         (not a round trip through grid coordinates), so that paths end exactly where they were asked to
+     */
+    static List<Point2D> toMap(GridGeometry geometry, double[] gridPoints, Point2D start, List<Point2D> goals,
+            double[] goalGridPoints) {
+        int last = gridPoints.length - 2;
         List<Point2D> waypoints = new ArrayList<>(gridPoints.length / 2);
-        for (int i = 0; i < gridPoints.length; i += 2) {
+        waypoints.add(start);
+        for (int i = 2; i < last; i += 2) {
             waypoints.add(geometry.toMap(gridPoints[i], gridPoints[i + 1]));
         }
+        Point2D end = geometry.toMap(gridPoints[last], gridPoints[last + 1]);
+        for (int g = 0; g < goals.size(); g++) {
+            if (goalGridPoints[2 * g] == gridPoints[last] && goalGridPoints[2 * g + 1] == gridPoints[last + 1]) {
+                end = goals.get(g);
+            }
+        }
+        waypoints.add(end);
         return waypoints;
     }
 }

@@ -61,7 +61,7 @@ public final class ReferencePlanner implements Planner {
         }
         points[points.length - 2] = request.goalPoints()[2 * goalIndex];
         points[points.length - 1] = request.goalPoints()[2 * goalIndex + 1];
-        List<Point2D> waypoints = LpnPlanner.toMap(grid.geometry(), points);
+        List<Point2D> waypoints = LpnPlanner.toMap(grid.geometry(), points, start, goals, request.goalPoints());
         PlannedPath path = new PlannedPath(waypoints, CostModel.length(waypoints), costModel.pathCost(costmap, waypoints));
         return new PlanResult.Found(path, new GridField(grid.geometry(), search.costBits(), search.closedCount()));
     }
