@@ -1,6 +1,7 @@
 package sabot.onboard.internal;
 
 import java.io.IOException;
+import java.lang.reflect.InvocationTargetException;
 import java.net.URI;
 import java.nio.file.Path;
 import java.nio.file.Paths;
@@ -22,6 +23,7 @@ import org.osgi.framework.ServiceReference;
 import org.osgi.service.cm.Configuration;
 import org.osgi.service.cm.ConfigurationAdmin;
 import org.osgi.service.component.runtime.ServiceComponentRuntime;
+import org.osgi.service.component.runtime.dto.ComponentDescriptionDTO;
 import org.osgi.service.metatype.MetaTypeService;
 import org.osgi.util.tracker.ServiceTracker;
 import org.slf4j.Logger;
@@ -120,13 +122,9 @@ public final class OnboardApplication implements IApplication {
             LOG.info("Sabot Onboard stopping");
             return IApplication.EXIT_OK;
         } finally {
+            stopTasks(scr, enabled.keySet());
             for (String task : enabled.keySet()) {
                 deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);
-            }
-            List<String> stuck = awaitTasksStopped(running, progress);
-            if (!stuck.isEmpty()) {
-                LOG.warn("task(s) {} still running {} s after their configuration was removed", stuck,
-                        TASK_START_TIMEOUT_S);
             }
             tracker.close();
             LOG.info("Sabot Onboard stopped");
@@ -201,18 +199,24 @@ public final class OnboardApplication implements IApplication {
         return missing;
     }
 
-    /** SCR deactivates a task asynchronously once its configuration is deleted: wait for its service to go. */
-    private static List<String> awaitTasksStopped(Set<String> running, Object progress) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TASK_START_TIMEOUT_S);
-        synchronized (progress) {
-            while (!running.isEmpty()) {
-                long left = deadline - System.nanoTime();
-                if (left <= 0) {
-                    break;
-                }
-                TimeUnit.NANOSECONDS.timedWait(progress, left);
+    /**
+     * Disables the tasks' components and waits until SCR has deactivated them (the promise resolves after their
+     * deactivate methods returned), so "stopped" is logged only when every task has stopped.
+     */
+    private static void stopTasks(ServiceComponentRuntime scr, Set<String> tasks) {
+        for (ComponentDescriptionDTO component : scr.getComponentDescriptionDTOs()) {
+            if (!component.name.startsWith(OnboardTask.PID_PREFIX)
+                    || !tasks.contains(component.name.substring(OnboardTask.PID_PREFIX.length()))) {
+                continue;
             }
-            return new ArrayList<>(running);
+            try {
+                scr.disableComponent(component).timeout(TimeUnit.SECONDS.toMillis(TASK_START_TIMEOUT_S)).getValue();
+            } catch (InvocationTargetException e) {
+                LOG.warn("task {} did not stop cleanly: {}", component.name, e.getCause().toString());
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                return;
+            }
         }
     }
 
