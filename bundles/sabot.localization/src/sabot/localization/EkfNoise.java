@@ -36,11 +36,13 @@ public record EkfNoise(double yawAccelerationPsd, double jerkPsd, double gyroBia
     }
 
     /**
-     * Defaults: gyro 0.014 &deg;/s/&radic;Hz sampled at 50 Hz (1.7 mrad/s), bias walk 2e-5 rad/s/&radic;s,
+     * Defaults: gyro 1.7 mrad/s per sample (0.014 &deg;/s/&radic;Hz over a 50 Hz band: conservative against
+     * the 25 Hz output filter the simulator assumes), bias walk 2e-5 rad/s/&radic;s,
      * accelerometer 175 &micro;g/&radic;Hz over a 25 Hz band (8.6 mm/s&sup2;), magnetometer heading 2&deg;,
-     * odometry yaw rate 1 mrad/s at rest growing 0.2 rad/m with speed, 99.9 % gate.
+     * odometry speed 0.5 mm/s plus 0.7 % of the speed (1 % independent slip on each wheel), odometry yaw rate
+     * 1 mrad/s at rest growing 0.2 rad/m with speed, 99.9 % gate.
      */
     public static EkfNoise defaults() {
-        return new EkfNoise(1.0, 1.0, 4e-10, 1e-6, 0.001, 0.02, 0.001, 0.2, 1.7e-3, 8.6e-3, Math.toRadians(2), 0.999);
+        return new EkfNoise(1.0, 1.0, 4e-10, 1e-6, 0.0005, 0.007, 0.001, 0.2, 1.7e-3, 8.6e-3, Math.toRadians(2), 0.999);
     }
 }
