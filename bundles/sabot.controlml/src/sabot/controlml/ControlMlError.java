@@ -43,7 +43,10 @@ public record ControlMlError(StanzaError.Condition condition, ControlMlCondition
                 break;
             }
         }
-        String text = error.getDescriptiveText();
+        String text = error.getDescriptiveText("en");
+        if (text == null) {
+            text = error.getDescriptiveText();
+        }
         return new ControlMlError(error.getCondition(), cm, text == null ? error.getConditionText() : text);
     }
 

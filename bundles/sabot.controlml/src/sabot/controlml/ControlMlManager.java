@@ -101,6 +101,8 @@ public final class ControlMlManager extends Manager {
     private final AtomicLong telemetryReceived = new AtomicLong();
     private final AtomicLong telemetryRejected = new AtomicLong();
 
+    private final java.util.List<UnsolicitedAnswerListener> unsolicitedListeners =
+            new java.util.concurrent.CopyOnWriteArrayList<>();
     private ScheduledExecutorService scheduler;
     private final AtomicInteger activePublications = new AtomicInteger();
 
@@ -162,6 +164,29 @@ public final class ControlMlManager extends Manager {
     public void setSchemaValidation(boolean requests, boolean results) {
         endpoint.setSchemaValidation(requests);
         this.validateResultsWithSchema = results;
+    }
+
+    /** Called for every ControlML answer that matched no request of this client (after it was logged and dropped). */
+    @FunctionalInterface
+    public interface UnsolicitedAnswerListener {
+        /**
+         * @param from    the sender
+         * @param element the dropped element
+         */
+        void dropped(Jid from, ControlMlElement element);
+    }
+
+    /** @param listener told about every unsolicited answer dropped (diagnostics, tests) */
+    public void addUnsolicitedAnswerListener(UnsolicitedAnswerListener listener) {
+        unsolicitedListeners.add(Objects.requireNonNull(listener));
+    }
+
+    private void dropUnsolicited(Jid from, ControlMlElement element) {
+        unsolicitedDropped.incrementAndGet();
+        LOGGER.warning("dropped unsolicited ControlML answer " + element + " from " + from);
+        for (UnsolicitedAnswerListener l : unsolicitedListeners) {
+            l.dropped(from, element);
+        }
     }
 
     /** @return a snapshot of this connection's counters */
@@ -253,6 +278,10 @@ public final class ControlMlManager extends Manager {
                     + requestTimeout.toMillis() + " ms");
         }
         if (answer.getType() == IQ.Type.error) {
+            if (answer instanceof ControlMlIQ cmError && cmError.element().failure() != null) {
+                // the control-ml element's failure is complete (condition, reason, text) and in our own namespace
+                return Outcome.failure(cmError.element().failure());
+            }
             StanzaError error = answer.getError();
             if (error == null) {
                 return Outcome.failure(ControlMlCondition.UNSPECIFIED, "error answer without <error/>");
@@ -411,8 +440,7 @@ public final class ControlMlManager extends Manager {
         }
         PendingMessage<?> pending = element.id() == null ? null : pendingMessages.remove(element.id());
         if (pending == null) {
-            unsolicitedDropped.incrementAndGet();
-            LOGGER.warning("dropped unsolicited ControlML answer " + element + " from " + from);
+            dropUnsolicited(from, element);
             return;
         }
         completeFromMessage(pending, element);
@@ -435,9 +463,7 @@ public final class ControlMlManager extends Manager {
             ours = id != null && sentStanzaIds.containsKey(id);
         }
         if (!ours) {
-            unsolicitedDropped.incrementAndGet();
-            LOGGER.warning("dropped unsolicited ControlML answer " + ((ControlMlIQ) stanza).element() + " from "
-                    + stanza.getFrom());
+            dropUnsolicited(stanza.getFrom(), ((ControlMlIQ) stanza).element());
         }
     }
 

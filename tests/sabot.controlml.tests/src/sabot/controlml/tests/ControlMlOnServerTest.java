@@ -1,0 +1,452 @@
+package sabot.controlml.tests;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.lang.reflect.Field;
+import java.net.Socket;
+import java.time.Duration;
+import java.time.LocalDate;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.ArrayBlockingQueue;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+
+import org.jivesoftware.smack.StanzaCollector;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.Message;
+import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.packet.StanzaError.Condition;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
+import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.mam.MamManager;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.TestInfo;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.FullJid;
+import org.jxmpp.jid.Jid;
+
+import sabot.controlml.AccessLevel;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
+import sabot.controlml.ControlMlError;
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.ControlMlType;
+import sabot.controlml.Outcome;
+import sabot.controlml.PendingCommand;
+import sabot.controlml.RequestId;
+import sabot.controlml.Resource;
+import sabot.controlml.Resources;
+import sabot.controlml.StaleCommandPolicy;
+import sabot.controlml.TelemetryPublication;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.NoQuery;
+import sabot.controlml.payload.PayloadCodec;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * ControlML between a robot and workbenches through a real, unmodified server: every get/set/result/error path,
+ * authorization, bad input over the wire, cross-domain, offline delivery with the stale-command policy, archive,
+ * stream-management resumption and PEP telemetry. Subclasses pick the server.
+ */
+abstract class ControlMlOnServerTest {
+
+    static final long TIMEOUT_S = 10;
+    static final Goal NEW_GOAL = new Goal(new Pose2D(7, -1, 0.5), 0.1, 0.2);
+
+    protected abstract PrivateXmppServer server();
+
+    @BeforeAll
+    static void streamManagement() {
+        XMPPTCPConnection.setUseStreamManagementDefault(true);
+        XMPPTCPConnection.setUseStreamManagementResumptionDefault(true);
+    }
+
+    /** A robot connection with every resource served and the given requesters' rights. */
+    record Robot(XMPPTCPConnection connection, RecordingDevice device, ControlMlManager manager) {
+        Jid jid() {
+            return connection.getUser();
+        }
+    }
+
+    private static String unique(TestInfo info, String role) {
+        return role + "-" + Integer.toHexString(info.getDisplayName().hashCode() & 0xffffff);
+    }
+
+    Robot robot(XMPPTCPConnection connection, Map<Jid, AccessLevel> rights) {
+        RecordingDevice device = new RecordingDevice();
+        ControlMlManager m = ControlMlManager.getInstanceFor(connection);
+        device.registerOn(new RecordingDevice.Registry() {
+            @Override
+            public <T, Q> void onGet(Resource<T, Q> resource, sabot.controlml.GetHandler<T, Q> handler) {
+                m.onGet(resource, handler);
+            }
+
+            @Override
+            public <T> void onSet(Resource<T, ?> resource, sabot.controlml.SetHandler<T> handler) {
+                m.onSet(resource, handler);
+            }
+        });
+        m.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), AccessLevel.NONE));
+        return new Robot(connection, device, m);
+    }
+
+    @Test
+    void workbenchGetsAndSetsEveryResourceThroughTheServer(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+
+        for (Resource<?, ?> r : Resources.all()) {
+            if (r.isGettable()) {
+                Outcome<?> got = getAny(client, robot.jid(), r);
+                assertEquals(Samples.VALUES.get(r), got.orElseThrow(), r.name());
+            }
+            if (r.isSettable()) {
+                Outcome<?> set = setAny(client, robot.jid(), r, Samples.VALUES.get(r));
+                assertTrue(set.isSuccess(), () -> r.name() + ": " + set);
+            }
+        }
+        assertEquals(Resources.all().stream().filter(Resource::isSettable).count(), robot.device().applied.size());
+
+        assertTrue(client.set(robot.jid(), Resources.GOAL, NEW_GOAL).isSuccess());
+        assertEquals(NEW_GOAL, robot.device().state.get("cm.goal"));
+        assertEquals(NEW_GOAL, client.get(robot.jid(), Resources.GOAL).orElseThrow());
+    }
+
+    @SuppressWarnings("unchecked")
+    private static <T, Q> Outcome<T> getAny(ControlMlManager client, Jid robot, Resource<T, Q> r) {
+        return r.queryCodec() == null ? client.get(robot, (Resource<T, NoQuery>) r) : client.get(robot, r,
+                (Q) Samples.QUERY);
+    }
+
+    @SuppressWarnings("unchecked")
+    private static <T> Outcome<T> setAny(ControlMlManager client, Jid robot, Resource<T, ?> r, Object value) {
+        return client.set(robot, r, (T) value);
+    }
+
+    @Test
+    void errorsArriveAsValuesWithTheirConditions(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+        robot.manager().removeHandlers(Resources.MAP);
+        robot.manager().onSet(Resources.GOAL, (r, g) -> Outcome.failure(ControlMlCondition.INVALID_STATE,
+                "a mission is running"));
+
+        ControlMlError notServed = client.get(robot.jid(), Resources.MAP).errorOrNull();
+        assertEquals(Condition.service_unavailable, notServed.condition());
+        assertEquals(ControlMlCondition.UNSUPPORTED_OPERATION, notServed.cmCondition());
+
+        ControlMlError refused = client.set(robot.jid(), Resources.GOAL, NEW_GOAL).errorOrNull();
+        assertEquals(Condition.unexpected_request, refused.condition());
+        assertEquals(ControlMlCondition.INVALID_STATE, refused.cmCondition());
+        assertEquals("a mission is running", refused.text());
+
+        ControlMlError unknown = client.exchange(robot.jid(), ControlMlElement.request(ControlMlType.GET,
+                new RequestId(LocalDate.now(), 1), "cm.teleport", null)).errorOrNull();
+        assertEquals(Condition.item_not_found, unknown.condition());
+        assertEquals(ControlMlCondition.UNKNOWN_RESOURCE, unknown.cmCondition());
+
+        // an IQ to a resource that is not online is answered by the server itself (RFC 6120 8.5.3.2.1)
+        client.setRequestTimeout(Duration.ofSeconds(5));
+        server().register(unique(info, "offline"), PrivateXmppServer.DOMAIN, "pw");
+        ControlMlError gone = client.get(offlineFullJid(info), Resources.POSITION).errorOrNull();
+        assertNotNull(gone);
+        assertEquals(Condition.service_unavailable, gone.condition(), gone.toString());
+        assertEquals(ControlMlCondition.UNSPECIFIED, gone.cmCondition());
+    }
+
+    private Jid offlineFullJid(TestInfo info) throws Exception {
+        return org.jxmpp.jid.impl.JidCreate.from(unique(info, "offline") + "@" + PrivateXmppServer.DOMAIN
+                + "/onboard");
+    }
+
+    @Test
+    void unauthorizedSetIsForbiddenAndLeavesTheRobotUnchanged(TestInfo info) throws Exception {
+        XMPPTCPConnection viewer = server().login(unique(info, "viewer"));
+        XMPPTCPConnection stranger = server().login(unique(info, "stranger"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(viewer.getUser().asBareJid(),
+                AccessLevel.GET));
+
+        ControlMlError setByViewer = ControlMlManager.getInstanceFor(viewer).set(robot.jid(), Resources.GOAL,
+                NEW_GOAL).errorOrNull();
+        ControlMlError getByStranger = ControlMlManager.getInstanceFor(stranger).get(robot.jid(),
+                Resources.POSITION).errorOrNull();
+
+        assertEquals(Condition.forbidden, setByViewer.condition());
+        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, setByViewer.cmCondition());
+        assertEquals(Condition.forbidden, getByStranger.condition());
+        assertEquals(ControlMlCondition.ACCESS_DENIED, getByStranger.cmCondition());
+        assertTrue(robot.device().applied.isEmpty());
+        assertEquals(Samples.POSE, ControlMlManager.getInstanceFor(viewer).get(robot.jid(), Resources.POSITION)
+                .orElseThrow(), "the viewer may still read");
+    }
+
+    @Test
+    void badInputOverTheWireIsRefusedAndTheConnectionSurvives(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        String goal = ControlMlBadInputTest.goal("NaN", "m");
+        String goalContent = goal.substring(goal.indexOf("<DataRecord"), goal.lastIndexOf("</control-ml>"));
+        record Case(String attributes, String content, Condition condition, ControlMlCondition cm) {
+        }
+        List<Case> cases = List.of(
+                new Case("type='set' id='20261121:1' res='cm.goal'", goalContent, Condition.not_acceptable,
+                        ControlMlCondition.INVALID_VALUE),
+                new Case("type='set' id='20261121:2' res='cm.goal'", goalContent.replace(">NaN<", ">1<").replace(
+                        "code='m'/><value>1<", "code='s'/><value>1<"), Condition.not_acceptable,
+                        ControlMlCondition.WRONG_UNIT),
+                new Case("type='set' id='2026-11-21:3' res='cm.goal'", goalContent, Condition.bad_request,
+                        ControlMlCondition.BAD_ID),
+                new Case("type='set' res='cm.goal'", goalContent, Condition.bad_request,
+                        ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='set' id='20261121:4' res='cm.goal' urgent='yes'", goalContent, Condition.bad_request,
+                        ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='set' id='20261121:5' res='cm.teleport'", goalContent, Condition.item_not_found,
+                        ControlMlCondition.UNKNOWN_RESOURCE),
+                new Case("type='set' id='20261121:6' res='cm.goal'", "<DataRecord xmlns='http://www.opengis.net/"
+                        + "swe/2.0'><field name='x'><Oops/></field></DataRecord>", Condition.bad_request,
+                        ControlMlCondition.MALFORMED_PAYLOAD),
+                new Case("type='set' id='20261121:7' res='cm.goal'", "<Text xmlns='http://www.opengis.net/swe/2.0'>"
+                        + "<value>" + "x".repeat(70_000) + "</value></Text>", Condition.not_acceptable,
+                        ControlMlCondition.PAYLOAD_TOO_LARGE),
+                new Case("type='get' id='20261121:8' res='cm.goal'", "", Condition.bad_request,
+                        ControlMlCondition.TYPE_MISMATCH));
+        for (Case c : cases) {
+            RawIQ iq = new RawIQ(IQ.Type.set, c.attributes(), c.content());
+            iq.setTo(robot.jid());
+            IQ answer;
+            try (StanzaCollector collector = wb.createStanzaCollectorAndSend(iq)) {
+                answer = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+            }
+            assertNotNull(answer, "no answer to " + c);
+            assertEquals(IQ.Type.error, answer.getType(), c.toString());
+            ControlMlError error = ControlMlError.fromStanzaError(answer.getError());
+            assertEquals(c.condition(), error.condition(), c + " -> " + error);
+            assertEquals(c.cm(), error.cmCondition(), c + " -> " + error);
+        }
+        assertTrue(robot.connection().isConnected() && wb.isConnected(), "a bad request broke a connection");
+        assertTrue(robot.device().applied.isEmpty(), "state changed: " + robot.device().applied);
+        assertEquals(Samples.POSE, ControlMlManager.getInstanceFor(wb).get(robot.jid(), Resources.POSITION)
+                .orElseThrow());
+    }
+
+    @Test
+    void unsolicitedAnswersAreLoggedAndDropped(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        CountDownLatch drops = new CountDownLatch(2);
+        robot.manager().addUnsolicitedAnswerListener((from, element) -> drops.countDown());
+        ControlMlElement result = ControlMlElement.result(new RequestId(LocalDate.now(), 99), "cm.goal",
+                Resources.GOAL.codec().encode(NEW_GOAL));
+
+        sabot.controlml.ControlMlIQ iq = new sabot.controlml.ControlMlIQ(result);
+        iq.setTo(robot.jid());
+        iq.setStanzaId("never-asked");
+        wb.sendStanza(iq);
+        wb.sendStanza(wb.getStanzaFactory().buildMessageStanza().to(robot.jid()).addExtension(result).build());
+
+        assertTrue(drops.await(TIMEOUT_S, TimeUnit.SECONDS), "unsolicited answers not dropped");
+        assertEquals(2, robot.manager().statistics().unsolicitedDropped());
+        assertTrue(robot.device().applied.isEmpty());
+        assertEquals(Samples.POSE, ControlMlManager.getInstanceFor(wb).get(robot.jid(), Resources.POSITION)
+                .orElseThrow(), "connection alive");
+    }
+
+    @Test
+    void workbenchOnAnotherDomainCommandsTheRobot(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"), PrivateXmppServer.SECOND_DOMAIN);
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+
+        assertEquals(Samples.POSE, client.get(robot.jid(), Resources.POSITION).orElseThrow());
+        assertTrue(client.set(robot.jid(), Resources.GOAL, NEW_GOAL).isSuccess());
+        assertEquals(NEW_GOAL, robot.device().state.get("cm.goal"));
+        assertEquals(PrivateXmppServer.SECOND_DOMAIN, wb.getUser().getDomain().toString());
+    }
+
+    @Test
+    void setSentWhileTheRobotIsOfflineIsDeliveredLaterArchivedAndStalePolicyApplies(TestInfo info)
+            throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        String fresh = unique(info, "robot-fresh");
+        String strict = unique(info, "robot-strict");
+        EntityBareJid freshJid = server().register(fresh, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        EntityBareJid strictJid = server().register(strict, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD);
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+
+        PendingCommand<Goal> toFresh = client.sendCommandMessage(freshJid, Resources.GOAL, NEW_GOAL);
+        PendingCommand<Goal> toStrict = client.sendCommandMessage(strictJid, Resources.GOAL, NEW_GOAL);
+
+        // The server has the commands (they are in the workbench's archive, XEP-0313) before the robots come online;
+        // otherwise a robot logging in at the same moment could race the server's offline store.
+        assertArchived(wb, freshJid, toFresh.id());
+        assertArchived(wb, strictJid, toStrict.id());
+
+        // The robots come online later; their endpoints are ready before login, when the server flushes the store.
+        Robot freshRobot = offlineRobotComesOnline(fresh, wb, StaleCommandPolicy.DEFAULT);
+        Robot strictRobot = offlineRobotComesOnline(strict, wb, StaleCommandPolicy.refuseOlderThan(Duration
+                .ofMillis(1)));
+
+        Outcome<Goal> applied = toFresh.outcome().get(TIMEOUT_S, TimeUnit.SECONDS);
+        Outcome<Goal> refused = toStrict.outcome().get(TIMEOUT_S, TimeUnit.SECONDS);
+        assertTrue(applied.isSuccess(), applied::toString);
+        assertEquals(NEW_GOAL, freshRobot.device().state.get("cm.goal"));
+        assertEquals(List.of("cm.goal " + toFresh.id()), freshRobot.device().applied);
+        assertEquals(ControlMlCondition.STALE_COMMAND, refused.errorOrNull().cmCondition());
+        assertEquals(Condition.not_acceptable, refused.errorOrNull().condition());
+        assertTrue(strictRobot.device().applied.isEmpty());
+    }
+
+    /** Queries the workbench's archive until the command is there (each query is a round trip; no sleeping). */
+    private static void assertArchived(XMPPTCPConnection wb, EntityBareJid with, RequestId id) throws Exception {
+        MamManager.MamQueryArgs query = MamManager.MamQueryArgs.builder().limitResultsToJid(with)
+                .setResultPageSizeTo(50).build();
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        List<Message> archived = List.of();
+        while (System.nanoTime() < deadline) {
+            archived = MamManager.getInstanceFor(wb).queryArchive(query).getMessages();
+            if (archived.stream().map(m -> m.getExtension(ControlMlElement.class)).anyMatch(e -> e != null && e
+                    .type() == ControlMlType.SET && id.equals(e.id()))) {
+                return;
+            }
+        }
+        throw new AssertionError("command " + id + " not in the archive: " + archived);
+    }
+
+    private Robot offlineRobotComesOnline(String localpart, XMPPTCPConnection wb, StaleCommandPolicy policy)
+            throws Exception {
+        XMPPTCPConnection c = new XMPPTCPConnection(server().configuration(localpart, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
+        Robot robot = robot(c, Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        robot.manager().setStaleCommandPolicy(policy);
+        c.connect().login();
+        closeAfterClass.add(c);
+        return robot;
+    }
+
+    static final List<XMPPTCPConnection> closeAfterClass = new java.util.concurrent.CopyOnWriteArrayList<>();
+
+    @org.junit.jupiter.api.AfterAll
+    static void closeOwnConnections() {
+        closeAfterClass.forEach(XMPPTCPConnection::instantShutdown);
+        closeAfterClass.clear();
+    }
+
+    @Test
+    void streamResumptionNeitherLosesNorDuplicatesASet(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        assertTrue(robot.connection().isSmResumptionPossible(), "server did not offer resumption");
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+        ControlMlElement command = ControlMlElement.request(ControlMlType.SET, new RequestId(LocalDate.now(), 4242),
+                "cm.goal", Resources.GOAL.codec().encode(NEW_GOAL));
+
+        socketOf(robot.connection()).close(); // the robot's network drops
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        while (robot.connection().isConnected() && System.nanoTime() < deadline) {
+            Thread.onSpinWait(); // Smack notices the dead socket on its reader thread
+        }
+        assertTrue(robot.connection().isDisconnectedButSmResumptionPossible());
+        // The server still thinks the robot is there: it queues the set for the hibernating session.
+        CompletableFuture<Outcome<ControlMlElement>> first = CompletableFuture.supplyAsync(() -> client.exchange(robot
+                .jid(), command));
+        robot.connection().connect();
+        robot.connection().login();
+        assertTrue(robot.connection().streamWasResumed(), "stream was not resumed");
+
+        Outcome<ControlMlElement> answer = first.get(TIMEOUT_S + 5, TimeUnit.SECONDS);
+        // the workbench retries (as after a timeout of its own): same ControlML id, new stanza
+        Outcome<ControlMlElement> retry = client.exchange(robot.jid(), command);
+
+        assertTrue(answer.isSuccess(), answer::toString);
+        assertTrue(retry.isSuccess(), retry::toString);
+        assertEquals(List.of("cm.goal " + command.id()), robot.device().applied, "lost or applied twice");
+        assertEquals(1, robot.manager().statistics().duplicatesReplayed());
+    }
+
+    private static Socket socketOf(XMPPTCPConnection connection) throws ReflectiveOperationException {
+        Field f = XMPPTCPConnection.class.getDeclaredField("socket");
+        f.setAccessible(true);
+        return (Socket) f.get(connection);
+    }
+
+    @Test
+    void telemetryReachesASubscribedWorkbenchThroughPep(TestInfo info) throws Exception {
+        String wbName = unique(info, "wb");
+        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).build());
+        closeAfterClass.add(wb);
+        BlockingQueue<PoseEstimate> poses = new ArrayBlockingQueue<>(1000);
+        AtomicInteger fromOthers = new AtomicInteger();
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
+        ControlMlManager.getInstanceFor(wb).addTelemetryListener(Resources.POSITION, (device, pose) -> {
+            if (device.equals(robot.jid().asEntityBareJidIfPossible())) {
+                poses.offer(pose);
+            } else {
+                fromOthers.incrementAndGet();
+            }
+        }); // before login: +notify goes into the entity caps
+        wb.connect().login();
+        subscribe(wb, robot.connection());
+
+        AtomicInteger tick = new AtomicInteger();
+        try (TelemetryPublication p = robot.manager().publishTelemetry(Resources.POSITION, () -> new PoseEstimate(
+                Samples.T.plusMillis(tick.incrementAndGet()), new Pose2D(tick.get(), 0, 0), Samples.POSE.covariance()),
+                50)) {
+            for (int i = 0; i < 5; i++) {
+                PoseEstimate p1 = poses.poll(TIMEOUT_S, TimeUnit.SECONDS);
+                assertNotNull(p1, "telemetry item " + i + " missing");
+                assertEquals(Samples.POSE.covariance(), p1.covariance());
+            }
+        }
+        assertEquals(0, fromOthers.get());
+        assertTrue(robot.manager().statistics().telemetryPublished() >= 5);
+    }
+
+    /**
+     * Mutual presence subscription, as the fleet's roster rules make it: the workbench subscribes to the robot, the
+     * robot approves and subscribes back (its server must see the workbench's presence, with the entity caps that say
+     * {@code +notify}, to send PEP notifications). Returns when each sees the other online.
+     */
+    static void subscribe(XMPPTCPConnection workbench, XMPPTCPConnection robot) throws Exception {
+        Roster robotRoster = Roster.getInstanceFor(robot);
+        robotRoster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
+        Roster wbRoster = Roster.getInstanceFor(workbench);
+        wbRoster.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
+        CountDownLatch robotSeen = presenceSeen(wbRoster, robot.getUser().asEntityBareJid());
+        CountDownLatch workbenchSeen = presenceSeen(robotRoster, workbench.getUser().asEntityBareJid());
+        EntityBareJid robotJid = robot.getUser().asEntityBareJid();
+        wbRoster.createItemAndRequestSubscription(robotJid, robotJid.getLocalpart().toString(), null);
+        assertTrue(robotSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the workbench does not see " + robotJid);
+        assertTrue(workbenchSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the robot does not see the workbench");
+    }
+
+    private static CountDownLatch presenceSeen(Roster roster, EntityBareJid who) {
+        CountDownLatch seen = new CountDownLatch(1);
+        roster.addPresenceEventListener(new AbstractPresenceEventListener() {
+            @Override
+            public void presenceAvailable(FullJid address, Presence availablePresence) {
+                if (who.equals(address.asEntityBareJidIfPossible())) {
+                    seen.countDown();
+                }
+            }
+        });
+        return seen;
+    }
+}
