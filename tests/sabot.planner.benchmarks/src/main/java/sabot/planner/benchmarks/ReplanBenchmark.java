@@ -1,0 +1,81 @@
+package sabot.planner.benchmarks;
+
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+
+import org.openjdk.jmh.annotations.Benchmark;
+import org.openjdk.jmh.annotations.BenchmarkMode;
+import org.openjdk.jmh.annotations.Fork;
+import org.openjdk.jmh.annotations.Measurement;
+import org.openjdk.jmh.annotations.Mode;
+import org.openjdk.jmh.annotations.OutputTimeUnit;
+import org.openjdk.jmh.annotations.Param;
+import org.openjdk.jmh.annotations.Scope;
+import org.openjdk.jmh.annotations.Setup;
+import org.openjdk.jmh.annotations.State;
+import org.openjdk.jmh.annotations.Warmup;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.map.CellRegion;
+import sabot.model.map.Costmap;
+import sabot.planner.CostModel;
+import sabot.planner.PlanResult;
+import sabot.planner.Planner;
+import sabot.planner.Planners;
+
+/**
+ * Re-planning after a local change: a sonar obstacle appears on the path half a metre ahead of the robot (and
+ * disappears on the next invocation); each operation is the costmap's regional update plus a new plan. Compared with
+ * {@link PlannerBenchmark#lpnPlan}, the difference is what the local change costs.
+ */
+@State(Scope.Benchmark)
+@BenchmarkMode(Mode.SampleTime)
+@OutputTimeUnit(TimeUnit.MILLISECONDS)
+@Warmup(iterations = 3, time = 1)
+@Measurement(iterations = 5, time = 1)
+@Fork(value = 1, jvmArgsAppend = { "-Xms1g", "-Xmx1g" })
+public class ReplanBenchmark {
+
+    @Param({ "random-1000" })
+    public String grid;
+
+    @Param({ "lpn", "lpn-bounded" })
+    public String planner;
+
+    private BenchmarkGrids.Scenario scenario;
+    private Planner lpn;
+    private Point2D obstacle;
+    private CellRegion obstacleCell;
+    private boolean present;
+
+    @Setup
+    public void setUp() {
+        scenario = BenchmarkGrids.scenario(grid);
+        lpn = Planners.byName(planner, CostModel.standard()).orElseThrow();
+        PlanResult.Found found = (PlanResult.Found) lpn.plan(scenario.costmap(), scenario.start(), scenario.goal());
+        List<Point2D> waypoints = found.path().waypoints();
+        for (Point2D p : waypoints) {
+            if (p.distanceTo(scenario.start()) >= 0.5) {
+                obstacle = p;
+                break;
+            }
+        }
+        var cell = scenario.costmap().geometry().cellAt(obstacle).orElseThrow();
+        obstacleCell = CellRegion.of(cell.column(), cell.row());
+    }
+
+    /** Regional costmap update (obstacle layer, inflation around it) plus a full re-plan. */
+    @Benchmark
+    public PlanResult sonarObstacleThenReplan() {
+        present = !present;
+        scenario.layers().setObstacles(obstacleCell, present ? Costmap.LETHAL : Costmap.FREE);
+        return lpn.plan(scenario.costmap(), scenario.start(), List.of(scenario.goal()));
+    }
+
+    /** The regional costmap update alone. */
+    @Benchmark
+    public CellRegion sonarObstacleCostmapUpdate() {
+        present = !present;
+        return scenario.layers().setObstacles(obstacleCell, present ? Costmap.LETHAL : Costmap.FREE);
+    }
+}
