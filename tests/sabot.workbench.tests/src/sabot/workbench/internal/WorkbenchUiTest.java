@@ -33,7 +33,10 @@ import org.eclipse.ui.IWorkbenchPage;
 import org.eclipse.ui.IWorkbenchWindow;
 import org.eclipse.ui.PlatformUI;
 import org.eclipse.ui.dialogs.PreferencesUtil;
+import org.junit.jupiter.api.MethodOrderer;
+import org.junit.jupiter.api.Order;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.TestMethodOrder;
 import org.osgi.service.prefs.Preferences;
 
 import sabot.workbench.account.XmppAccountStore;
@@ -41,7 +44,8 @@ import sabot.workbench.map.MapViewport;
 import sabot.workbench.views.FleetView;
 import sabot.workbench.views.WorkspaceView;
 
-/** The real workbench window, driven on the UI thread under Xvfb. */
+/** The real workbench window, driven on the UI thread under Xvfb. The screenshot is taken first, untouched. */
+@TestMethodOrder(MethodOrderer.OrderAnnotation.class)
 class WorkbenchUiTest {
 
     private static IWorkbenchWindow window() {
@@ -58,6 +62,7 @@ class WorkbenchUiTest {
     }
 
     @Test
+    @Order(1)
     void windowShowsWorkspaceAndFleetViewsAndMenusAndIsCaptured() throws Exception {
         IWorkbenchPage page = window().getActivePage();
         WorkspaceView workspace = (WorkspaceView) page.findView(WorkspaceView.ID);
