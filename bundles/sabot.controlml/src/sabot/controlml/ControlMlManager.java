@@ -122,14 +122,15 @@ public final class ControlMlManager extends Manager {
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.get));
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.set));
         connection.addSyncStanzaListener(this::onMessage, CONTROL_ML_MESSAGE);
-        connection.addAsyncStanzaListener(this::onIqAnswer, CONTROL_ML_IQ_ANSWER);
+        // The filter runs on Smack's reader thread and lets through only answers this client never asked for, so
+        // ordinary answers cost no listener dispatch (a thread hand-off per answer would show in the round trip).
+        connection.addAsyncStanzaListener(this::onIqAnswer, stanza -> stanza instanceof ControlMlIQ iq && !iq
+                .isRequestIQ() && !wasSent(iq.getStanzaId()));
     }
 
     private static final StanzaFilter CONTROL_ML_MESSAGE = stanza -> stanza instanceof Message && stanza.getExtension(
             ControlMlElement.QNAME) != null;
 
-    private static final StanzaFilter CONTROL_ML_IQ_ANSWER = stanza -> stanza instanceof ControlMlIQ iq && !iq
-            .isRequestIQ();
 
     // ---------------------------------------------------------------------------------------------- settings
 
@@ -456,15 +457,14 @@ public final class ControlMlManager extends Manager {
         }
     }
 
-    private void onIqAnswer(Stanza stanza) {
-        String id = stanza.getStanzaId();
-        boolean ours;
+    private boolean wasSent(String stanzaId) {
         synchronized (sentStanzaIds) {
-            ours = id != null && sentStanzaIds.containsKey(id);
+            return stanzaId != null && sentStanzaIds.containsKey(stanzaId);
         }
-        if (!ours) {
-            dropUnsolicited(stanza.getFrom(), ((ControlMlIQ) stanza).element());
-        }
+    }
+
+    private void onIqAnswer(Stanza stanza) {
+        dropUnsolicited(stanza.getFrom(), ((ControlMlIQ) stanza).element());
     }
 
     // ---------------------------------------------------------------------------------------------- telemetry

@@ -1,0 +1,467 @@
+package sabot.controlml.bench;
+
+import java.io.IOException;
+import java.lang.management.ManagementFactory;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.atomic.LongAdder;
+
+import org.jivesoftware.smack.SmackConfiguration;
+import org.jivesoftware.smack.StanzaCollector;
+import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
+import org.jivesoftware.smack.iqrequest.IQRequestHandler.Mode;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.IqData;
+import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.packet.XmlEnvironment;
+import org.jivesoftware.smack.provider.IqProvider;
+import org.jivesoftware.smack.provider.ProviderManager;
+import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smack.xml.SmackXmlParser;
+import org.jivesoftware.smack.xml.XmlPullParser;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.FullJid;
+
+import sabot.controlml.AccessLevel;
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.Resources;
+import sabot.controlml.TelemetryPublication;
+import sabot.controlml.payload.PoseCovariance;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * {@code ./sabot bench controlml}: starts its own private Prosody (or ejabberd) and measures
+ * <ol>
+ * <li>the round trip of a {@code cm.position} get between two clients, beside a raw XMPP IQ between the same two
+ * clients, requests alternating so that both see the same server and machine state; and</li>
+ * <li>telemetry: N robots publishing {@code cm.position} to their PEP nodes at R Hz into S subscribed workbenches
+ * for D seconds: delivered percentage, latency percentiles, server CPU.</li>
+ * </ol>
+ * The last line printed is one JSON object with the figures.
+ */
+public final class ControlMlBench {
+
+    private static final String ECHO_NS = "urn:sabot:bench:echo";
+
+    private int requests = 10_000;
+    private int warmup = 1_000;
+    private PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
+    private int robots = 100;
+    private int subscribers = 2;
+    private double rateHz = 10;
+    private int durationS = 60;
+    private boolean telemetry = true;
+
+    public static void main(String[] args) throws Exception {
+        ControlMlBench bench = new ControlMlBench();
+        bench.parse(args);
+        System.exit(bench.run());
+    }
+
+    private void parse(String[] args) {
+        for (int i = 0; i < args.length; i++) {
+            String a = args[i];
+            switch (a) {
+                case "--requests" -> requests = Integer.parseInt(args[++i]);
+                case "--warmup" -> warmup = Integer.parseInt(args[++i]);
+                case "--server" -> kind = PrivateXmppServer.Kind.valueOf(args[++i].toUpperCase(Locale.ROOT));
+                case "--robots" -> robots = Integer.parseInt(args[++i]);
+                case "--subscribers" -> subscribers = Integer.parseInt(args[++i]);
+                case "--rate" -> rateHz = Double.parseDouble(args[++i]);
+                case "--duration" -> durationS = Integer.parseInt(args[++i]);
+                case "--no-telemetry" -> telemetry = false;
+                case "--help", "-h" -> {
+                    System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
+                            + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] [--rate HZ (10)] "
+                            + "[--duration S (60)] [--no-telemetry]");
+                    System.exit(0);
+                }
+                default -> throw new IllegalArgumentException("unknown option " + a + " (--help)");
+            }
+        }
+    }
+
+    private int run() throws Exception {
+        // one parser factory for all connections, instead of a ServiceLoader lookup per parser
+        SmackXmlParser.setXmlPullParserFactory(SmackXmlParser.getXmlPullParserFactory());
+        SmackConfiguration.setDefaultReplyTimeout(20_000);
+        XMPPTCPConnection.setUseStreamManagementDefault(false); // measure the protocol, not the ack traffic
+        if (System.getProperty("sabot.root") == null && System.getenv("SABOT_ROOT") != null) {
+            System.setProperty("sabot.root", System.getenv("SABOT_ROOT"));
+        }
+        Map<String, Object> figures = new java.util.LinkedHashMap<>();
+        figures.put("server", kind.name().toLowerCase(Locale.ROOT));
+        try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
+            figures.put("server_ready_ms", server.startupTime().toMillis());
+            roundTrips(server, figures);
+            if (telemetry) {
+                telemetry(server, figures);
+            }
+        }
+        StringBuilder json = new StringBuilder("{");
+        figures.forEach((k, v) -> json.append(json.length() > 1 ? ", " : "").append('"').append(k).append("\": ")
+                .append(v instanceof String s ? "\"" + s + "\"" : v));
+        System.out.println(json.append('}'));
+        return 0;
+    }
+
+    // ------------------------------------------------------------------------------------------------ round trips
+
+    /** The raw IQ: an empty child element that the responder answers with an empty result. */
+    static final class EchoIQ extends IQ {
+        EchoIQ() {
+            super("echo", ECHO_NS);
+        }
+
+        EchoIQ(IqData data) {
+            super(data, "echo", ECHO_NS);
+        }
+
+        @Override
+        protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+            xml.setEmptyElement();
+            return xml;
+        }
+    }
+
+    /** A result carrying pre-serialised XML: the raw IQ with the same bytes as a cm.position result. */
+    static final class PayloadIQ extends IQ {
+        private final String payload;
+
+        PayloadIQ(String payload) {
+            super("echo", ECHO_NS);
+            this.payload = payload;
+        }
+
+        @Override
+        protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+            xml.rightAngleBracket();
+            xml.append(payload);
+            return xml;
+        }
+    }
+
+    private void roundTrips(PrivateXmppServer server, Map<String, Object> figures) throws Exception {
+        ProviderManager.addIQProvider("echo", ECHO_NS, new IqProvider<EchoIQ>() {
+            @Override
+            public EchoIQ parse(XmlPullParser parser, int initialDepth, IqData iqData, XmlEnvironment env) {
+                return new EchoIQ(iqData);
+            }
+        });
+        XMPPTCPConnection workbench = server.login("bench-wb");
+        XMPPTCPConnection robot = server.login("bench-robot");
+        robot.registerIQRequestHandler(new AbstractIqRequestHandler("echo", ECHO_NS, IQ.Type.get, Mode.sync) {
+            @Override
+            public IQ handleIQRequest(IQ request) {
+                return IQ.createResultIQ(request);
+            }
+        });
+        // the same size as a cm.position result, as opaque XML, for the breakdown (raw with payload)
+        String sizedXml = sabot.controlml.swe.SweXml.toXml(Resources.POSITION.codec().encode(new PoseEstimate(Instant
+                .parse("2026-11-21T10:15:30.123456Z"), new Pose2D(1.25, -3.5, 0.785), new PoseCovariance(0.01, 0.001,
+                        -0.0002, 0.02, 0.0003, 0.0004))));
+        robot.registerIQRequestHandler(new AbstractIqRequestHandler("echo", ECHO_NS, IQ.Type.set, Mode.sync) {
+            @Override
+            public IQ handleIQRequest(IQ request) {
+                PayloadIQ r = new PayloadIQ(sizedXml);
+                r.setType(IQ.Type.result);
+                return r;
+            }
+        });
+        ControlMlManager robotCm = ControlMlManager.getInstanceFor(robot);
+        robotCm.setAccessPolicy(j -> j.asBareJid().equals(workbench.getUser().asBareJid()) ? AccessLevel.SET
+                : AccessLevel.NONE);
+        PoseEstimate pose = new PoseEstimate(Instant.parse("2026-11-21T10:15:30.123456Z"), new Pose2D(1.25, -3.5,
+                0.785), new PoseCovariance(0.01, 0.001, -0.0002, 0.02, 0.0003, 0.0004));
+        robotCm.onGet(Resources.POSITION, (r, q) -> Outcome.success(pose));
+        ControlMlManager client = ControlMlManager.getInstanceFor(workbench);
+        FullJid robotJid = robot.getUser();
+
+        long[] raw = new long[requests];
+        long[] sizedRaw = new long[requests];
+        long[] cm = new long[requests];
+        System.out.printf("[bench] %s: %d warm-up + %d requests each, raw IQ and cm.position get alternating%n",
+                kind.name().toLowerCase(Locale.ROOT), warmup, requests);
+        long t0 = System.nanoTime();
+        for (int i = -warmup; i < requests; i++) {
+            long a = System.nanoTime();
+            EchoIQ echo = new EchoIQ();
+            echo.setTo(robotJid);
+            echo.setStanzaId();
+            try (StanzaCollector c = workbench.createStanzaCollectorAndSend(echo)) {
+                c.nextResultOrThrow();
+            }
+            long b = System.nanoTime();
+            Outcome<PoseEstimate> got = client.get(robotJid, Resources.POSITION);
+            long d = System.nanoTime();
+            EchoIQ sizedEcho = new EchoIQ();
+            sizedEcho.setType(IQ.Type.set);
+            sizedEcho.setTo(robotJid);
+            sizedEcho.setStanzaId();
+            try (StanzaCollector c = workbench.createStanzaCollectorAndSend(sizedEcho)) {
+                c.nextResultOrThrow();
+            }
+            long e = System.nanoTime();
+            if (!got.isSuccess() || !pose.equals(got.orElseThrow())) {
+                throw new IllegalStateException("cm.position get failed: " + got);
+            }
+            if (i >= 0) {
+                raw[i] = b - a;
+                cm[i] = d - b;
+                sizedRaw[i] = e - d;
+            }
+        }
+        double seconds = (System.nanoTime() - t0) / 1e9;
+        Arrays.sort(raw);
+        Arrays.sort(cm);
+        Arrays.sort(sizedRaw);
+        System.out.printf("[bench] raw IQ         p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  max %.3f ms%n", ms(raw, 0.5),
+                ms(raw, 0.9), ms(raw, 0.99), raw[raw.length - 1] / 1e6);
+        System.out.printf("[bench] raw IQ, %d B result p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  (breakdown: payload size "
+                + "alone)%n", sizedXml.length(), ms(sizedRaw, 0.5), ms(sizedRaw, 0.9), ms(sizedRaw, 0.99));
+        System.out.printf("[bench] cm.position get p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  max %.3f ms%n", ms(cm, 0.5),
+                ms(cm, 0.9), ms(cm, 0.99), cm[cm.length - 1] / 1e6);
+        System.out.printf("[bench] ratio p50 %.2f, p99 %.2f (%d + %d requests in %.1f s)%n", ms(cm, 0.5) / ms(raw, 0.5),
+                ms(cm, 0.99) / ms(raw, 0.99), requests + warmup, requests + warmup, seconds);
+        figures.put("requests", requests);
+        figures.put("raw_iq_p50_ms", round(ms(raw, 0.5)));
+        figures.put("raw_iq_p99_ms", round(ms(raw, 0.99)));
+        figures.put("controlml_p50_ms", round(ms(cm, 0.5)));
+        figures.put("controlml_p99_ms", round(ms(cm, 0.99)));
+        figures.put("controlml_to_raw_p50", round(ms(cm, 0.5) / ms(raw, 0.5)));
+        figures.put("raw_iq_sized_p50_ms", round(ms(sizedRaw, 0.5)));
+        workbench.disconnect();
+        robot.disconnect();
+    }
+
+    private static double ms(long[] sorted, double q) {
+        int i = (int) Math.min(sorted.length - 1, Math.ceil(q * sorted.length) - 1);
+        return sorted[Math.max(0, i)] / 1e6;
+    }
+
+    private static double round(double v) {
+        return Math.round(v * 1000) / 1000.0;
+    }
+
+    // ------------------------------------------------------------------------------------------------ telemetry
+
+    private void telemetry(PrivateXmppServer server, Map<String, Object> figures) throws Exception {
+        System.out.printf("[bench] telemetry: %d robots x %.0f Hz -> %d subscribers for %d s%n", robots, rateHz,
+                subscribers, durationS);
+        long setup0 = System.nanoTime();
+        List<XMPPTCPConnection> subs = new ArrayList<>();
+        // Arrival times per subscriber: latency = arrival - the pose's time stamp (same JVM, same clock).
+        LongAdder delivered = new LongAdder();
+        LongAdder deliveredOutside = new LongAdder();
+        long[][] latencies = new long[subscribers][];
+        AtomicLong[] counts = new AtomicLong[subscribers];
+        Map<EntityBareJid, CountDownLatch> firstItem = new ConcurrentHashMap<>();
+        CountDownLatch warm = new CountDownLatch(robots * subscribers);
+        long capacity = (long) (robots * rateHz * (durationS + 30)) + 1000;
+        Window window = new Window();
+        for (int s = 0; s < subscribers; s++) {
+            String name = "bench-sub" + s;
+            server.register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+            XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).setResource("wb").build());
+            latencies[s] = new long[(int) Math.min(Integer.MAX_VALUE - 8, capacity)];
+            counts[s] = new AtomicLong();
+            int sub = s;
+            Map<EntityBareJid, Boolean> seen = new ConcurrentHashMap<>();
+            ControlMlManager.getInstanceFor(c).addTelemetryListener(Resources.POSITION, (device, p) -> {
+                long now = nanosOfInstant(Instant.now());
+                if (seen.putIfAbsent(device, Boolean.TRUE) == null) {
+                    warm.countDown();
+                }
+                long stamp = nanosOfInstant(p.time());
+                if (window.contains(stamp)) {
+                    long k = counts[sub].getAndIncrement();
+                    if (k < latencies[sub].length) {
+                        latencies[sub][(int) k] = now - stamp;
+                    }
+                    delivered.increment();
+                } else {
+                    deliveredOutside.increment();
+                }
+            });
+            c.connect().login();
+            Roster.getInstanceFor(c).setSubscriptionMode(Roster.SubscriptionMode.accept_all);
+            subs.add(c);
+        }
+        List<XMPPTCPConnection> robotConnections = new ArrayList<>();
+        CountDownLatch mutual = new CountDownLatch(robots * subscribers * 2);
+        for (XMPPTCPConnection s : subs) {
+            Roster.getInstanceFor(s).addPresenceEventListener(countAvailable(mutual, "bench-robot"));
+        }
+        for (int r = 0; r < robots; r++) {
+            String name = "bench-robot" + r;
+            server.register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+            XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
+            Roster roster = Roster.getInstanceFor(c);
+            roster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
+            roster.addPresenceEventListener(countAvailable(mutual, "bench-sub"));
+            c.connect().login();
+            robotConnections.add(c);
+            for (XMPPTCPConnection s : subs) {
+                EntityBareJid robotJid = c.getUser().asEntityBareJid();
+                Roster.getInstanceFor(s).createItemAndRequestSubscription(robotJid, name, null);
+            }
+        }
+        if (!mutual.await(120, TimeUnit.SECONDS)) {
+            throw new IllegalStateException("mutual subscriptions incomplete: " + mutual.getCount() + " missing");
+        }
+        // Publish until every subscriber has had an item from every robot: the robots' servers learn the
+        // subscribers' +notify from their entity caps asynchronously.
+        LongAdder offered = new LongAdder();
+        List<TelemetryPublication> publications = new ArrayList<>();
+        for (XMPPTCPConnection c : robotConnections) {
+            AtomicLong seq = new AtomicLong();
+            publications.add(ControlMlManager.getInstanceFor(c).publishTelemetry(Resources.POSITION, () -> {
+                Instant now = Instant.now();
+                if (window.contains(nanosOfInstant(now))) {
+                    offered.increment();
+                }
+                return new PoseEstimate(now, new Pose2D(seq.incrementAndGet(), 0, 0), PoseCovariance.ZERO);
+            }, rateHz));
+        }
+        if (!warm.await(120, TimeUnit.SECONDS)) {
+            throw new IllegalStateException("warm-up incomplete: " + warm.getCount() + " robot/subscriber pairs silent");
+        }
+        double setupS = (System.nanoTime() - setup0) / 1e9;
+        System.out.printf("[bench] setup (IBR, login, %d mutual subscriptions, caps warm-up) %.1f s%n", robots
+                * subscribers, setupS);
+        long cpu0 = serverCpuTicks(server);
+        long self0 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
+                .getProcessCpuTime();
+        long wall0 = System.nanoTime();
+        window.open(nanosOfInstant(Instant.now()), TimeUnit.SECONDS.toNanos(durationS));
+        // The measurement is the passing of time itself: wait out the window (latch never counted down).
+        new CountDownLatch(1).await(durationS, TimeUnit.SECONDS);
+        long cpu1 = serverCpuTicks(server);
+        long self1 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
+                .getProcessCpuTime();
+        double wallS = (System.nanoTime() - wall0) / 1e9;
+        publications.forEach(TelemetryPublication::stop);
+        // let items still in flight arrive: wait until the delivered count stops growing for 2 s (at most 15 s)
+        long last = -1;
+        long settle = System.nanoTime() + TimeUnit.SECONDS.toNanos(15);
+        while (delivered.sum() != last && System.nanoTime() < settle) {
+            last = delivered.sum();
+            new CountDownLatch(1).await(2, TimeUnit.SECONDS);
+        }
+        long expected = offered.sum() * subscribers;
+        long got = delivered.sum();
+        List<Long> all = new ArrayList<>();
+        for (int s = 0; s < subscribers; s++) {
+            long n = Math.min(counts[s].get(), latencies[s].length);
+            for (int i = 0; i < n; i++) {
+                all.add(latencies[s][i]);
+            }
+        }
+        long[] lat = all.stream().mapToLong(Long::longValue).sorted().toArray();
+        double serverCpuPct = 100.0 * (cpu1 - cpu0) / 100.0 / wallS; // /proc ticks are 1/100 s
+        double clientCpuPct = 100.0 * (self1 - self0) / 1e9 / wallS;
+        long failed = robotConnections.stream().mapToLong(c -> ControlMlManager.getInstanceFor(c).statistics()
+                .telemetryFailed()).sum();
+        System.out.printf("[bench] telemetry: offered %d items x %d subscribers = %d, delivered %d (%.2f %%), "
+                + "publish failures %d%n", offered.sum(), subscribers, expected, got, 100.0 * got / Math.max(1,
+                        expected), failed);
+        if (lat.length > 0) {
+            System.out.printf("[bench] telemetry latency p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  max %.3f ms%n", ms(lat,
+                    0.5), ms(lat, 0.9), ms(lat, 0.99), lat[lat.length - 1] / 1e6);
+        }
+        System.out.printf("[bench] CPU over the %.1f s window: server %.1f %% of one core, benchmark JVM (all %d "
+                + "clients) %.1f %%%n", wallS, serverCpuPct, robots + subscribers, clientCpuPct);
+        figures.put("telemetry_robots", robots);
+        figures.put("telemetry_subscribers", subscribers);
+        figures.put("telemetry_rate_hz", rateHz);
+        figures.put("telemetry_duration_s", durationS);
+        figures.put("telemetry_expected", expected);
+        figures.put("telemetry_delivered", got);
+        figures.put("telemetry_delivered_pct", round(100.0 * got / Math.max(1, expected)));
+        figures.put("telemetry_p50_ms", lat.length == 0 ? "null" : round(ms(lat, 0.5)));
+        figures.put("telemetry_p99_ms", lat.length == 0 ? "null" : round(ms(lat, 0.99)));
+        figures.put("server_cpu_pct", round(serverCpuPct));
+        figures.put("client_cpu_pct", round(clientCpuPct));
+        for (XMPPTCPConnection c : robotConnections) {
+            c.instantShutdown();
+        }
+        for (XMPPTCPConnection c : subs) {
+            c.instantShutdown();
+        }
+    }
+
+    /** The measurement window in epoch nanoseconds; closed until opened. */
+    private static final class Window {
+        private volatile long start = Long.MAX_VALUE;
+        private volatile long end = Long.MIN_VALUE;
+
+        void open(long from, long length) {
+            end = from + length;
+            start = from;
+        }
+
+        boolean contains(long t) {
+            return t >= start && t < end;
+        }
+    }
+
+    private static AbstractPresenceEventListener countAvailable(CountDownLatch latch, String prefix) {
+        Map<EntityBareJid, Boolean> seen = new ConcurrentHashMap<>();
+        return new AbstractPresenceEventListener() {
+            @Override
+            public void presenceAvailable(FullJid address, Presence availablePresence) {
+                EntityBareJid bare = address.asEntityBareJidIfPossible();
+                if (bare != null && bare.getLocalpart().toString().startsWith(prefix) && seen.putIfAbsent(bare, Boolean.TRUE)
+                        == null) {
+                    latch.countDown();
+                }
+            }
+        };
+    }
+
+    private static long nanosOfInstant(Instant t) {
+        return t.getEpochSecond() * 1_000_000_000L + t.getNano();
+    }
+
+    /** utime + stime of the server process and its descendants (ejabberd runs beam.smp under its control script). */
+    private static long serverCpuTicks(PrivateXmppServer server) {
+        long total = 0;
+        ProcessHandle root = ProcessHandle.of(server.pid()).orElse(null);
+        if (root == null) {
+            return 0;
+        }
+        List<ProcessHandle> tree = new ArrayList<>();
+        tree.add(root);
+        root.descendants().forEach(tree::add);
+        for (ProcessHandle p : tree) {
+            Path stat = Paths.get("/proc", Long.toString(p.pid()), "stat");
+            try {
+                String s = Files.readString(stat);
+                String[] f = s.substring(s.lastIndexOf(')') + 2).split(" ");
+                total += Long.parseLong(f[11]) + Long.parseLong(f[12]); // fields 14 and 15 of proc(5)
+            } catch (IOException | RuntimeException gone) {
+                // the process ended
+            }
+        }
+        return total;
+    }
+}
