@@ -24,9 +24,16 @@ import sabot.planner.CostModel;
  * </pre>
  *
  * (J. N. Tsitsiklis, "Efficient algorithms for globally optimal trajectories", IEEE TAC 40(9), 1995; the same
- * interpolation idea as navfn's quadratic update, on eight neighbours). Of the two triangles sharing the edge
- * direction, the one whose far corner is lower gives the lower value, so each neighbour update evaluates one square
- * root. All values are read from final cells only.
+ * interpolation idea as navfn's quadratic update, on eight neighbours). Of the two triangles through an axis
+ * neighbour a, the one whose corner d is lower gives the lower value, so an update evaluates one square root.
+ *
+ * <p>Expanding a final cell a updates its four axis neighbours p through both triangles (p, a, d). There is no
+ * separate diagonal update: the straight diagonal step from d is the t = 1 end of a triangle, evaluated when a is
+ * expanded. The corner d is read as stored, whether popped yet or not: if N(d) &lt; N(a) then d lies in the current
+ * or an earlier bucket, where values are already final (below); a higher corner cannot lower the result. (A diagonal
+ * step is missed only when both cells beside it are so costly that they are expanded after p; p then keeps an upper
+ * bound, the cost of a real path. The diagonal end of a triangle passes through the corner point shared with the
+ * fourth cell of the square, which the robot's centre may touch, never cross.)
  *
  * <p>Priority scheme: every update raises N by at least {@code c_min / sqrt(2)} over the values it reads
  * ({@code c_min} = {@link CostModel#minDensity()}), so with buckets of that width (R. Dial, CACM 12(11), 1969) all
@@ -169,13 +176,16 @@ public final class LpnNavigationFunction {
 
     private void propagate(int stopAtCell) {
         final int[] potential = this.potential;
-        final float[] density = this.cellDensity;
+        final float[] density = this.density;
+        final byte[] costs = grid.costs();
         final int stride = grid.stride();
         float stopAbove = Float.POSITIVE_INFINITY;
         while (queued > 0 && currentBucket * bucketWidth <= stopAbove) {
             int slot = currentBucket & bucketMask;
-            while (bucketSizes[slot] > 0) {
-                int cell = buckets[slot][--bucketSizes[slot]];
+            // first in, first out: cells are expanded in the order the front reached them, which keeps neighbouring
+            // expansions close in memory
+            for (int head = 0; head < bucketSizes[slot]; head++) {
+                int cell = buckets[slot][head];
                 queued--;
                 int bits = potential[cell];
                 if (bits < 0) {
@@ -187,44 +197,53 @@ public final class LpnNavigationFunction {
                 if (cell == stopAtCell) {
                     stopAbove = value + 2 * SQRT2 * maxDensity;
                 }
-                float ownDensity = density[cell];
-                relaxAxis(cell + 1, cell + stride, cell - stride, value, ownDensity, potential, density);
-                relaxAxis(cell - 1, cell + stride, cell - stride, value, ownDensity, potential, density);
-                relaxAxis(cell + stride, cell + 1, cell - 1, value, ownDensity, potential, density);
-                relaxAxis(cell - stride, cell + 1, cell - 1, value, ownDensity, potential, density);
+                float ownDensity = density[costs[cell] & 0xFF];
+                relaxAxis(cell + 1, cell + stride, cell - stride, value, ownDensity, potential, density, costs);
+                relaxAxis(cell - 1, cell + stride, cell - stride, value, ownDensity, potential, density, costs);
+                relaxAxis(cell + stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
+                relaxAxis(cell - stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
             }
+            bucketSizes[slot] = 0;
             currentBucket++;
         }
     }
 
     /**
      * Updates {@code target}, an axis neighbour of the just-finalised cell (value {@code value}), through the
-     * triangles (target, cell, corner) with the two diagonal corners of the target next to the cell. Branch-free
-     * but for the final comparison: for a final or impassable target the stored bits are negative, so no candidate
-     * is ever below them.
+     * triangles (target, cell, corner) with the two diagonal corners of the target next to the cell. Selections are
+     * written as conditional expressions (compiled to conditional moves): whether a corner is lower is unpredictable,
+     * and mispredicted branches, not arithmetic, dominate this loop.
      */
     private void relaxAxis(int target, int corner1, int corner2, float value, float ownDensity, int[] potential,
-            float[] density) {
+            float[] density, byte[] costs) {
         int targetBits = potential[target];
         if (targetBits < 0) {
             return;
         }
-        float c = 0.5f * (density[target] + ownDensity);
-        float corner = Math.min(decode(potential[corner1]), decode(potential[corner2]));
+        float c = 0.5f * (density[costs[target] & 0xFF] + ownDensity);
+        float corner1Value = decode(potential[corner1]);
+        float corner2Value = decode(potential[corner2]);
+        float corner = corner1Value < corner2Value ? corner1Value : corner2Value;
         float limit = c * INV_SQRT2;
-        float delta = Math.min(Math.max(0f, value - corner), limit);
+        float delta = value - corner;
+        delta = delta < 0f ? 0f : delta > limit ? limit : delta;
         // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner
-        float best = Math.min(value + (float) Math.sqrt(c * c - delta * delta), corner + c * SQRT2);
+        float interior = value + (float) Math.sqrt(c * c - delta * delta);
+        float straight = corner + c * SQRT2;
+        float best = interior < straight ? interior : straight;
         if (Float.floatToRawIntBits(best) < targetBits) {
             lower(target, targetBits, best);
         }
     }
 
     private void lower(int target, int oldBits, float newValue) {
+        potential[target] = Float.floatToRawIntBits(newValue);
         if (oldBits == UNREACHED) {
             touched[touchedCount++] = target;
+        } else if ((int) (Float.intBitsToFloat(oldBits) * inverseBucketWidth) == (int) (newValue * inverseBucketWidth)) {
+            // already queued in the same bucket: that entry will read the lower value when it is popped
+            return;
         }
-        potential[target] = Float.floatToRawIntBits(newValue);
         push(target, newValue);
     }
 
