@@ -10,7 +10,7 @@ import sabot.planner.internal.ReferencePlanner;
 public final class Planners {
 
     /** Names {@link #byName} understands. */
-    public static final List<String> NAMES = List.of("lpn", "lpn-bounded", "reference", "dijkstra");
+    public static final List<String> NAMES = List.of("lpn", "lpn-bounded", "lpn-incremental", "reference", "dijkstra");
 
     private Planners() {
     }
@@ -33,6 +33,15 @@ public final class Planners {
         return new LpnPlanner(costModel, false);
     }
 
+    /**
+     * @return the LPN planner that, when asked again for the same goals after costs rose locally (a new obstacle),
+     *         repairs its navigation function where the change reaches instead of recomputing it (any other change:
+     *         full computation). The path equals a fresh computation's up to float rounding.
+     */
+    public static Planner lpnIncremental(CostModel costModel) {
+        return new LpnPlanner(costModel, true, true);
+    }
+
     /** @return the 8-connected A* reference, standard cost model */
     public static Planner reference() {
         return reference(CostModel.standard());
@@ -53,6 +62,7 @@ public final class Planners {
         return Optional.ofNullable(switch (name) {
             case "lpn" -> lpn(costModel);
             case "lpn-bounded" -> lpnBounded(costModel);
+            case "lpn-incremental" -> lpnIncremental(costModel);
             case "reference" -> reference(costModel);
             case "dijkstra" -> dijkstra(costModel);
             default -> null;

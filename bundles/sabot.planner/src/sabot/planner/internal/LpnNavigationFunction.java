@@ -52,6 +52,11 @@ public final class LpnNavigationFunction {
     public static final int UNREACHED = 0x7F800000;
     /** Bits of an impassable cell: +infinity, final. */
     public static final int IMPASSABLE = 0xFF800000;
+    /**
+     * Bits of a cell whose value a {@link #repair} withdrew: the largest finite float, so that it compares like an
+     * unreached cell but is not recorded again as newly reached.
+     */
+    private static final int RETRACTED = 0x7F7FFFFF;
     private static final int FINAL = 0x80000000;
     private static final int VALUE = 0x7FFFFFFF;
 
@@ -73,6 +78,12 @@ public final class LpnNavigationFunction {
     private int[] potential = new int[0];
     private float[] cellDensity = new float[0];
     private int[] touched = new int[0];
+    /** Goals of the last complete computation (whole reachable grid), or null: what {@link #repair} builds on. */
+    private int[] completeGoals;
+    private float[] checkKeys = new float[256];
+    private int[] checkCells = new int[256];
+    private int checkSize;
+    private int[] invalid = new int[256];
     private int touchedCount;
     private int finalizedCount;
     private int queued;
@@ -119,6 +130,7 @@ public final class LpnNavigationFunction {
      * between computations.
      */
     public void gridChanged(PlanningGrid planningGrid, CellRegion changed) {
+        completeGoals = null;
         if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
             grid = planningGrid;
             potential = new int[planningGrid.paddedSize()];
@@ -152,6 +164,8 @@ public final class LpnNavigationFunction {
      *                   stop, or -1 for the whole reachable grid
      */
     public void compute(int[] goals, int stopAtCell) {
+        completeGoals = stopAtCell < 0 ? goals.clone() : null;
+        checkSize = 0;
         resetTouched();
         finalizedCount = 0;
         queued = 0;
@@ -164,7 +178,235 @@ public final class LpnNavigationFunction {
                 push(goal, 0f);
             }
         }
-        propagate(stopAtCell);
+        propagate(stopAtCell, false);
+    }
+
+    /**
+     * Repairs N after costs rose in {@code changed} (already synced into the grid), instead of recomputing it: the
+     * D*-like re-planning step (A. Stentz, "The focussed D* algorithm for real-time replanning", IJCAI 1995) on a
+     * navigation function. Cells are checked in increasing N from the changed ones outwards; a cell whose value its
+     * remaining lower neighbours no longer support is invalidated, and only then are its higher neighbours checked.
+     * The invalidated cells are re-seeded from their valid neighbours and the ordinary propagation refills them.
+     * Work is proportional to the cells whose value depended on the change (the "shadow" behind a new obstacle), not
+     * to the grid.
+     *
+     * @return false, changing nothing, when a repair is not possible and {@link #gridChanged} plus {@link #compute}
+     *         must be used: no complete computation for these goals, a change too large to have been remembered, or
+     *         a cost that fell (a lower cost can shorten paths anywhere behind it)
+     */
+    public boolean repair(PlanningGrid planningGrid, CellRegion changed, int[] goals) {
+        if (planningGrid != grid || completeGoals == null || !Arrays.equals(completeGoals, goals)) {
+            return false;
+        }
+        if (changed.isEmpty()) {
+            return true;
+        }
+        byte[] costs = grid.costs();
+        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
+            for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
+                int before = grid.previousCost(column, row);
+                if (before < 0 || density[costs[grid.index(column, row)] & 0xFF] < density[before]) {
+                    return false;
+                }
+            }
+        }
+        checkSize = 0;
+        int stride = grid.stride();
+        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
+            for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
+                int cell = grid.index(column, row);
+                if (density[costs[cell] & 0xFF] == density[grid.previousCost(column, row)]) {
+                    continue;
+                }
+                int bits = potential[cell];
+                if (bits == IMPASSABLE) {
+                    continue;
+                }
+                if (bits == UNREACHED) {
+                    if (density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY) {
+                        potential[cell] = IMPASSABLE;
+                    }
+                    continue;
+                }
+                // the cell itself and its axis neighbours (whose updates use its density) must be checked
+                pushCheck(cell);
+                pushCheck(cell + 1);
+                pushCheck(cell - 1);
+                pushCheck(cell + stride);
+                pushCheck(cell - stride);
+            }
+        }
+        int invalidCount = 0;
+        while (checkSize > 0) {
+            int cell = popCheck();
+            int bits = potential[cell];
+            if (bits >= 0 || bits == IMPASSABLE) {
+                continue; // already invalidated, never reached, or impassable
+            }
+            float value = decode(bits);
+            boolean nowImpassable = density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY;
+            float supported = nowImpassable ? Float.POSITIVE_INFINITY : recompute(cell, costs, stride);
+            if (value == 0f || supported <= value * (1 + 1e-6f)) {
+                continue; // goal cells and cells still supported keep their value
+            }
+            potential[cell] = nowImpassable ? IMPASSABLE : RETRACTED;
+            finalizedCount--;
+            if (invalidCount == invalid.length) {
+                invalid = Arrays.copyOf(invalid, invalidCount * 2);
+            }
+            invalid[invalidCount++] = cell;
+            for (int dy = -stride; dy <= stride; dy += stride) {
+                for (int dx = -1; dx <= 1; dx++) {
+                    int next = cell + dy + dx;
+                    int nextBits = potential[next];
+                    if (nextBits < 0 && nextBits != IMPASSABLE && decode(nextBits) > value) {
+                        pushCheck(next);
+                    }
+                }
+            }
+        }
+        if (invalidCount == 0) {
+            return true;
+        }
+        queued = 0;
+        Arrays.fill(bucketSizes, 0);
+        currentBucket = Integer.MAX_VALUE;
+        for (int i = 0; i < invalidCount; i++) {
+            int cell = invalid[i];
+            if (potential[cell] == IMPASSABLE) {
+                continue;
+            }
+            float seed = recompute(cell, costs, stride);
+            if (seed != Float.POSITIVE_INFINITY) {
+                currentBucket = Math.min(currentBucket, (int) (seed * inverseBucketWidth));
+            }
+        }
+        if (currentBucket != Integer.MAX_VALUE) {
+            // seeds wait in the heap, sorted, and enter the bucket ring as the front approaches them: their values
+            // may lie further apart than the ring reaches
+            for (int i = 0; i < invalidCount; i++) {
+                int cell = invalid[i];
+                if (potential[cell] != IMPASSABLE) {
+                    float seed = recompute(cell, costs, stride);
+                    if (seed != Float.POSITIVE_INFINITY) {
+                        pushSeed(cell, seed);
+                    }
+                }
+            }
+            propagate(-1, true);
+        }
+        for (int i = 0; i < invalidCount; i++) {
+            if (potential[invalid[i]] == RETRACTED) {
+                potential[invalid[i]] = UNREACHED; // cut off from the goal by the change
+            }
+        }
+        return true;
+    }
+
+    /**
+     * Moves repair seeds whose bucket the ring can hold into it; when the ring is empty, first advances to the
+     * lowest seed's bucket.
+     */
+    private void injectSeeds() {
+        if (queued == 0) {
+            currentBucket = Math.max(currentBucket, (int) (checkKeys[0] * inverseBucketWidth));
+        }
+        int horizon = currentBucket + bucketMask;
+        while (checkSize > 0 && (int) (checkKeys[0] * inverseBucketWidth) < horizon) {
+            float seed = checkKeys[0];
+            int cell = popCheck();
+            int bits = potential[cell];
+            if (bits >= 0 && Float.floatToRawIntBits(seed) < bits) {
+                potential[cell] = Float.floatToRawIntBits(seed);
+                push(cell, seed);
+            }
+        }
+    }
+
+    /** N of a cell recomputed from its final neighbours, with the same update as the propagation. */
+    private float recompute(int cell, byte[] costs, int stride) {
+        float own = density[costs[cell] & 0xFF];
+        float best = Float.POSITIVE_INFINITY;
+        best = Math.min(best, through(cell + 1, cell + 1 + stride, cell + 1 - stride, own, costs));
+        best = Math.min(best, through(cell - 1, cell - 1 + stride, cell - 1 - stride, own, costs));
+        best = Math.min(best, through(cell + stride, cell + stride + 1, cell + stride - 1, own, costs));
+        best = Math.min(best, through(cell - stride, cell - stride + 1, cell - stride - 1, own, costs));
+        return best;
+    }
+
+    /** The update of a cell of density {@code own} through its final axis neighbour and that neighbour's corners. */
+    private float through(int axis, int corner1, int corner2, float own, byte[] costs) {
+        int bits = potential[axis];
+        if (bits >= 0 || bits == IMPASSABLE) {
+            return Float.POSITIVE_INFINITY;
+        }
+        float value = decode(bits);
+        float c = 0.5f * (own + density[costs[axis] & 0xFF]);
+        float corner = Math.min(finalValue(potential[corner1]), finalValue(potential[corner2]));
+        float limit = c * INV_SQRT2;
+        float delta = Math.min(Math.max(0f, value - corner), limit);
+        return Math.min(value + (float) Math.sqrt(c * c - delta * delta), corner + c * SQRT2);
+    }
+
+    private static float finalValue(int bits) {
+        return bits < 0 ? decode(bits) : Float.POSITIVE_INFINITY;
+    }
+
+    /** Adds a final cell to the check heap, keyed by its value. */
+    private void pushCheck(int cell) {
+        int bits = potential[cell];
+        if (bits >= 0 || bits == IMPASSABLE) {
+            return;
+        }
+        pushSeed(cell, decode(bits));
+    }
+
+    /** Adds a cell to the heap (checks during a repair's first phase, seeds during its second). */
+    private void pushSeed(int cell, float key) {
+        if (checkSize == checkKeys.length) {
+            checkKeys = Arrays.copyOf(checkKeys, checkSize * 2);
+            checkCells = Arrays.copyOf(checkCells, checkSize * 2);
+        }
+        int i = checkSize++;
+        while (i > 0) {
+            int parent = (i - 1) >>> 1;
+            if (checkKeys[parent] <= key) {
+                break;
+            }
+            checkKeys[i] = checkKeys[parent];
+            checkCells[i] = checkCells[parent];
+            i = parent;
+        }
+        checkKeys[i] = key;
+        checkCells[i] = cell;
+    }
+
+    private int popCheck() {
+        int top = checkCells[0];
+        int last = --checkSize;
+        if (last > 0) {
+            float key = checkKeys[last];
+            int cell = checkCells[last];
+            int i = 0;
+            while (true) {
+                int child = 2 * i + 1;
+                if (child >= last) {
+                    break;
+                }
+                if (child + 1 < last && checkKeys[child + 1] < checkKeys[child]) {
+                    child++;
+                }
+                if (checkKeys[child] >= key) {
+                    break;
+                }
+                checkKeys[i] = checkKeys[child];
+                checkCells[i] = checkCells[child];
+                i = child;
+            }
+            checkKeys[i] = key;
+            checkCells[i] = cell;
+        }
+        return top;
     }
 
     private void resetTouched() {
@@ -174,13 +416,19 @@ public final class LpnNavigationFunction {
         touchedCount = 0;
     }
 
-    private void propagate(int stopAtCell) {
+    private void propagate(int stopAtCell, boolean repairing) {
         final int[] potential = this.potential;
         final float[] density = this.density;
         final byte[] costs = grid.costs();
         final int stride = grid.stride();
         float stopAbove = Float.POSITIVE_INFINITY;
-        while (queued > 0 && currentBucket * bucketWidth <= stopAbove) {
+        while ((queued > 0 || checkSize > 0) && currentBucket * bucketWidth <= stopAbove) {
+            if (checkSize > 0) {
+                injectSeeds();
+                if (queued == 0) {
+                    continue;
+                }
+            }
             int slot = currentBucket & bucketMask;
             // first in, first out: cells are expanded in the order the front reached them, which keeps neighbouring
             // expansions close in memory
@@ -202,10 +450,32 @@ public final class LpnNavigationFunction {
                 relaxAxis(cell - 1, cell + stride, cell - stride, value, ownDensity, potential, density, costs);
                 relaxAxis(cell + stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
                 relaxAxis(cell - stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
+                if (repairing) {
+                    // a repaired cell is also the corner of triangles through its final axis neighbours, which a
+                    // fresh computation would expand after it: let them see its new value
+                    reexpand(cell + 1, value, potential, density, costs, stride);
+                    reexpand(cell - 1, value, potential, density, costs, stride);
+                    reexpand(cell + stride, value, potential, density, costs, stride);
+                    reexpand(cell - stride, value, potential, density, costs, stride);
+                }
             }
             bucketSizes[slot] = 0;
             currentBucket++;
         }
+    }
+
+    /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}. */
+    private void reexpand(int axis, float value, int[] potential, float[] density, byte[] costs, int stride) {
+        int bits = potential[axis];
+        if (bits >= 0 || bits == IMPASSABLE || decode(bits) <= value) {
+            return;
+        }
+        float axisValue = decode(bits);
+        float axisDensity = density[costs[axis] & 0xFF];
+        relaxAxis(axis + 1, axis + stride, axis - stride, axisValue, axisDensity, potential, density, costs);
+        relaxAxis(axis - 1, axis + stride, axis - stride, axisValue, axisDensity, potential, density, costs);
+        relaxAxis(axis + stride, axis + 1, axis - 1, axisValue, axisDensity, potential, density, costs);
+        relaxAxis(axis - stride, axis + 1, axis - 1, axisValue, axisDensity, potential, density, costs);
     }
 
     /**

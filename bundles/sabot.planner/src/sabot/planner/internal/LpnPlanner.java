@@ -5,6 +5,7 @@ import java.util.List;
 import java.util.Optional;
 
 import sabot.model.geometry.Point2D;
+import sabot.model.map.CellRegion;
 import sabot.model.map.Costmap;
 import sabot.model.map.GridGeometry;
 import sabot.planner.CostModel;
@@ -17,6 +18,7 @@ public final class LpnPlanner implements Planner {
 
     private final CostModel costModel;
     private final boolean wholeGrid;
+    private final boolean incremental;
     private final float[] density;
     private final PlanningGrid grid = new PlanningGrid();
     private final LpnNavigationFunction navigationFunction;
@@ -26,6 +28,18 @@ public final class LpnPlanner implements Planner {
      *                  false to stop once the start's value and its neighbourhood are final (cheaper re-planning)
      */
     public LpnPlanner(CostModel costModel, boolean wholeGrid) {
+        this(costModel, wholeGrid, false);
+    }
+
+    /**
+     * @param incremental true to repair the previous navigation function after costs rose locally (same goals)
+     *                    instead of recomputing it; needs {@code wholeGrid}
+     */
+    public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental) {
+        if (incremental && !wholeGrid) {
+            throw new IllegalArgumentException("incremental re-planning repairs a navigation function over the whole grid");
+        }
+        this.incremental = incremental;
         this.costModel = costModel;
         this.wholeGrid = wholeGrid;
         this.density = costModel.densityTable();
@@ -34,7 +48,7 @@ public final class LpnPlanner implements Planner {
 
     @Override
     public String name() {
-        return wholeGrid ? "lpn" : "lpn-bounded";
+        return incremental ? "lpn-incremental" : wholeGrid ? "lpn" : "lpn-bounded";
     }
 
     @Override
@@ -43,9 +57,12 @@ public final class LpnPlanner implements Planner {
         if (problem.isPresent()) {
             return problem.get();
         }
-        navigationFunction.gridChanged(grid, grid.sync(costmap));
+        CellRegion changed = grid.sync(costmap);
         PlanRequest request = PlanRequest.resolve(grid, start, goals);
-        navigationFunction.compute(request.goalCells(), wholeGrid ? -1 : request.startCell());
+        if (!(incremental && navigationFunction.repair(grid, changed, request.goalCells()))) {
+            navigationFunction.gridChanged(grid, changed);
+            navigationFunction.compute(request.goalCells(), wholeGrid ? -1 : request.startCell());
+        }
         if (!navigationFunction.isReached(request.startCell())) {
             return PlanRequest.enclosed(navigationFunction.finalizedCount());
         }

@@ -18,6 +18,8 @@ public final class PlanningGrid {
     private GridGeometry geometry;
     private int stride;
     private byte[] costs = new byte[0];
+    private byte[] previous = new byte[0];
+    private CellRegion previousRegion = CellRegion.EMPTY;
 
     /**
      * Brings the copy up to date with {@code costmap}.
@@ -41,10 +43,35 @@ public final class PlanningGrid {
         }
         source = costmap;
         sourceVersion = costmap.version();
+        previousRegion = changed;
+        int span = changed.maxColumn() - changed.minColumn() + 1;
+        if (!changed.isEmpty() && changed.cellCount() <= costs.length / 4) {
+            if (previous.length < changed.cellCount()) {
+                previous = new byte[(int) changed.cellCount()];
+            }
+            for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
+                System.arraycopy(costs, index(changed.minColumn(), row), previous,
+                        (row - changed.minRow()) * span, span);
+            }
+        } else {
+            previousRegion = CellRegion.EMPTY;
+        }
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             costmap.copyRow(row, changed.minColumn(), changed.maxColumn(), costs, index(changed.minColumn(), row));
         }
         return changed;
+    }
+
+    /**
+     * @return the cost (0..255) a cell of the region changed by the last {@link #sync} had before it, or -1 when the
+     *         cell is outside that region or the change was too large to be remembered
+     */
+    public int previousCost(int column, int row) {
+        if (!previousRegion.contains(column, row)) {
+            return -1;
+        }
+        int span = previousRegion.maxColumn() - previousRegion.minColumn() + 1;
+        return previous[(row - previousRegion.minRow()) * span + column - previousRegion.minColumn()] & 0xFF;
     }
 
     /** @return the geometry of the costmap last synced */
