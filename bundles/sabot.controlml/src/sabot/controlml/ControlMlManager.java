@@ -103,6 +103,7 @@ public final class ControlMlManager extends Manager {
 
     private final java.util.List<UnsolicitedAnswerListener> unsolicitedListeners =
             new java.util.concurrent.CopyOnWriteArrayList<>();
+    private final java.util.Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
     private ScheduledExecutorService scheduler;
     private final AtomicInteger activePublications = new AtomicInteger();
 
@@ -532,15 +533,54 @@ public final class ControlMlManager extends Manager {
         };
     }
 
+    /**
+     * XEP-0060 publish-options of telemetry nodes: items are not persisted (a pose is stale 100 ms later, and
+     * Prosody would otherwise write every item to its storage: measured, 1,000 publications/s saturated it) and at
+     * most one is kept. The server creates the node with these options on first publication.
+     */
+    private static final StandardExtensionElement TELEMETRY_PUBLISH_OPTIONS = StandardExtensionElement.builder(
+            "publish-options", "http://jabber.org/protocol/pubsub").addElement(StandardExtensionElement.builder("x",
+                    "jabber:x:data").addAttribute("type", "submit").addElement(formField("FORM_TYPE",
+                            "http://jabber.org/protocol/pubsub#publish-options", true)).addElement(formField(
+                                    "pubsub#persist_items", "false", false)).addElement(formField("pubsub#max_items",
+                                            "1", false)).build()).build();
+
+    private static StandardExtensionElement formField(String var, String value, boolean hidden) {
+        StandardExtensionElement.Builder b = StandardExtensionElement.builder("field", "jabber:x:data").addAttribute(
+                "var", var);
+        if (hidden) {
+            b.addAttribute("type", "hidden");
+        }
+        return b.addElement("value", value).build();
+    }
+
     /** Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. */
     public <T> void publishTelemetryNow(Resource<T, ?> resource, T value) {
         ControlMlElement element = ControlMlElement.result(ids.next(), resource.name(), resource.codec().encode(
                 value));
-        PubSub publish = PubSub.createPubsubPacket(null, IQ.Type.set, new PublishItem<>(ControlMl.telemetryNode(
-                resource.name()), new PayloadItem<>("current", element)));
+        String node = ControlMl.telemetryNode(resource.name());
+        sendPublication(node, element, !publishWithoutOptions.contains(node));
+    }
+
+    private void sendPublication(String node, ControlMlElement element, boolean withOptions) {
+        PubSub publish = PubSub.createPubsubPacket(null, IQ.Type.set, new PublishItem<>(node, new PayloadItem<>(
+                "current", element)));
+        if (withOptions) {
+            publish.addExtension(TELEMETRY_PUBLISH_OPTIONS);
+        }
         try {
             connection().sendIqRequestAsync(publish).onSuccess(r -> telemetryPublished.incrementAndGet()).onError(
                     e -> {
+                        if (withOptions && e instanceof org.jivesoftware.smack.XMPPException.XMPPErrorException x) {
+                            // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
+                            // publish with the server's defaults from now on, this item included
+                            if (publishWithoutOptions.add(node)) {
+                                LOGGER.info("server refused telemetry publish-options on " + node + " (" + x
+                                        .getStanzaError().getCondition() + "); publishing with its defaults");
+                            }
+                            sendPublication(node, element, false);
+                            return;
+                        }
                         telemetryFailed.incrementAndGet();
                         LOGGER.log(Level.FINE, "telemetry publication failed", e);
                     });
