@@ -19,8 +19,7 @@ import sabot.model.map.Costmap;
 class PlannerReportsUnreachableTest {
 
     static Stream<Planner> planners() {
-        return Stream.of(Planners.lpn(), Planners.lpnBounded(CostModel.standard()), Planners.reference(),
-                Planners.dijkstra(CostModel.standard()));
+        return Planners.NAMES.stream().map(name -> Planners.byName(name, CostModel.standard()).orElseThrow());
     }
 
     static Stream<Arguments> cases() {

@@ -1,8 +1,5 @@
 package sabot.planner.internal;
 
-import java.util.ArrayList;
-import java.util.List;
-
 /**
  * Path extraction: steepest descent on the interpolated navigation function, from the start point to the goal set,
  * in grid coordinates (cell (c, r) spans [c, c+1) x [r, r+1)).
@@ -46,8 +43,8 @@ public final class GradientDescent {
         byte[] costs = grid.costs();
         double x = startX;
         double y = startY;
-        List<double[]> points = new ArrayList<>();
-        points.add(new double[] { x, y });
+        Waypoints points = new Waypoints();
+        points.add(x, y);
         int cell = grid.index((int) x, (int) y);
         if (value(potential, cell) == Float.POSITIVE_INFINITY) {
             throw new IllegalStateException("start cell is not reached by the navigation function");
@@ -91,7 +88,7 @@ public final class GradientDescent {
                 x = grid.column(next) + 0.5;
                 y = grid.row(next) + 0.5;
             }
-            points.add(new double[] { x, y });
+            points.add(x, y);
         }
         return shortcut(grid, density, points);
     }
@@ -102,42 +99,41 @@ public final class GradientDescent {
      * cost valleys without ever raising the path's cost, and keeps N strictly decreasing (only waypoints are removed).
      * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length.
      */
-    private static double[] shortcut(PlanningGrid grid, float[] density, List<double[]> points) {
+    private static double[] shortcut(PlanningGrid grid, float[] density, Waypoints points) {
         GridTraversal.CellDensity cells = (column, row) -> cellDensity(grid, density, column, row);
-        double[] flat = new double[points.size() * 2];
-        int kept = 0;
-        double[] anchor = points.get(0);
-        flat[kept++] = anchor[0];
-        flat[kept++] = anchor[1];
-        double[] pending = null;
+        Waypoints kept = new Waypoints();
+        int anchor = 0;
+        kept.add(points.x(0), points.y(0));
+        int pending = -1;
         double pendingCost = 0;
-        for (int i = 1; i < points.size(); i++) {
-            double[] next = points.get(i);
-            if (pending == null) {
+        for (int next = 1; next < points.size(); next++) {
+            if (pending < 0) {
                 pending = next;
-                pendingCost = GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells);
+                pendingCost = integrate(points, anchor, next, cells);
                 continue;
             }
-            double via = pendingCost + GridTraversal.integrate(pending[0], pending[1], next[0], next[1], cells);
-            double direct = Math.hypot(next[0] - anchor[0], next[1] - anchor[1]) <= MAX_SHORTCUT
-                    ? GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells)
+            double via = pendingCost + integrate(points, pending, next, cells);
+            double direct = Math.hypot(points.x(next) - points.x(anchor), points.y(next) - points.y(anchor)) <= MAX_SHORTCUT
+                    ? integrate(points, anchor, next, cells)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
                 pending = next;
                 pendingCost = direct;
             } else {
-                flat[kept++] = pending[0];
-                flat[kept++] = pending[1];
+                kept.add(points.x(pending), points.y(pending));
                 anchor = pending;
                 pending = next;
-                pendingCost = GridTraversal.integrate(anchor[0], anchor[1], next[0], next[1], cells);
+                pendingCost = integrate(points, anchor, next, cells);
             }
         }
-        if (pending != null) {
-            flat[kept++] = pending[0];
-            flat[kept++] = pending[1];
+        if (pending >= 0) {
+            kept.add(points.x(pending), points.y(pending));
         }
-        return java.util.Arrays.copyOf(flat, kept);
+        return kept.toArray();
+    }
+
+    private static double integrate(Waypoints points, int from, int to, GridTraversal.CellDensity cells) {
+        return GridTraversal.integrate(points.x(from), points.y(from), points.x(to), points.y(to), cells);
     }
 
     private static double cellDensity(PlanningGrid grid, float[] density, int column, int row) {
@@ -148,28 +144,59 @@ public final class GradientDescent {
     }
 
     /** Ends the path at the goal point of the goal cell reached, replacing the entry point when the shortcut is clear. */
-    private static void finishAtGoal(List<double[]> points, PlanningGrid grid, float[] density, double[] goals, double x,
+    private static void finishAtGoal(Waypoints points, PlanningGrid grid, float[] density, double[] goals, double x,
             double y) {
         int column = (int) x;
         int row = (int) y;
         for (int i = 0; i < goals.length; i += 2) {
             if ((int) goals[i] == column && (int) goals[i + 1] == row) {
-                double[] goal = { goals[i], goals[i + 1] };
-                if (points.size() >= 2) {
-                    double[] before = points.get(points.size() - 2);
-                    if (passable(grid, density, before[0], before[1], goal[0], goal[1])) {
-                        points.set(points.size() - 1, goal);
-                        return;
-                    }
-                }
-                if (goal[0] != x || goal[1] != y || points.size() == 1) {
-                    points.add(goal);
+                int last = points.size() - 1;
+                if (last >= 1 && passable(grid, density, points.x(last - 1), points.y(last - 1), goals[i], goals[i + 1])) {
+                    points.setLast(goals[i], goals[i + 1]);
+                } else if (goals[i] != x || goals[i + 1] != y || points.size() == 1) {
+                    points.add(goals[i], goals[i + 1]);
                 }
                 return;
             }
         }
         if (points.size() == 1) {
-            points.add(new double[] { x, y });
+            points.add(x, y);
+        }
+    }
+
+    /** A growable list of points as one primitive array (x0, y0, x1, y1, ...). */
+    private static final class Waypoints {
+        private double[] xy = new double[256];
+        private int size;
+
+        void add(double x, double y) {
+            if (2 * size + 2 > xy.length) {
+                xy = java.util.Arrays.copyOf(xy, xy.length * 2);
+            }
+            xy[2 * size] = x;
+            xy[2 * size + 1] = y;
+            size++;
+        }
+
+        void setLast(double x, double y) {
+            xy[2 * size - 2] = x;
+            xy[2 * size - 1] = y;
+        }
+
+        int size() {
+            return size;
+        }
+
+        double x(int i) {
+            return xy[2 * i];
+        }
+
+        double y(int i) {
+            return xy[2 * i + 1];
+        }
+
+        double[] toArray() {
+            return java.util.Arrays.copyOf(xy, 2 * size);
         }
     }
 

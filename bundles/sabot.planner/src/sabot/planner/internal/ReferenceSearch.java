@@ -15,6 +15,7 @@ import sabot.planner.CostModel;
 public final class ReferenceSearch {
 
     private static final float SQRT2 = (float) Math.sqrt(2);
+    private static final int UNREACHED = LpnNavigationFunction.UNREACHED;
     // opposite directions differ in the lowest bit: k ^ 1
     private static final int[] DX = { 1, -1, 0, 0, 1, -1, 1, -1 };
     private static final int[] DY = { 0, 0, 1, -1, 1, -1, -1, 1 };
@@ -24,7 +25,8 @@ public final class ReferenceSearch {
     private final boolean useHeuristic;
 
     private PlanningGrid grid;
-    private float[] cost = new float[0];
+    /** Cost to goal as float bits (non-negative floats order like their bits); +infinity where not reached. */
+    private int[] cost = new int[0];
     private byte[] closed = new byte[0];
     private byte[] towardsGoal = new byte[0];
     private int[] touched = new int[0];
@@ -43,14 +45,10 @@ public final class ReferenceSearch {
 
     /**
      * @return cost to goal by padded index as value bits ({@link LpnNavigationFunction#decode}; {@code +infinity}
-     *         where not reached), a fresh array
+     *         where not reached); valid until the next search
      */
     public int[] costBits() {
-        int[] bits = new int[cost.length];
-        for (int i = 0; i < bits.length; i++) {
-            bits[i] = Float.floatToRawIntBits(cost[i]);
-        }
-        return bits;
+        return cost;
     }
 
     /** @return cells settled by the last search */
@@ -70,9 +68,9 @@ public final class ReferenceSearch {
         int startRow = start / stride;
         byte[] costs = grid.costs();
         for (int goal : goals) {
-            if (cost[goal] != 0f) {
+            if (cost[goal] != 0) {
                 touch(goal);
-                cost[goal] = 0f;
+                cost[goal] = 0;
                 towardsGoal[goal] = -1;
                 heapPush(heuristic(goal, stride, startColumn, startRow), goal);
             }
@@ -106,12 +104,13 @@ public final class ReferenceSearch {
                     }
                     step *= SQRT2;
                 }
-                float candidate = cost[cell] + step;
-                if (candidate < cost[next]) {
-                    if (cost[next] == Float.POSITIVE_INFINITY) {
+                float candidate = Float.intBitsToFloat(cost[cell]) + step;
+                int candidateBits = Float.floatToRawIntBits(candidate);
+                if (candidateBits < cost[next]) {
+                    if (cost[next] == UNREACHED) {
                         touch(next);
                     }
-                    cost[next] = candidate;
+                    cost[next] = candidateBits;
                     towardsGoal[next] = (byte) (k ^ 1);
                     heapPush(candidate + heuristic(next, stride, startColumn, startRow), next);
                 }
@@ -150,14 +149,14 @@ public final class ReferenceSearch {
     private void prepare(PlanningGrid planningGrid) {
         int size = planningGrid.paddedSize();
         if (cost.length != size) {
-            cost = new float[size];
-            Arrays.fill(cost, Float.POSITIVE_INFINITY);
+            cost = new int[size];
+            Arrays.fill(cost, UNREACHED);
             closed = new byte[size];
             towardsGoal = new byte[size];
             touched = new int[size];
         } else {
             for (int i = 0; i < touchedCount; i++) {
-                cost[touched[i]] = Float.POSITIVE_INFINITY;
+                cost[touched[i]] = UNREACHED;
                 closed[touched[i]] = 0;
             }
         }

@@ -20,7 +20,7 @@ import sabot.planner.PotentialField;
 
 /**
  * Renders a costmap, optionally a navigation function over it and a path, as an RGB image with the map's top row at
- * the top. Costmap: free white, graded cost in shades of blue-grey, inscribed slate, lethal black, unknown light
+ * the top. Costmap: free near-white, graded cost in shades of blue-grey, inscribed slate, lethal black, unknown light
  * grey. Navigation function: reached cells tinted from yellow (near the goal) to purple (far), with a darker
  * iso-cost line every twentieth of the largest value. Path: red line, start green, goal blue.
  */
