@@ -61,3 +61,6 @@ modules_enabled = {
 
 VirtualHost (ENV_SABOT_DOMAIN or "sabot.local")
 VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests
+
+-- XEP-0045 rooms: the fleet lobby where online devices are discovered (sabot.fleet, roster rule 11)
+Component ("conference." .. (ENV_SABOT_DOMAIN or "sabot.local")) "muc"

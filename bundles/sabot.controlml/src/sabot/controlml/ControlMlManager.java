@@ -559,6 +559,8 @@ public final class ControlMlManager extends Manager {
         ControlMlElement element = ControlMlElement.result(ids.next(), resource.name(), resource.codec().encode(
                 value));
         String node = ControlMl.telemetryNode(resource.name());
+        // The options are needed only until the server has created the node with them: checking them costs the
+        // server a data-form comparison on every publication.
         sendPublication(node, element, !publishWithoutOptions.contains(node));
     }
 
@@ -569,7 +571,12 @@ public final class ControlMlManager extends Manager {
             publish.addExtension(TELEMETRY_PUBLISH_OPTIONS);
         }
         try {
-            connection().sendIqRequestAsync(publish).onSuccess(r -> telemetryPublished.incrementAndGet()).onError(
+            connection().sendIqRequestAsync(publish).onSuccess(r -> {
+                telemetryPublished.incrementAndGet();
+                if (withOptions) {
+                    publishWithoutOptions.add(node); // the node exists with the options now
+                }
+            }).onError(
                     e -> {
                         if (withOptions && e instanceof org.jivesoftware.smack.XMPPException.XMPPErrorException x) {
                             // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:

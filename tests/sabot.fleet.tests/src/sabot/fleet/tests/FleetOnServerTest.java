@@ -1,0 +1,242 @@
+package sabot.fleet.tests;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.lang.reflect.Field;
+import java.net.InetAddress;
+import java.net.Socket;
+import java.net.URI;
+import java.time.LocalDate;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
+import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.packet.StanzaError.Condition;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.junit.jupiter.api.Test;
+import org.jxmpp.jid.BareJid;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.FullJid;
+import org.jxmpp.jid.impl.JidCreate;
+
+import sabot.controlml.AccessPolicy;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.PresenceLevel;
+import sabot.controlml.Resources;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.fleet.AccessRules;
+import sabot.fleet.DeviceRegistration;
+import sabot.fleet.FleetConnections;
+import sabot.fleet.FleetLobby;
+import sabot.fleet.PresenceAnnouncer;
+import sabot.fleet.PresenceLevels;
+import sabot.fleet.RegistrationResult;
+import sabot.fleet.RosterCompiler;
+import sabot.fleet.SubscriptionGate;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceUrn;
+import sabot.identity.Inventory;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/** Fleet rules on a real server: registration, presence levels, roster rules 11 and 12, authorization. */
+abstract class FleetOnServerTest {
+
+    static final long TIMEOUT_S = 10;
+
+    protected abstract PrivateXmppServer server();
+
+    @Test
+    void deviceRegistersItselfAndATakenJidIsReportedClearly() throws Exception {
+        var config = server().configuration("robot-reg", PrivateXmppServer.DOMAIN, "pw").build();
+
+        RegistrationResult first = DeviceRegistration.register(config, "robot-reg", "pw", true);
+        RegistrationResult again = DeviceRegistration.register(config, "robot-reg", "other", true);
+
+        assertEquals("robot-reg@sabot.local", assertInstanceOf(RegistrationResult.Registered.class, first).jid()
+                .toString());
+        assertEquals("robot-reg@sabot.local", assertInstanceOf(RegistrationResult.Taken.class, again).jid()
+                .toString());
+        // the first registration still holds: its password logs in
+        server().connect(server().configuration("robot-reg", PrivateXmppServer.DOMAIN, "pw").build());
+    }
+
+    @Test
+    void productionConnectionsUseTcpNoDelayAndStreamManagement() throws Exception {
+        server().register("robot-nd", PrivateXmppServer.DOMAIN, "pw");
+        XMPPTCPConnection c = server().connect(FleetConnections.builder(PrivateXmppServer.DOMAIN, InetAddress
+                .getLoopbackAddress(), server().port(), SecurityMode.disabled).setUsernameAndPassword("robot-nd",
+                        "pw").build());
+        Field f = XMPPTCPConnection.class.getDeclaredField("socket");
+        f.setAccessible(true);
+        assertTrue(((Socket) f.get(c)).getTcpNoDelay());
+        assertTrue(c.isSmEnabled());
+    }
+
+    @Test
+    void presenceLevelChangesAreSeenByASubscriber() throws Exception {
+        XMPPTCPConnection robot = server().login("robot-pl");
+        XMPPTCPConnection wb = server().login("wb-pl");
+        AccessPolicy policy = new AccessRules(Set.of(wb.getUser().asBareJid()), Set.of(), Set.of(), Set.of(), Set.of())
+                .on(robot);
+        SubscriptionGate.onDevice(robot, policy);
+        SubscriptionGate.onWorkbench(wb);
+        BlockingQueue<PresenceLevel> seen = new LinkedBlockingQueue<>();
+        Roster.getInstanceFor(wb).addPresenceEventListener(new AbstractPresenceEventListener() {
+            @Override
+            public void presenceAvailable(FullJid address, Presence p) {
+                if (address.asBareJid().equals(robot.getUser().asBareJid())) {
+                    seen.add(PresenceLevels.of(p));
+                }
+            }
+        });
+        PresenceAnnouncer announcer = new PresenceAnnouncer(robot);
+        announcer.announce();
+        Roster.getInstanceFor(wb).createItemAndRequestSubscription(robot.getUser().asEntityBareJid(), "robot", null);
+
+        assertEquals(PresenceLevel.FREE, seen.poll(TIMEOUT_S, TimeUnit.SECONDS));
+        assertTrue(announcer.missionChanged(MissionState.RUNNING));
+        assertEquals(PresenceLevel.BUSY, next(seen, PresenceLevel.FREE));
+        assertTrue(announcer.maintenanceChanged(true));
+        assertEquals(PresenceLevel.AWAY, next(seen, PresenceLevel.BUSY));
+        assertTrue(announcer.maintenanceChanged(false));
+        assertEquals(PresenceLevel.BUSY, next(seen, PresenceLevel.AWAY), "back to the mission");
+        assertTrue(announcer.missionChanged(MissionState.DONE));
+        assertEquals(PresenceLevel.FREE, next(seen, PresenceLevel.BUSY));
+        assertTrue(!announcer.missionChanged(MissionState.DONE), "no change, no presence");
+        assertEquals(Presence.Mode.available, Roster.getInstanceFor(wb).getPresence(robot.getUser().asBareJid())
+                .getMode());
+    }
+
+    /**
+     * The next level that differs from the previous one: a server may repeat the current presence once more after
+     * the subscription (Prosody answers its own probe).
+     */
+    private static PresenceLevel next(BlockingQueue<PresenceLevel> seen, PresenceLevel previous)
+            throws InterruptedException {
+        while (true) {
+            PresenceLevel l = seen.poll(TIMEOUT_S, TimeUnit.SECONDS);
+            assertNotNull(l, "no presence after " + previous);
+            if (l != previous) {
+                return l;
+            }
+        }
+    }
+
+    private XMPPTCPConnection device(String name, String domain, String manufacturer, String role,
+            Set<String> readerDomains) throws Exception {
+        XMPPTCPConnection c = server().login(name, domain);
+        SubscriptionGate.onDevice(c, new AccessRules(Set.of(), Set.of(), Set.of(), Set.of(), readerDomains).on(c));
+        if (manufacturer != null) {
+            DeviceProfile p = new DeviceProfile("mobile robot", manufacturer, "R2", name, URI.create("http://" + name
+                    + ".lab.example/"), 45.764043, 4.835659, DeviceUrn.urnOf("SN-" + name), c.getUser()
+                            .asBareJid().toString(), role, LocalDate.of(2026, 11, 21), null, null);
+            Inventory inv = new Inventory(1, p.uid(), new Inventory.Mechanic("chassis", List.of()), List.of(
+                    new Inventory.Board("pc", "x86_64", null, List.of(), List.of(new Inventory.Item("sabot.onboard",
+                            "0.1.0")), List.of())), List.of());
+            DeviceIdentityManager.getInstanceFor(c).publish(p, inv).orElseThrow();
+        }
+        return c;
+    }
+
+    @Test
+    void rosterCompilationSubscribesMatchingOnlineDevicesAndTheListedForeignOnes() throws Exception {
+        Set<String> lab = Set.of(PrivateXmppServer.DOMAIN, PrivateXmppServer.SECOND_DOMAIN);
+        EntityBareJid lobbyRoom = JidCreate.entityBareFrom("fleet-rc@conference." + PrivateXmppServer.DOMAIN);
+        XMPPTCPConnection a = device("rc-a", PrivateXmppServer.DOMAIN, "Sabot Robotics", "robot", lab);
+        XMPPTCPConnection b = device("rc-b", PrivateXmppServer.DOMAIN, "Sabot Robotics", "robot", lab);
+        XMPPTCPConnection other = device("rc-other", PrivateXmppServer.DOMAIN, "Other Corp", "robot", lab);
+        XMPPTCPConnection noCard = device("rc-nocard", PrivateXmppServer.DOMAIN, null, null, lab);
+        XMPPTCPConnection foreign = device("rc-foreign", PrivateXmppServer.SECOND_DOMAIN, "Other Corp", "sensor", lab);
+        for (XMPPTCPConnection d : List.of(a, b, other, noCard)) {
+            new FleetLobby(d, lobbyRoom).join();
+        }
+        XMPPTCPConnection wb = server().login("rc-wb");
+        SubscriptionGate.onWorkbench(wb);
+        Map<BareJid, CountDownLatch> online = new ConcurrentHashMap<>();
+        for (XMPPTCPConnection d : List.of(a, b, foreign)) {
+            online.put(d.getUser().asBareJid(), new CountDownLatch(1));
+        }
+        Roster.getInstanceFor(wb).addPresenceEventListener(new AbstractPresenceEventListener() {
+            @Override
+            public void presenceAvailable(FullJid address, Presence p) {
+                CountDownLatch l = online.get(address.asBareJid());
+                if (l != null) {
+                    l.countDown();
+                }
+            }
+        });
+        FleetLobby lobby = new FleetLobby(wb, lobbyRoom);
+        lobby.join();
+
+        RosterCompiler.Report report = new RosterCompiler(wb, lobby, new RosterCompiler.Rules(RosterCompiler.Rules
+                .manufacturerAndRole("Sabot Robotics", "robot"), Set.of(foreign.getUser().asEntityBareJid()),
+                "fleet")).compile();
+
+        assertEquals(Set.of(a.getUser().asEntityBareJid(), b.getUser().asEntityBareJid()), Set.copyOf(report
+                .subscribed()));
+        assertEquals(List.of(foreign.getUser().asEntityBareJid()), report.foreign());
+        assertTrue(report.rejected().get(other.getUser().asEntityBareJid()).contains("Other Corp"), report
+                .rejected().toString());
+        assertTrue(report.rejected().get(noCard.getUser().asEntityBareJid()).startsWith("NO_VCARD"), report
+                .rejected().toString());
+        for (var e : online.entrySet()) {
+            assertTrue(e.getValue().await(TIMEOUT_S, TimeUnit.SECONDS), "no presence of " + e.getKey());
+        }
+        Roster roster = Roster.getInstanceFor(wb);
+        assertEquals(3, roster.getGroup("fleet").getEntryCount());
+        assertTrue(roster.getEntry(other.getUser().asBareJid()) == null);
+    }
+
+    @Test
+    void onlyConfiguredWorkbenchesMaySetOthersMayGetEveryoneElseIsForbidden() throws Exception {
+        XMPPTCPConnection robot = server().login("robot-auth");
+        XMPPTCPConnection operator = server().login("wb-operator");
+        XMPPTCPConnection viewer = server().login("wb-viewer");
+        XMPPTCPConnection stranger = server().login("stranger", PrivateXmppServer.SECOND_DOMAIN);
+        // the operator is a member of the robot's "operators" roster group
+        Roster.getInstanceFor(robot).createItem(operator.getUser().asBareJid(), "operator", new String[] {
+            "operators" });
+        ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
+        cm.setAccessPolicy(new AccessRules(Set.of(), Set.of("operators"), Set.of(viewer.getUser().asBareJid()), Set
+                .of(), Set.of()).on(robot));
+        Goal[] goal = { null };
+        cm.onSet(Resources.GOAL, (r, g) -> {
+            goal[0] = g;
+            return Outcome.done();
+        });
+        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0] == null ? new Goal(Pose2D.ORIGIN, 0.1, 0.1)
+                : goal[0]));
+        Goal target = new Goal(new Pose2D(3, 4, 0), 0.1, 0.1);
+
+        assertTrue(ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, target).isSuccess());
+        var viewerSet = ControlMlManager.getInstanceFor(viewer).set(robot.getUser(), Resources.GOAL, new Goal(
+                Pose2D.ORIGIN, 1, 1)).errorOrNull();
+        var viewerGet = ControlMlManager.getInstanceFor(viewer).get(robot.getUser(), Resources.GOAL);
+        var strangerGet = ControlMlManager.getInstanceFor(stranger).get(robot.getUser(), Resources.GOAL)
+                .errorOrNull();
+
+        assertEquals(Condition.forbidden, viewerSet.condition());
+        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, viewerSet.cmCondition());
+        assertEquals(target, viewerGet.orElseThrow());
+        assertEquals(Condition.forbidden, strangerGet.condition());
+        assertEquals(ControlMlCondition.ACCESS_DENIED, strangerGet.cmCondition());
+        assertEquals(target, goal[0], "the refused set changed nothing");
+    }
+}
