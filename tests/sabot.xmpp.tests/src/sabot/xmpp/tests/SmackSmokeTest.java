@@ -11,16 +11,19 @@ import java.lang.reflect.Field;
 import java.net.Socket;
 import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.chat2.ChatManager;
 import org.jivesoftware.smack.packet.ExtensionElement;
 import org.jivesoftware.smack.packet.Message;
+import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.packet.XmlEnvironment;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
+import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
 import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.RosterEntry;
+import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.pep.PepManager;
 import org.jivesoftware.smackx.pubsub.PayloadItem;
@@ -29,6 +32,7 @@ import org.jivesoftware.smackx.vcardtemp.VCardManager;
 import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.FullJid;
 
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
@@ -153,27 +157,35 @@ abstract class SmackSmokeTest {
         assertEquals("while you were away", m.getBody());
     }
 
-    private static void befriend(XMPPTCPConnection a, XMPPTCPConnection b) throws Exception {
-        Roster ra = Roster.getInstanceFor(a);
-        Roster rb = Roster.getInstanceFor(b);
-        ra.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
-        rb.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
-        EntityBareJid ja = a.getUser().asEntityBareJid();
-        EntityBareJid jb = b.getUser().asEntityBareJid();
-        ra.createItemAndRequestSubscription(jb, "b", null);
-        rb.createItemAndRequestSubscription(ja, "a", null);
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
-        while (System.nanoTime() < deadline) {
-            RosterEntry ea = ra.getEntry(jb);
-            RosterEntry eb = rb.getEntry(ja);
-            if (ea != null && eb != null && ea.canSeeHisPresence() && eb.canSeeHisPresence()
-                    && ra.getPresence(jb).isAvailable()) {
-                return;
+    /**
+     * Mutual presence subscription the way a workbench and a robot make it: the workbench asks, the robot approves
+     * and asks back. Returns when each has received the other's available presence (the robot's server needs the
+     * workbench's presence, with its entity caps, to send it PEP notifications).
+     */
+    private static void befriend(XMPPTCPConnection robot, XMPPTCPConnection workbench) throws Exception {
+        Roster robotRoster = Roster.getInstanceFor(robot);
+        robotRoster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
+        Roster wbRoster = Roster.getInstanceFor(workbench);
+        wbRoster.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
+        EntityBareJid robotJid = robot.getUser().asEntityBareJid();
+        CountDownLatch robotSeen = presenceSeen(wbRoster, robotJid);
+        CountDownLatch workbenchSeen = presenceSeen(robotRoster, workbench.getUser().asEntityBareJid());
+        wbRoster.createItemAndRequestSubscription(robotJid, "robot", null);
+        assertTrue(robotSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the workbench does not see the robot");
+        assertTrue(workbenchSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the robot does not see the workbench");
+    }
+
+    private static CountDownLatch presenceSeen(Roster roster, EntityBareJid who) {
+        CountDownLatch seen = new CountDownLatch(1);
+        roster.addPresenceEventListener(new AbstractPresenceEventListener() {
+            @Override
+            public void presenceAvailable(FullJid address, Presence availablePresence) {
+                if (who.equals(address.asEntityBareJidIfPossible())) {
+                    seen.countDown();
+                }
             }
-            ra.reloadAndWait();
-            rb.reloadAndWait();
-        }
-        throw new AssertionError("mutual subscription not established within " + TIMEOUT_S + " s");
+        });
+        return seen;
     }
 
     private static Socket socketOf(XMPPTCPConnection connection) throws ReflectiveOperationException {
