@@ -65,8 +65,12 @@ public final class LpnNavigationFunction {
     /** Bucket width as a fraction of the least increment, a margin for float rounding. */
     private static final float BUCKET_MARGIN = 0.99f;
     private static final int INITIAL_BUCKET_CAPACITY = 1024;
+    /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
+    private static final int TOUCHED_FRACTION = 8;
 
     private final float[] density;
+    /** Half of {@link #density}: the edge density between two cells is the sum of their halves. */
+    private final float[] halfDensity;
     private final float maxDensity;
     private final float bucketWidth;
     private final float inverseBucketWidth;
@@ -77,6 +81,12 @@ public final class LpnNavigationFunction {
     private PlanningGrid grid;
     private int[] potential = new int[0];
     private float[] cellDensity = new float[0];
+    /** N as a computation starts: {@link #UNREACHED} or {@link #IMPASSABLE} per cell, kept in step with the grid. */
+    private int[] initialPotential = new int[0];
+    /**
+     * Cells reached since the last reset, as long as they fit: a computation that reaches more (most of the grid)
+     * stops recording them and is undone by copying {@link #initialPotential} whole, which is cheaper.
+     */
     private int[] touched = new int[0];
     /** Goals of the last complete computation (whole reachable grid), or null: what {@link #repair} builds on. */
     private int[] completeGoals;
@@ -91,6 +101,10 @@ public final class LpnNavigationFunction {
 
     public LpnNavigationFunction(CostModel costModel) {
         this.density = costModel.densityTable();
+        this.halfDensity = new float[density.length];
+        for (int i = 0; i < density.length; i++) {
+            halfDensity[i] = 0.5f * density[i];
+        }
         this.maxDensity = costModel.maxDensity();
         this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
         this.inverseBucketWidth = 1f / bucketWidth;
@@ -135,12 +149,14 @@ public final class LpnNavigationFunction {
             grid = planningGrid;
             potential = new int[planningGrid.paddedSize()];
             cellDensity = new float[planningGrid.paddedSize()];
-            touched = new int[planningGrid.paddedSize()];
+            initialPotential = new int[planningGrid.paddedSize()];
+            touched = new int[planningGrid.paddedSize() / TOUCHED_FRACTION + 16];
             touchedCount = 0;
             byte[] costs = planningGrid.costs();
             for (int i = 0; i < potential.length; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
-                potential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+                initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+                potential[i] = initialPotential[i];
             }
             return;
         }
@@ -151,7 +167,8 @@ public final class LpnNavigationFunction {
             int to = planningGrid.index(changed.maxColumn(), row);
             for (int i = from; i <= to; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
-                potential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+                initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+                potential[i] = initialPotential[i];
             }
         }
     }
@@ -173,7 +190,10 @@ public final class LpnNavigationFunction {
         Arrays.fill(bucketSizes, 0);
         for (int goal : goals) {
             if (potential[goal] == UNREACHED) {
-                touched[touchedCount++] = goal;
+                if (touchedCount < touched.length) {
+                    touched[touchedCount] = goal;
+                }
+                touchedCount++;
                 potential[goal] = 0;
                 push(goal, 0f);
             }
@@ -219,6 +239,9 @@ public final class LpnNavigationFunction {
                     continue;
                 }
                 int bits = potential[cell];
+                if (density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY) {
+                    initialPotential[cell] = IMPASSABLE;
+                }
                 if (bits == IMPASSABLE) {
                     continue;
                 }
@@ -410,15 +433,19 @@ public final class LpnNavigationFunction {
     }
 
     private void resetTouched() {
-        for (int i = 0; i < touchedCount; i++) {
-            potential[touched[i]] = UNREACHED;
+        if (touchedCount > touched.length) {
+            System.arraycopy(initialPotential, 0, potential, 0, potential.length);
+        } else {
+            for (int i = 0; i < touchedCount; i++) {
+                potential[touched[i]] = initialPotential[touched[i]];
+            }
         }
         touchedCount = 0;
     }
 
     private void propagate(int stopAtCell, boolean repairing) {
         final int[] potential = this.potential;
-        final float[] density = this.density;
+        final float[] halfDensity = this.halfDensity;
         final byte[] costs = grid.costs();
         final int stride = grid.stride();
         float stopAbove = Float.POSITIVE_INFINITY;
@@ -445,18 +472,37 @@ public final class LpnNavigationFunction {
                 if (cell == stopAtCell) {
                     stopAbove = value + 2 * SQRT2 * maxDensity;
                 }
-                float ownDensity = density[costs[cell] & 0xFF];
-                relaxAxis(cell + 1, cell + stride, cell - stride, value, ownDensity, potential, density, costs);
-                relaxAxis(cell - 1, cell + stride, cell - stride, value, ownDensity, potential, density, costs);
-                relaxAxis(cell + stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
-                relaxAxis(cell - stride, cell + 1, cell - 1, value, ownDensity, potential, density, costs);
+                // expand(cell, ...) written out: the hot loop stays one compiled method with relax inlined
+                float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
+                int eastBits = potential[cell + 1];
+                int westBits = potential[cell - 1];
+                int northBits = potential[cell + stride];
+                int southBits = potential[cell - stride];
+                float northValue = decode(northBits);
+                float southValue = decode(southBits);
+                float eastValue = decode(eastBits);
+                float westValue = decode(westBits);
+                float northSouthCorner = northValue < southValue ? northValue : southValue;
+                float eastWestCorner = eastValue < westValue ? eastValue : westValue;
+                if (eastBits >= 0) {
+                    relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+                }
+                if (westBits >= 0) {
+                    relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+                }
+                if (northBits >= 0) {
+                    relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+                }
+                if (southBits >= 0) {
+                    relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+                }
                 if (repairing) {
                     // a repaired cell is also the corner of triangles through its final axis neighbours, which a
                     // fresh computation would expand after it: let them see its new value
-                    reexpand(cell + 1, value, potential, density, costs, stride);
-                    reexpand(cell - 1, value, potential, density, costs, stride);
-                    reexpand(cell + stride, value, potential, density, costs, stride);
-                    reexpand(cell - stride, value, potential, density, costs, stride);
+                    reexpand(cell + 1, value, potential, costs, stride);
+                    reexpand(cell - 1, value, potential, costs, stride);
+                    reexpand(cell + stride, value, potential, costs, stride);
+                    reexpand(cell - stride, value, potential, costs, stride);
                 }
             }
             bucketSizes[slot] = 0;
@@ -465,35 +511,61 @@ public final class LpnNavigationFunction {
     }
 
     /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}. */
-    private void reexpand(int axis, float value, int[] potential, float[] density, byte[] costs, int stride) {
+    private void reexpand(int axis, float value, int[] potential, byte[] costs, int stride) {
         int bits = potential[axis];
         if (bits >= 0 || bits == IMPASSABLE || decode(bits) <= value) {
             return;
         }
-        float axisValue = decode(bits);
-        float axisDensity = density[costs[axis] & 0xFF];
-        relaxAxis(axis + 1, axis + stride, axis - stride, axisValue, axisDensity, potential, density, costs);
-        relaxAxis(axis - 1, axis + stride, axis - stride, axisValue, axisDensity, potential, density, costs);
-        relaxAxis(axis + stride, axis + 1, axis - 1, axisValue, axisDensity, potential, density, costs);
-        relaxAxis(axis - stride, axis + 1, axis - 1, axisValue, axisDensity, potential, density, costs);
+        expand(axis, decode(bits), halfDensity[costs[axis] & 0xFF], potential, halfDensity, costs, stride);
     }
 
     /**
-     * Updates {@code target}, an axis neighbour of the just-finalised cell (value {@code value}), through the
-     * triangles (target, cell, corner) with the two diagonal corners of the target next to the cell. Selections are
-     * written as conditional expressions (compiled to conditional moves): whether a corner is lower is unpredictable,
-     * and mispredicted branches, not arithmetic, dominate this loop.
+     * Updates the four axis neighbours of a final cell (value {@code value}, half density {@code ownHalfDensity}).
+     * A target's two diagonal corners next to the cell are the cell's other axis neighbours, so the four neighbours
+     * are loaded once: east and west share the corner min(N(north), N(south)), north and south min(N(east), N(west)).
+     * Reading a corner before a sibling update lowered it gives the same result: a value this expansion writes lies
+     * above {@code value}, and a corner above {@code value} gives the axis step whichever it is. The propagation loop
+     * writes this method out in place (see there); this copy serves the repair's re-expansions.
      */
-    private void relaxAxis(int target, int corner1, int corner2, float value, float ownDensity, int[] potential,
-            float[] density, byte[] costs) {
-        int targetBits = potential[target];
-        if (targetBits < 0) {
-            return;
+    private void expand(int cell, float value, float ownHalfDensity, int[] potential, float[] halfDensity,
+            byte[] costs, int stride) {
+        int east = cell + 1;
+        int west = cell - 1;
+        int north = cell + stride;
+        int south = cell - stride;
+        int eastBits = potential[east];
+        int westBits = potential[west];
+        int northBits = potential[north];
+        int southBits = potential[south];
+        float eastValue = decode(eastBits);
+        float westValue = decode(westBits);
+        float northValue = decode(northBits);
+        float southValue = decode(southBits);
+        float northSouthCorner = northValue < southValue ? northValue : southValue;
+        float eastWestCorner = eastValue < westValue ? eastValue : westValue;
+        if (eastBits >= 0) {
+            relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
         }
-        float c = 0.5f * (density[costs[target] & 0xFF] + ownDensity);
-        float corner1Value = decode(potential[corner1]);
-        float corner2Value = decode(potential[corner2]);
-        float corner = corner1Value < corner2Value ? corner1Value : corner2Value;
+        if (westBits >= 0) {
+            relax(west, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+        }
+        if (northBits >= 0) {
+            relax(north, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+        }
+        if (southBits >= 0) {
+            relax(south, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+        }
+    }
+
+    /**
+     * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
+     * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
+     * Selections are written as conditional expressions (compiled to conditional moves): whether a corner is lower is
+     * unpredictable, and mispredicted branches, not arithmetic, dominate this loop.
+     */
+    private void relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
+            float[] halfDensity, byte[] costs) {
+        float c = halfDensity[costs[target] & 0xFF] + ownHalfDensity;
         float limit = c * INV_SQRT2;
         float delta = value - corner;
         delta = delta < 0f ? 0f : delta > limit ? limit : delta;
@@ -509,7 +581,10 @@ public final class LpnNavigationFunction {
     private void lower(int target, int oldBits, float newValue) {
         potential[target] = Float.floatToRawIntBits(newValue);
         if (oldBits == UNREACHED) {
-            touched[touchedCount++] = target;
+            if (touchedCount < touched.length) {
+                touched[touchedCount] = target;
+            }
+            touchedCount++;
         } else if ((int) (Float.intBitsToFloat(oldBits) * inverseBucketWidth) == (int) (newValue * inverseBucketWidth)) {
             // already queued in the same bucket: that entry will read the lower value when it is popped
             return;
