@@ -2,6 +2,7 @@ package sabot.controlml;
 
 import java.util.Objects;
 
+import org.jivesoftware.smack.packet.StandardExtensionElement;
 import org.jivesoftware.smack.packet.StanzaError;
 
 /**
@@ -25,9 +26,17 @@ public record ControlMlError(StanzaError.Condition condition, ControlMlCondition
         return new ControlMlError(cmCondition.stanzaCondition(), cmCondition, text);
     }
 
-    /** @return the error as a Smack stanza error, with the ControlML condition element and the text */
+    /**
+     * @return the error as a Smack stanza error: the RFC 6120 condition, the text as
+     *         {@code <text xmlns='urn:ietf:params:xml:ns:xmpp-stanzas' xml:lang='en'>} and the ControlML condition
+     *         element. The text is an extension written literally, not {@code setDescriptiveEnText}: Smack 4.4.8's
+     *         connection writer drops the text's namespace (see {@link DescriptiveText}).
+     */
     public StanzaError toStanzaError() {
-        StanzaError.Builder b = StanzaError.getBuilder(condition).setDescriptiveEnText(text);
+        StanzaError.Builder b = StanzaError.getBuilder(condition);
+        if (!text.isEmpty()) {
+            b.addExtension(new DescriptiveText(text));
+        }
         if (cmCondition != ControlMlCondition.UNSPECIFIED) {
             b.addExtension(new ConditionElement(cmCondition));
         }
@@ -46,6 +55,14 @@ public record ControlMlError(StanzaError.Condition condition, ControlMlCondition
         String text = error.getDescriptiveText("en");
         if (text == null) {
             text = error.getDescriptiveText();
+        }
+        if (text == null && error.getExtension(DescriptiveText.ELEMENT,
+                StanzaError.ERROR_CONDITION_AND_TEXT_NAMESPACE) instanceof DescriptiveText own) {
+            text = own.text(); // built locally, not parsed
+        }
+        if (text == null && error.getExtension(DescriptiveText.ELEMENT, "jabber:client")
+                instanceof StandardExtensionElement unqualified) {
+            text = unqualified.getText(); // a peer whose Smack 4.4 writer dropped the text's namespace
         }
         return new ControlMlError(error.getCondition(), cm, text == null ? error.getConditionText() : text);
     }

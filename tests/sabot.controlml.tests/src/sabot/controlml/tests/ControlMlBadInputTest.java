@@ -115,6 +115,61 @@ class ControlMlBadInputTest {
                 ControlMlCondition.valueOf(cm));
     }
 
+    /** A cm.position set whose covariance is the compact DataArray row, with the given parts. */
+    static String position(String elementCount, String xyUnit, String values) {
+        return "<control-ml xmlns='urn:sabot:controlml:1' type='set' id='20261121:8' res='cm.position'>" + SWE
+                + "<field name='time'><Time><uom xmlns:xlink='http://www.w3.org/1999/xlink' xlink:href="
+                + "'http://www.opengis.net/def/uom/ISO-8601/0/Gregorian'/><value>2026-11-21T11:59:59Z</value></Time>"
+                + "</field><field name='x'><Quantity><uom code='m'/><value>1</value></Quantity></field>"
+                + "<field name='y'><Quantity><uom code='m'/><value>2</value></Quantity></field>"
+                + "<field name='theta'><Quantity><uom code='rad'/><value>0</value></Quantity></field>"
+                + "<field name='covariance'><DataArray><elementCount><Count><value>" + elementCount
+                + "</value></Count></elementCount><elementType name='covariance'><DataRecord>"
+                + "<field name='xx'><Quantity><uom code='m2'/></Quantity></field>"
+                + "<field name='xy'><Quantity><uom code='" + xyUnit + "'/></Quantity></field>"
+                + "<field name='xtheta'><Quantity><uom code='m.rad'/></Quantity></field>"
+                + "<field name='yy'><Quantity><uom code='m2'/></Quantity></field>"
+                + "<field name='ytheta'><Quantity><uom code='m.rad'/></Quantity></field>"
+                + "<field name='thetatheta'><Quantity><uom code='rad2'/></Quantity></field>"
+                + "</DataRecord></elementType><encoding><TextEncoding tokenSeparator=',' blockSeparator=' '/>"
+                + "</encoding><values>" + values + "</values></DataArray></field></DataRecord></control-ml>";
+    }
+
+    @Test
+    void aCompactCovarianceIsAccepted() throws Exception {
+        Endpoint.Answer a = serve(position("1", "m2", "0.01,0.001,0,0.02,0,0.003"));
+        assertEquals(ControlMlType.RESULT, a.element().type(), String.valueOf(a.element()));
+        assertEquals(1, device.applied.size());
+        sabot.controlml.payload.PoseEstimate p = (sabot.controlml.payload.PoseEstimate) device.state.get(
+                "cm.position");
+        assertEquals(new sabot.controlml.payload.PoseCovariance(0.01, 0.001, 0, 0.02, 0, 0.003), p.covariance());
+    }
+
+    @ParameterizedTest(name = "{0}")
+    @CsvSource(delimiter = '|', value = {
+        "NaN in the covariance | 1 | m2 | 0.01,NaN,0,0.02,0,0.003 | NOT_ACCEPTABLE | INVALID_VALUE",
+        "INF in the covariance | 1 | m2 | 0.01,0,INF,0.02,0,0.003 | NOT_ACCEPTABLE | INVALID_VALUE",
+        "-INF in the covariance | 1 | m2 | 0.01,0,0,0.02,0,-INF | NOT_ACCEPTABLE | INVALID_VALUE",
+        "negative variance | 1 | m2 | 0.01,0,0,-0.02,0,0.003 | NOT_ACCEPTABLE | INVALID_VALUE",
+        "wrong unit (time for area) | 1 | s2 | 0.01,0,0,0.02,0,0.003 | NOT_ACCEPTABLE | WRONG_UNIT",
+        "unknown unit | 1 | furlong2 | 0.01,0,0,0.02,0,0.003 | NOT_ACCEPTABLE | WRONG_UNIT",
+        "elementCount does not match the values | 2 | m2 | 0.01,0,0,0.02,0,0.003 | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "two rows | 2 | m2 | 0.01,0,0,0.02,0,0.003 0.01,0,0,0.02,0,0.003 | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "no row | 0 | m2 | '' | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "five values in the row | 1 | m2 | 0.01,0,0,0.02,0 | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "seven values in the row | 1 | m2 | 0.01,0,0,0.02,0,0.003,1 | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "decimal comma | 1 | m2 | 0.01;0,0,0,0.02,0,0.003 | BAD_REQUEST | MALFORMED_PAYLOAD",
+        "Java's Infinity | 1 | m2 | 0.01,0,Infinity,0.02,0,0.003 | BAD_REQUEST | MALFORMED_PAYLOAD" })
+    void badCovariancesAreRefused(String why, String count, String xyUnit, String values, String condition,
+            String cm) throws Exception {
+        Endpoint.Answer a = serve(position(count, xyUnit, values));
+        ControlMlError error = errorOf(a);
+        assertNotNull(error, why);
+        assertEquals(Condition.valueOf(condition.toLowerCase()), error.condition(), why + ": " + error);
+        assertEquals(ControlMlCondition.valueOf(cm), error.cmCondition(), why + ": " + error);
+        assertTrue(device.applied.isEmpty(), "state changed: " + device.applied);
+    }
+
     @ParameterizedTest(name = "{0}")
     @CsvSource(delimiter = '|', value = {
         "unknown element | <bogus xmlns='urn:x'/> | BAD_REQUEST | MALFORMED_PAYLOAD",

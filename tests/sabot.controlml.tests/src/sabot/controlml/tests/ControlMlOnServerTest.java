@@ -244,6 +244,85 @@ abstract class ControlMlOnServerTest {
                 .orElseThrow());
     }
 
+    /**
+     * The RFC 6120 {@code <text/>} of every error answer arrives as the stanza error's descriptive text (in the
+     * stanzas namespace, {@code xml:lang='en'}), not only as the copy inside {@code <control-ml/>}: for a handler's
+     * refusal, for a request whose attributes cannot be read (bare {@code <error/>}, nothing to echo) and for a bounced
+     * message. Smack 4.4.8's writer used to drop the text's namespace (see DescriptiveText).
+     */
+    @Test
+    void stanzaErrorsCarryTheirDescriptiveText(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        String why = "a mission is running <since 10:15> & 'cannot' stop";
+        robot.manager().onSet(Resources.GOAL, (r, g) -> Outcome.failure(ControlMlCondition.INVALID_STATE, why));
+
+        // 1. a handler's refusal, with the echoed control-ml
+        sabot.controlml.ControlMlIQ request = new sabot.controlml.ControlMlIQ(ControlMlElement.request(
+                ControlMlType.SET, new RequestId(LocalDate.now(), 4711), "cm.goal", Resources.GOAL.codec().encode(
+                        NEW_GOAL)));
+        request.setTo(robot.jid());
+        IQ refused;
+        try (StanzaCollector collector = wb.createStanzaCollectorAndSend(request)) {
+            refused = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+        }
+        assertNotNull(refused, "no answer");
+        assertEquals(IQ.Type.error, refused.getType());
+        org.jivesoftware.smack.packet.StanzaError error = refused.getError();
+        assertEquals(Condition.unexpected_request, error.getCondition());
+        assertEquals(why, error.getDescriptiveText("en"), error.toXML().toString());
+        assertNotNull(error.getExtension(ControlMlCondition.INVALID_STATE.element(),
+                sabot.controlml.ControlMl.ERRORS_NAMESPACE), error.toXML().toString());
+        assertNull(error.getExtension("text", "jabber:client"), "text without its namespace: " + error.toXML());
+        ControlMlError viaStanzaError = ControlMlError.fromStanzaError(error);
+        assertEquals(ControlMlError.of(ControlMlCondition.INVALID_STATE, why), viaStanzaError);
+        assertEquals(viaStanzaError, ((sabot.controlml.ControlMlIQ) refused).element().failure(),
+                "the stanza error and the control-ml copy agree");
+
+        // 2. unreadable attributes: only the <error/>, its text included
+        RawIQ unreadable = new RawIQ(IQ.Type.set, "type='set' id='yesterday' res='cm.goal'", "");
+        unreadable.setTo(robot.jid());
+        IQ bare;
+        try (StanzaCollector collector = wb.createStanzaCollectorAndSend(unreadable)) {
+            bare = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+        }
+        assertNotNull(bare, "no answer");
+        assertEquals(IQ.Type.error, bare.getType());
+        String bareText = bare.getError().getDescriptiveText("en");
+        assertNotNull(bareText, bare.getError().toXML().toString());
+        assertTrue(bareText.contains("yesterday"), bareText);
+        assertEquals(ControlMlCondition.BAD_ID, ControlMlError.fromStanzaError(bare.getError()).cmCondition());
+
+        // 3. a command message whose attributes cannot be read is bounced with the same error
+        Message bad = wb.getStanzaFactory().buildMessageStanza().to(robot.jid()).addExtension(
+                new org.jivesoftware.smack.packet.ExtensionElement() {
+                    @Override
+                    public String getElementName() {
+                        return "control-ml";
+                    }
+
+                    @Override
+                    public String getNamespace() {
+                        return sabot.controlml.ControlMl.NAMESPACE;
+                    }
+
+                    @Override
+                    public String toXML(org.jivesoftware.smack.packet.XmlEnvironment env) {
+                        return "<control-ml xmlns='urn:sabot:controlml:1' type='set' id='yesterday' res='cm.goal'/>";
+                    }
+                }).build();
+        Message bounced;
+        try (StanzaCollector collector = wb.createStanzaCollectorAndSend(new org.jivesoftware.smack.filter.AndFilter(
+                org.jivesoftware.smack.filter.MessageTypeFilter.ERROR, org.jivesoftware.smack.filter.FromMatchesFilter
+                        .createFull(robot.jid())), bad)) {
+            bounced = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+        }
+        assertNotNull(bounced, "no bounce");
+        String bouncedText = bounced.getError().getDescriptiveText("en");
+        assertNotNull(bouncedText, bounced.getError().toXML().toString());
+        assertTrue(bouncedText.contains("yesterday"), bouncedText);
+    }
+
     @Test
     void unsolicitedAnswersAreLoggedAndDropped(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));

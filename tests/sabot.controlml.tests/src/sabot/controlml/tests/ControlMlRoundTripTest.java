@@ -95,6 +95,38 @@ class ControlMlRoundTripTest {
         assertNull(SchemaValidator.shared().problemWith(Xml.xml(iq.element())));
     }
 
+    /**
+     * What the connection really writes: {@code XmlStringBuilder.write(Writer, XmlEnvironment)} with the stream's
+     * environment (jabber:client, xml:lang en). Smack 4.4.8 drops the xmlns of a {@code setDescriptiveEnText} text
+     * on this path (not in {@code toXML()}); ControlML's literal text keeps it, so the parsed stanza error has it.
+     */
+    @Test
+    void errorTextKeepsItsNamespaceOnTheConnectionsWritePath() throws Exception {
+        ControlMlError error = ControlMlError.of(ControlMlCondition.WRONG_UNIT, "x is in 's', expected 'm' <&>");
+        ControlMlIQ iq = new ControlMlIQ(ControlMlElement.error(ID, "cm.goal", error));
+        iq.setTo(JidCreate.from("wb@sabot.local/x"));
+        iq.setStanzaId("s3");
+        org.jivesoftware.smack.packet.XmlEnvironment stream = org.jivesoftware.smack.packet.XmlEnvironment.builder()
+                .withNamespace("jabber:client").withLanguage("en").build();
+        java.io.StringWriter wire = new java.io.StringWriter();
+        iq.toXML(stream).write(wire, stream);
+        String xml = wire.toString();
+        assertTrue(xml.contains("<text xmlns='urn:ietf:params:xml:ns:xmpp-stanzas' xml:lang='en'>"), xml);
+
+        // as received: the stream's default namespace around it
+        ControlMlIQ parsed = assertInstanceOf(ControlMlIQ.class, Xml.stanza(xml.replaceFirst("<iq ",
+                "<iq xmlns='jabber:client' ")));
+        assertEquals(error.text(), parsed.getError().getDescriptiveText("en"), xml);
+        assertEquals(error, ControlMlError.fromStanzaError(parsed.getError()));
+
+        // a peer whose Smack wrote the text without its namespace is still understood
+        String unqualified = xml.replace("<text xmlns='urn:ietf:params:xml:ns:xmpp-stanzas' xml:lang='en'>",
+                "<text xml:lang='en'>").replaceFirst("<iq ", "<iq xmlns='jabber:client' ");
+        IQ old = (IQ) Xml.stanza(unqualified);
+        assertNull(old.getError().getDescriptiveText("en"), unqualified);
+        assertEquals(error, ControlMlError.fromStanzaError(old.getError()));
+    }
+
     @Test
     void presenceLevelElementRoundTripsAndValidates() throws Exception {
         PresenceLevelElement e = new PresenceLevelElement(PresenceLevel.BUSY, "running", false);
