@@ -457,6 +457,7 @@ public final class LpnNavigationFunction {
         final byte[] costs = grid.costs();
         final int stride = grid.stride();
         float stopAbove = Float.POSITIVE_INFINITY;
+        int finalized = 0;
         while ((queued > 0 || checkSize > 0) && currentBucket * bucketWidth <= stopAbove) {
             if (checkSize > 0) {
                 injectSeeds();
@@ -479,7 +480,7 @@ public final class LpnNavigationFunction {
                     continue;
                 }
                 potential[cell] = bits | FINAL;
-                finalizedCount++;
+                finalized++;
                 float value = Float.intBitsToFloat(bits);
                 if (cell == stopAtCell) {
                     stopAbove = value + 2 * SQRT2 * maxDensity;
@@ -520,6 +521,7 @@ public final class LpnNavigationFunction {
             bucketSizes[slot] = 0;
             currentBucket++;
         }
+        finalizedCount += finalized;
     }
 
     /**
