@@ -22,18 +22,13 @@ import java.util.concurrent.atomic.AtomicInteger;
 import org.jivesoftware.smack.StanzaCollector;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.Message;
-import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
-import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
-import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.mam.MamManager;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInfo;
 import org.jxmpp.jid.EntityBareJid;
-import org.jxmpp.jid.FullJid;
 import org.jxmpp.jid.Jid;
 
 import sabot.controlml.AccessLevel;
@@ -55,6 +50,7 @@ import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.xmpp.Subscriptions;
 
 /**
  * ControlML between a robot and workbenches through a real, unmodified server: every get/set/result/error path,
@@ -482,7 +478,7 @@ abstract class ControlMlOnServerTest {
             }
         }); // before login: +notify goes into the entity caps
         wb.connect().login();
-        subscribe(wb, robot.connection());
+        Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
 
         AtomicInteger tick = new AtomicInteger();
         try (TelemetryPublication p = robot.manager().publishTelemetry(Resources.POSITION, () -> new PoseEstimate(
@@ -496,36 +492,5 @@ abstract class ControlMlOnServerTest {
         }
         assertEquals(0, fromOthers.get());
         assertEquals(0, robot.manager().statistics().telemetryFailed()); // acknowledgements are counted asynchronously
-    }
-
-    /**
-     * Mutual presence subscription, as the fleet's roster rules make it: the workbench subscribes to the robot, the
-     * robot approves and subscribes back (its server must see the workbench's presence, with the entity caps that say
-     * {@code +notify}, to send PEP notifications). Returns when each sees the other online.
-     */
-    static void subscribe(XMPPTCPConnection workbench, XMPPTCPConnection robot) throws Exception {
-        Roster robotRoster = Roster.getInstanceFor(robot);
-        robotRoster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
-        Roster wbRoster = Roster.getInstanceFor(workbench);
-        wbRoster.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
-        CountDownLatch robotSeen = presenceSeen(wbRoster, robot.getUser().asEntityBareJid());
-        CountDownLatch workbenchSeen = presenceSeen(robotRoster, workbench.getUser().asEntityBareJid());
-        EntityBareJid robotJid = robot.getUser().asEntityBareJid();
-        wbRoster.createItemAndRequestSubscription(robotJid, robotJid.getLocalpart().toString(), null);
-        assertTrue(robotSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the workbench does not see " + robotJid);
-        assertTrue(workbenchSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the robot does not see the workbench");
-    }
-
-    private static CountDownLatch presenceSeen(Roster roster, EntityBareJid who) {
-        CountDownLatch seen = new CountDownLatch(1);
-        roster.addPresenceEventListener(new AbstractPresenceEventListener() {
-            @Override
-            public void presenceAvailable(FullJid address, Presence availablePresence) {
-                if (who.equals(address.asEntityBareJidIfPossible())) {
-                    seen.countDown();
-                }
-            }
-        });
-        return seen;
     }
 }

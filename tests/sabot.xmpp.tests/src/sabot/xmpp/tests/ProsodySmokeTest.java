@@ -1,5 +1,6 @@
 package sabot.xmpp.tests;
 
+import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
 
 import sabot.testsupport.xmpp.PrivateXmppServer;
@@ -12,5 +13,10 @@ class ProsodySmokeTest extends SmackSmokeTest {
     @Override
     protected PrivateXmppServer server() {
         return XMPP;
+    }
+
+    @Test
+    void pepItemReachesASubscribedContact() throws Exception {
+        pepItemReachesAContactThatAsksWithNotify();
     }
 }

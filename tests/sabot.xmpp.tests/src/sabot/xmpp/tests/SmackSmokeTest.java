@@ -9,32 +9,28 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.lang.reflect.Field;
 import java.net.Socket;
+import java.time.Duration;
 import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.BlockingQueue;
-import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.chat2.ChatManager;
 import org.jivesoftware.smack.packet.ExtensionElement;
 import org.jivesoftware.smack.packet.Message;
-import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.packet.XmlEnvironment;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
-import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
-import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.pep.PepManager;
 import org.jivesoftware.smackx.pubsub.PayloadItem;
+import org.jivesoftware.smackx.pubsub.PubSubManager;
 import org.jivesoftware.smackx.pubsub.SimplePayload;
 import org.jivesoftware.smackx.vcardtemp.VCardManager;
 import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.junit.jupiter.api.Test;
-import org.jxmpp.jid.EntityBareJid;
-import org.jxmpp.jid.FullJid;
 
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.xmpp.Subscriptions;
 
 /**
  * What every later feature relies on, proven with Smack inside OSGi against a real private server: login, chat,
@@ -83,7 +79,39 @@ abstract class SmackSmokeTest {
     }
 
     @Test
-    void pepItemReachesASubscribedContact() throws Exception {
+    void pepItemReachesAnExplicitSubscriber() throws Exception {
+        String node = "urn:sabot:smoke:pose";
+        XMPPTCPConnection robot = server().login("robot-pep-sub");
+        XMPPTCPConnection workbench = server().login("wb-pep-sub");
+        BlockingQueue<String> events = new ArrayBlockingQueue<>(4);
+        PepManager.getInstanceFor(workbench).addPepEventListener(node, SimplePayload.class,
+                (from, payload, id, message) -> events.offer(from.asEntityBareJidString() + "|"
+                        + ((ExtensionElement) payload).toXML(XmlEnvironment.EMPTY)));
+        Subscriptions.mutual(workbench, robot, Duration.ofSeconds(TIMEOUT_S));
+        PepManager pep = PepManager.getInstanceFor(robot);
+        pep.publish(node, new PayloadItem<>("pose-0", new SimplePayload("<pose xmlns='urn:sabot:smoke'>0 0 0</pose>")));
+
+        // XEP-0060 subscription to the robot's PEP node (its bare JID is the pubsub service)
+        PubSubManager.getInstanceFor(workbench, robot.getUser().asEntityBareJid()).getLeafNode(node)
+                .subscribe(workbench.getUser());
+        events.clear(); // a last-item notification may arrive on subscribing
+        pep.publish(node, new PayloadItem<>("pose-1", new SimplePayload("<pose xmlns='urn:sabot:smoke'>1 2 0.5</pose>")));
+
+        String event = events.poll(TIMEOUT_S, TimeUnit.SECONDS);
+        while (event != null && !event.contains("1 2 0.5")) {
+            event = events.poll(TIMEOUT_S, TimeUnit.SECONDS); // skip a late last-item copy of pose-0
+        }
+        assertNotNull(event, "no PEP notification for the subscribed node");
+        assertTrue(event.startsWith(robot.getUser().asEntityBareJidString() + "|"), event);
+    }
+
+    /**
+     * PEP's implicit subscription: the workbench has {@code +notify} in its entity caps and a presence subscription.
+     * Run on Prosody only: ejabberd 23.01 learns the caps by a disco#info query of its own and, now and then
+     * (2 runs in ~12 here), never delivers to that contact although the publishes go on for 10 s; the explicit
+     * subscription below is what both servers deliver reliably.
+     */
+    protected final void pepItemReachesAContactThatAsksWithNotify() throws Exception {
         String node = "urn:sabot:smoke:telemetry";
         XMPPTCPConnection robot = server().login("robot-pep");
         // +notify must be in the subscriber's entity caps before it logs in, so build its connection by hand.
@@ -96,7 +124,7 @@ abstract class SmackSmokeTest {
                         + ((ExtensionElement) payload).toXML(XmlEnvironment.EMPTY)));
         workbench.connect().login();
         try {
-            befriend(robot, workbench);
+            Subscriptions.mutual(workbench, robot, Duration.ofSeconds(TIMEOUT_S));
             // The server learns that the workbench wants notifications (+notify in its entity caps) by a disco#info
             // query of its own, asynchronously after the presence: a publish can overtake it (seen on ejabberd).
             // So publish again, with a new item, until the notification arrives or the time is up.
@@ -155,37 +183,6 @@ abstract class SmackSmokeTest {
         Message m = received.poll(TIMEOUT_S, TimeUnit.SECONDS);
         assertNotNull(m, "the message sent during the outage was lost");
         assertEquals("while you were away", m.getBody());
-    }
-
-    /**
-     * Mutual presence subscription the way a workbench and a robot make it: the workbench asks, the robot approves
-     * and asks back. Returns when each has received the other's available presence (the robot's server needs the
-     * workbench's presence, with its entity caps, to send it PEP notifications).
-     */
-    private static void befriend(XMPPTCPConnection robot, XMPPTCPConnection workbench) throws Exception {
-        Roster robotRoster = Roster.getInstanceFor(robot);
-        robotRoster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
-        Roster wbRoster = Roster.getInstanceFor(workbench);
-        wbRoster.setSubscriptionMode(Roster.SubscriptionMode.accept_all);
-        EntityBareJid robotJid = robot.getUser().asEntityBareJid();
-        CountDownLatch robotSeen = presenceSeen(wbRoster, robotJid);
-        CountDownLatch workbenchSeen = presenceSeen(robotRoster, workbench.getUser().asEntityBareJid());
-        wbRoster.createItemAndRequestSubscription(robotJid, "robot", null);
-        assertTrue(robotSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the workbench does not see the robot");
-        assertTrue(workbenchSeen.await(TIMEOUT_S, TimeUnit.SECONDS), "the robot does not see the workbench");
-    }
-
-    private static CountDownLatch presenceSeen(Roster roster, EntityBareJid who) {
-        CountDownLatch seen = new CountDownLatch(1);
-        roster.addPresenceEventListener(new AbstractPresenceEventListener() {
-            @Override
-            public void presenceAvailable(FullJid address, Presence availablePresence) {
-                if (who.equals(address.asEntityBareJidIfPossible())) {
-                    seen.countDown();
-                }
-            }
-        });
-        return seen;
     }
 
     private static Socket socketOf(XMPPTCPConnection connection) throws ReflectiveOperationException {
