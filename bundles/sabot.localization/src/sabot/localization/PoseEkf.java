@@ -33,6 +33,8 @@ public final class PoseEkf {
 
     public static final int N = 8;
     public static final int X = 0, Y = 1, THETA = 2, V = 3, OMEGA = 4, ACCEL = 5, GYRO_BIAS = 6, ACCEL_BIAS = 7;
+    /** Marks a scalar sensor without a bias state. */
+    private static final int NO_BIAS = -1;
 
     private final EkfNoise noise;
     private final double odometryTimeout;
@@ -185,43 +187,27 @@ public final class PoseEkf {
 
     /** Gyro yaw rate sample, rad/s. */
     public MeasurementResult updateGyro(double t, double yawRate) {
-        if (!Double.isFinite(yawRate)) {
-            return MeasurementResult.REJECTED_NOT_FINITE;
-        }
-        MeasurementResult pre = prepare(t);
-        if (pre != null) {
-            return pre;
-        }
-        Correction k = corrections[1];
-        k.h.zero();
-        k.h.set(0, OMEGA, 1);
-        k.h.set(0, GYRO_BIAS, 1);
-        k.innovation.set(0, 0, yawRate - x.get(OMEGA, 0) - x.get(GYRO_BIAS, 0));
-        k.r.set(0, 0, noise.gyroSigma() * noise.gyroSigma());
-        return correct(k, gate[1]);
+        return updateScalar(t, yawRate, OMEGA, GYRO_BIAS, noise.gyroSigma(), false);
     }
 
     /** Longitudinal accelerometer sample (gravity already removed), m/s&sup2;. */
     public MeasurementResult updateAccelerometer(double t, double acceleration) {
-        if (!Double.isFinite(acceleration)) {
-            return MeasurementResult.REJECTED_NOT_FINITE;
-        }
-        MeasurementResult pre = prepare(t);
-        if (pre != null) {
-            return pre;
-        }
-        Correction k = corrections[1];
-        k.h.zero();
-        k.h.set(0, ACCEL, 1);
-        k.h.set(0, ACCEL_BIAS, 1);
-        k.innovation.set(0, 0, acceleration - x.get(ACCEL, 0) - x.get(ACCEL_BIAS, 0));
-        k.r.set(0, 0, noise.accelSigma() * noise.accelSigma());
-        return correct(k, gate[1]);
+        return updateScalar(t, acceleration, ACCEL, ACCEL_BIAS, noise.accelSigma(), false);
     }
 
     /** Magnetometer heading (map frame, declination and hard/soft iron already compensated), radians. */
     public MeasurementResult updateHeading(double t, double heading) {
-        if (!Double.isFinite(heading)) {
+        return updateScalar(t, heading, THETA, NO_BIAS, noise.magnetometerSigma(), true);
+    }
+
+    /**
+     * One scalar sensor that reads a state component plus, optionally, its own bias state: z = x[state] + x[bias].
+     *
+     * @param bias  index of the sensor's bias state, or {@link #NO_BIAS}
+     * @param angle true when z is an angle: the innovation is wrapped into (-pi, pi]
+     */
+    private MeasurementResult updateScalar(double t, double z, int state, int bias, double sigma, boolean angle) {
+        if (!Double.isFinite(z)) {
             return MeasurementResult.REJECTED_NOT_FINITE;
         }
         MeasurementResult pre = prepare(t);
@@ -230,9 +216,15 @@ public final class PoseEkf {
         }
         Correction k = corrections[1];
         k.h.zero();
-        k.h.set(0, THETA, 1);
-        k.innovation.set(0, 0, Pose2D.normalizeAngle(heading - x.get(THETA, 0)));
-        k.r.set(0, 0, noise.magnetometerSigma() * noise.magnetometerSigma());
+        k.h.set(0, state, 1);
+        double predicted = x.get(state, 0);
+        if (bias != NO_BIAS) {
+            k.h.set(0, bias, 1);
+            predicted += x.get(bias, 0);
+        }
+        double innovation = z - predicted;
+        k.innovation.set(0, 0, angle ? Pose2D.normalizeAngle(innovation) : innovation);
+        k.r.set(0, 0, sigma * sigma);
         return correct(k, gate[1]);
     }
 
