@@ -1,6 +1,7 @@
 package sabot.onboard.remotefs;
 
 import java.io.IOException;
+import java.io.UncheckedIOException;
 import java.nio.ByteBuffer;
 import java.nio.channels.FileChannel;
 import java.nio.file.DirectoryNotEmptyException;
@@ -151,7 +152,7 @@ public final class RemoteFileService {
                     entries.add(entry);
                 }
             }
-        } catch (IOException | java.io.UncheckedIOException e) {
+        } catch (IOException | UncheckedIOException e) {
             return fault("listing '" + query.path() + "' failed", e);
         }
         entries.sort(Comparator.comparing(FileEntry::name));

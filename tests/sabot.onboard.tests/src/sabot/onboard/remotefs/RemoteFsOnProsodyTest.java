@@ -16,6 +16,9 @@ import java.util.Arrays;
 import java.util.List;
 import java.util.Random;
 import java.util.TreeMap;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.stream.Stream;
 
@@ -177,6 +180,50 @@ class RemoteFsOnProsodyTest {
                 - 5, 100)).orElseThrow();
         assertArrayEquals(Arrays.copyOfRange(content, content.length - 5, content.length), tail.data());
         assertTrue(tail.last());
+    }
+
+    @Test
+    void workbenchesOnTwoRobotConnectionsUploadAtOnceAndEachGetsItsFile() throws Exception {
+        RemoteFileService fs = serve(RemoteFsLimits.DEFAULT);
+        // a second connection of the same robot, served by the same service: its handlers run on another thread
+        int n = ACCOUNTS.incrementAndGet();
+        XMPPTCPConnection otherWb = XMPP.login("fs-wb-" + n);
+        XMPPTCPConnection otherRobotConnection = XMPP.login("fs-robot-" + n);
+        ControlMlManager otherRobot = ControlMlManager.getInstanceFor(otherRobotConnection);
+        otherRobot.setAccessPolicy(j -> j.asBareJid().equals(otherWb.getUser().asBareJid()) ? AccessLevel.SET
+                : AccessLevel.NONE);
+        fs.register(otherRobot);
+        ControlMlManager other = ControlMlManager.getInstanceFor(otherWb);
+        Jid otherRobotJid = otherRobotConnection.getUser();
+
+        byte[] mine = seeded(200 * 1024, 1);
+        byte[] theirs = seeded(200 * 1024, 2);
+        ExecutorService pool = Executors.newFixedThreadPool(2);
+        try {
+            Future<?> a = pool.submit(() -> upload("shared/mine.bin", mine, 8192));
+            Future<?> b = pool.submit(() -> {
+                for (int off = 0; off < theirs.length; off += 8192) {
+                    byte[] part = Arrays.copyOfRange(theirs, off, off + 8192);
+                    Outcome<FileChunk> o = other.set(otherRobotJid, Resources.FS_WRITE, chunk("shared/theirs.bin",
+                            off, part, off + 8192 == theirs.length));
+                    assertTrue(o.isSuccess(), o::toString);
+                }
+            });
+            a.get();
+            b.get();
+        } finally {
+            pool.shutdown();
+        }
+        assertArrayEquals(mine, Files.readAllBytes(root.resolve("shared/mine.bin")));
+        assertArrayEquals(theirs, Files.readAllBytes(root.resolve("shared/theirs.bin")));
+        assertEquals(List.of("mine.bin", "theirs.bin"), namesIn(root.resolve("shared")));
+        assertEquals(0, fs.transfersInProgress());
+
+        // a transfer belongs to its requester: the other workbench cannot continue mine
+        assertTrue(write(chunk("shared/next.bin", 0, new byte[] { 1 }, false)).isSuccess());
+        assertRefused(other.set(otherRobotJid, Resources.FS_WRITE, chunk("shared/next.bin", 1, new byte[] { 2 },
+                true)), Condition.unexpected_request, ControlMlCondition.INVALID_STATE);
+        assertFalse(Files.exists(root.resolve("shared/next.bin")));
     }
 
     @Test
