@@ -21,6 +21,11 @@ public final class ControlMl {
     public static final int MAX_PAYLOAD_CHARS = 64 * 1024;
     /** Prefix of the PEP node of a resource's telemetry: node = prefix + resource name. */
     public static final String TELEMETRY_NODE_PREFIX = NAMESPACE + ":telemetry:";
+    /**
+     * Prefix of the reference to a resource's record structure, by which a payload in the text form names it:
+     * {@code xlink:href} = prefix + resource name (see {@link Resource#recordTemplate()}).
+     */
+    public static final String RECORD_STRUCTURE_PREFIX = NAMESPACE + ":record:";
     /** Service discovery feature a ControlML endpoint announces. */
     public static final String FEATURE = NAMESPACE;
 

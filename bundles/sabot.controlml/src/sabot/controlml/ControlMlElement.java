@@ -9,6 +9,7 @@ import org.jivesoftware.smack.packet.ExtensionElement;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.packet.XmlEnvironment;
 
+import sabot.controlml.swe.RecordTemplate;
 import sabot.controlml.swe.SweComponent;
 import sabot.controlml.swe.SweXml;
 
@@ -34,9 +35,17 @@ public final class ControlMlElement implements ExtensionElement {
     private final SweComponent payload;
     private final ControlMlError failure;
     private final ControlMlError defect;
+    /** Write the payload in the text form when the resource has a record structure and the value fits it. */
+    private final boolean textForm;
 
     private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
+        this(type, id, res, payload, failure, defect, defect == null);
+    }
+
+    private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect, boolean textForm) {
+        this.textForm = textForm;
         this.type = type;
         this.id = id;
         this.res = res;
@@ -77,7 +86,23 @@ public final class ControlMlElement implements ExtensionElement {
      */
     public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
-        return new ControlMlElement(type, id, res, payload, failure, defect);
+        return new ControlMlElement(type, id, res, payload, failure, defect, false);
+    }
+
+    /**
+     * @param text true (the default of the factory methods): a payload of a resource with a record structure that
+     *             fits it is written in the text form (a {@code DataStream} referring to the structure, see
+     *             {@link Resource#recordTemplate()}); false: always the XML form (a DataRecord with an element per
+     *             field). Received elements are written in the XML form. Readers accept both.
+     * @return this element with that payload form; equal to this one
+     */
+    public ControlMlElement withTextForm(boolean text) {
+        return text == textForm ? this : new ControlMlElement(type, id, res, payload, failure, defect, text);
+    }
+
+    /** @return true when the payload is written in the text form where its resource allows it */
+    public boolean isTextForm() {
+        return textForm;
     }
 
     private static String checkRes(String res) {
@@ -168,7 +193,13 @@ public final class ControlMlElement implements ExtensionElement {
     public String contentXml() {
         StringBuilder sb = new StringBuilder();
         if (payload != null) {
-            SweXml.write(payload, sb);
+            Resource<?, ?> resource = textForm ? Resources.byName(res) : null;
+            RecordTemplate template = resource == null ? null : resource.recordTemplate();
+            if (template != null && template.fits(payload)) {
+                SweXml.writeStream(resource.recordHref(), template, payload, sb);
+            } else {
+                SweXml.write(payload, sb);
+            }
         }
         if (failure != null) {
             sb.append("<failure condition='").append(failure.condition()).append("' reason='").append(failure

@@ -4,6 +4,8 @@ import java.util.Objects;
 
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.PayloadCodec;
+import sabot.controlml.swe.DataRecord;
+import sabot.controlml.swe.RecordTemplate;
 
 /**
  * A ControlML resource: its name ({@code res}), the operations it allows, and the schema of its payloads.
@@ -20,6 +22,8 @@ public final class Resource<T, Q> {
     private final boolean gettable;
     private final boolean settable;
     private final String description;
+    private T recordPrototype;
+    private volatile RecordTemplate recordTemplate;
 
     Resource(String name, PayloadCodec<T> codec, PayloadCodec<Q> queryCodec, boolean gettable, boolean settable,
             String description) {
@@ -57,6 +61,36 @@ public final class Resource<T, Q> {
     /** @return true when a set may be sent */
     public boolean isSettable() {
         return settable;
+    }
+
+    /**
+     * Gives the resource a record structure, so that its values may travel in the text form (see
+     * {@link RecordTemplate}).
+     *
+     * @param prototype any value; its encoding fixes the structure
+     */
+    Resource<T, Q> withRecordStructure(T prototype) {
+        this.recordPrototype = Objects.requireNonNull(prototype);
+        return this;
+    }
+
+    /**
+     * @return the structure of the resource's values in the text form, or null when they always travel as XML
+     *         (variable structure, or free text)
+     */
+    public RecordTemplate recordTemplate() {
+        RecordTemplate template = recordTemplate;
+        if (template == null && recordPrototype != null) {
+            // built on first use: codecs may read catalogue constants that are initialised after the resources
+            template = new RecordTemplate((DataRecord) codec.encode(recordPrototype));
+            recordTemplate = template;
+        }
+        return template;
+    }
+
+    /** @return the {@code xlink:href} by which a text-form payload refers to {@link #recordTemplate()} */
+    public String recordHref() {
+        return ControlMl.RECORD_STRUCTURE_PREFIX + name;
     }
 
     /** @return a one-line description */

@@ -1,5 +1,6 @@
 package sabot.controlml;
 
+import java.time.Instant;
 import java.util.Base64;
 import java.util.ArrayList;
 import java.util.Collection;
@@ -50,14 +51,16 @@ public final class Resources {
     private static final double TINY = Double.MIN_VALUE;
 
     /** {@code cm.position} (get; set re-localises): pose estimate with covariance. */
-    public static final Resource<PoseEstimate, NoQuery> POSITION = new Resource<>("cm.position",
-            new PositionCodec(), null, true, true, "pose estimate (x, y, theta) with covariance");
+    public static final Resource<PoseEstimate, NoQuery> POSITION = new Resource<PoseEstimate, NoQuery>(
+            "cm.position", new PositionCodec(), null, true, true, "pose estimate (x, y, theta) with covariance")
+                    .withRecordStructure(new PoseEstimate(Instant.EPOCH, new Pose2D(0, 0, 0), PoseCovariance.ZERO));
     /** {@code cm.velocity} (set: joystick twist; get: the twist being executed). */
-    public static final Resource<VelocityCommand, NoQuery> VELOCITY = new Resource<>("cm.velocity",
-            new VelocityCodec(), null, true, true, "joystick twist (linear m/s, angular rad/s)");
+    public static final Resource<VelocityCommand, NoQuery> VELOCITY = new Resource<VelocityCommand, NoQuery>(
+            "cm.velocity", new VelocityCodec(), null, true, true, "joystick twist (linear m/s, angular rad/s)")
+                    .withRecordStructure(new VelocityCommand(Instant.EPOCH, Twist2D.ZERO));
     /** {@code cm.goal} (get/set): the mission's target pose. */
-    public static final Resource<Goal, NoQuery> GOAL = new Resource<>("cm.goal", new GoalCodec(), null, true, true,
-            "mission goal pose with tolerances");
+    public static final Resource<Goal, NoQuery> GOAL = new Resource<Goal, NoQuery>("cm.goal", new GoalCodec(), null,
+            true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1));
     /** {@code cm.trajectory} (get/set): timed path. */
     public static final Resource<Trajectory, NoQuery> TRAJECTORY = new Resource<>("cm.trajectory",
             new TrajectoryCodec(), null, true, true, "timed trajectory (t, x, y, theta, v, omega)");
@@ -71,8 +74,9 @@ public final class Resources {
     public static final Resource<PidGains, NoQuery> PID = new Resource<>("cm.pid", new PidCodec(), null, true, true,
             "speed-loop PID gains per motor");
     /** {@code cm.limits} (get/set): speed and acceleration limits. */
-    public static final Resource<MotionLimits, NoQuery> LIMITS = new Resource<>("cm.limits", new LimitsCodec(), null,
-            true, true, "speed and acceleration limits");
+    public static final Resource<MotionLimits, NoQuery> LIMITS = new Resource<MotionLimits, NoQuery>("cm.limits",
+            new LimitsCodec(), null, true, true, "speed and acceleration limits").withRecordStructure(
+                    new MotionLimits(1, 1, 1, 1));
     /** {@code cm.mission} (get: state; set: pause/resume/abort/maintenance). */
     public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<>("cm.mission", new MissionCodec(),
             null, true, true, "mission state and maintenance mode");

@@ -47,6 +47,7 @@ public final class Endpoint {
     private volatile AccessPolicy accessPolicy = AccessPolicy.CLOSED;
     private volatile StaleCommandPolicy stalePolicy = StaleCommandPolicy.DEFAULT;
     private volatile boolean validateWithSchema = true;
+    private volatile boolean textForm = true;
     private final AtomicLong requestsServed = new AtomicLong();
     private final AtomicLong errorsAnswered = new AtomicLong();
     private final AtomicLong duplicatesReplayed = new AtomicLong();
@@ -91,6 +92,11 @@ public final class Endpoint {
     /** @param policy the stale-command policy; default {@link StaleCommandPolicy#DEFAULT} */
     public void setStaleCommandPolicy(StaleCommandPolicy policy) {
         this.stalePolicy = Objects.requireNonNull(policy);
+    }
+
+    /** @param text answers in the text form where the resource allows it (see ControlMlManager#setTextForm) */
+    public void setTextForm(boolean text) {
+        this.textForm = text;
     }
 
     /** @param enabled validate request payloads against controlml.xsd as well; default true */
@@ -286,7 +292,8 @@ public final class Endpoint {
             }
             return Answer.of(ControlMlElement.result(request.id(), request.res(), null));
         }
-        return Answer.of(ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value)));
+        return Answer.of(ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value))
+                .withTextForm(textForm));
     }
 
 

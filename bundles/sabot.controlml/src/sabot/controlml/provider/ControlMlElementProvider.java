@@ -14,7 +14,10 @@ import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
 import sabot.controlml.ControlMlType;
 import sabot.controlml.RequestId;
+import sabot.controlml.Resource;
+import sabot.controlml.Resources;
 import sabot.controlml.swe.Swe;
+import sabot.controlml.swe.RecordTemplate;
 import sabot.controlml.swe.SweComponent;
 import sabot.controlml.swe.SweFormatException;
 import sabot.controlml.swe.SweXml;
@@ -103,7 +106,8 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                                             "control-ml holds at most one payload component");
                                     break content;
                                 }
-                                payload = SweXml.read(parser, budget);
+                                String resource = res;
+                                payload = SweXml.readPayload(parser, budget, href -> structureOf(resource, href));
                             } else if (ControlMl.NAMESPACE.equals(parser.getNamespace()) && "failure".equals(parser
                                     .getName()) && type == ControlMlType.ERROR && failure == null && payload == null) {
                                 failure = readFailure(parser);
@@ -156,6 +160,12 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
             payload = null;
         }
         return ControlMlElement.received(type, id, res, payload, failure, defect);
+    }
+
+    /** The record structure a text-form payload of {@code res} may refer to: that resource's own, by its href. */
+    private static RecordTemplate structureOf(String res, String href) {
+        Resource<?, ?> resource = res == null ? null : Resources.byName(res);
+        return resource != null && href.equals(resource.recordHref()) ? resource.recordTemplate() : null;
     }
 
     private static ControlMlError readFailure(XmlPullParser parser) throws XmlPullParserException, IOException {

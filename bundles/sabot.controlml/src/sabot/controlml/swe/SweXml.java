@@ -76,6 +76,66 @@ public final class SweXml {
         return readComponent(parser, budget, 0);
     }
 
+    /** Finds the record structure a {@code DataStream}'s {@code elementType} refers to. */
+    @FunctionalInterface
+    public interface StructureResolver {
+        /** @return the template of {@code href}, or null when the reference is not known here */
+        RecordTemplate templateOf(String href);
+    }
+
+    /**
+     * Reads one payload: a component, or a record in the text form ({@code DataStream} whose {@code elementType}
+     * refers to a known structure, see {@link RecordTemplate}), returned as the {@link DataRecord} it encodes.
+     *
+     * @param parser   positioned at the payload's start tag, which is in the SWE namespace
+     * @param budget   charged with the payload's size
+     * @param resolver the structures a DataStream may refer to
+     * @return the component; never null
+     * @throws SweFormatException when the payload is not acceptable; the parser is then somewhere inside it
+     */
+    public static SweComponent readPayload(XmlPullParser parser, Budget budget, StructureResolver resolver)
+            throws SweFormatException, XmlPullParserException, IOException {
+        requireSwe(parser);
+        if (!"DataStream".equals(parser.getName())) {
+            return readComponent(parser, budget, 0);
+        }
+        chargeStartTag(parser, budget);
+        allowAttributes(parser);
+        expectChild(parser, budget, "elementType");
+        String href = null;
+        boolean named = false;
+        for (int i = 0; i < parser.getAttributeCount(); i++) {
+            String a = parser.getAttributeName(i);
+            if (Swe.XLINK_NAMESPACE.equals(parser.getAttributeNamespace(i)) && "href".equals(a)) {
+                href = parser.getAttributeValue(i);
+            } else if (noNamespace(parser.getAttributeNamespace(i)) && "name".equals(a) && NC_NAME.matcher(parser
+                    .getAttributeValue(i)).matches()) {
+                named = true;
+            } else {
+                throw malformed("unexpected attribute " + a + " on DataStream/elementType");
+            }
+        }
+        if (!named || href == null) {
+            throw malformed("a DataStream's elementType needs a name and an xlink:href to a record structure");
+        }
+        RecordTemplate template = resolver.templateOf(href);
+        if (template == null) {
+            throw malformed("unknown record structure '" + abbreviate(href) + "'");
+        }
+        expectEnd(parser, budget); // elementType: by reference only
+        expectChild(parser, budget, "encoding");
+        allowAttributes(parser);
+        expectChild(parser, budget, "TextEncoding");
+        readTextEncoding(parser);
+        expectEnd(parser, budget); // TextEncoding
+        expectEnd(parser, budget); // encoding
+        expectChild(parser, budget, "values");
+        allowAttributes(parser);
+        DataRecord record = template.read(readText(parser, budget));
+        expectEnd(parser, budget); // DataStream
+        return record;
+    }
+
     private static SweComponent readComponent(XmlPullParser p, Budget budget, int nesting) throws SweFormatException,
             XmlPullParserException, IOException {
         requireSwe(p);
@@ -236,6 +296,25 @@ public final class SweXml {
         expectChild(p, budget, "encoding");
         allowAttributes(p);
         expectChild(p, budget, "TextEncoding");
+        readTextEncoding(p);
+        expectEnd(p, budget); // TextEncoding
+        expectEnd(p, budget); // encoding
+        List<double[]> rows = new ArrayList<>();
+        if (nextChild(p, budget)) {
+            requireName(p, "values");
+            chargeStartTag(p, budget);
+            allowAttributes(p);
+            rows = parseRows(readText(p, budget), columns);
+            expectEnd(p, budget); // DataArray
+        }
+        if (rows.size() != count) {
+            throw malformed("elementCount " + count + " but " + rows.size() + " rows");
+        }
+        return new DataArray(elementName, columns, rows);
+    }
+
+    /** Checks the attributes of a {@code TextEncoding}: ControlML's separators only. */
+    private static void readTextEncoding(XmlPullParser p) throws SweFormatException {
         String tokenSeparator = null;
         String blockSeparator = null;
         for (int i = 0; i < p.getAttributeCount(); i++) {
@@ -260,20 +339,6 @@ public final class SweXml {
         if (!Swe.TOKEN_SEPARATOR.equals(tokenSeparator) || !Swe.BLOCK_SEPARATOR.equals(blockSeparator)) {
             throw malformed("arrays use tokenSeparator=',' and blockSeparator=' '");
         }
-        expectEnd(p, budget); // TextEncoding
-        expectEnd(p, budget); // encoding
-        List<double[]> rows = new ArrayList<>();
-        if (nextChild(p, budget)) {
-            requireName(p, "values");
-            chargeStartTag(p, budget);
-            allowAttributes(p);
-            rows = parseRows(readText(p, budget), columns);
-            expectEnd(p, budget); // DataArray
-        }
-        if (rows.size() != count) {
-            throw malformed("elementCount " + count + " but " + rows.size() + " rows");
-        }
-        return new DataArray(elementName, columns, rows);
     }
 
     private static List<double[]> parseRows(String values, List<DataArray.Column> columns) throws SweFormatException {
@@ -315,7 +380,7 @@ public final class SweXml {
         }
     }
 
-    private static long parseLong(String s) throws SweFormatException {
+    static long parseLong(String s) throws SweFormatException {
         String t = s.strip();
         if (!XS_INTEGER.matcher(t).matches()) {
             throw malformed("not an integer: '" + abbreviate(t) + "'");
@@ -503,6 +568,22 @@ public final class SweXml {
      */
     public static void write(SweComponent component, StringBuilder out) {
         write(component, out, true);
+    }
+
+    /**
+     * Writes a record in the text form: a {@code DataStream} whose {@code elementType} refers to {@code href} and whose
+     * {@code values} hold the record's tokens.
+     *
+     * @param template the structure {@code href} names; {@code record} must {@link RecordTemplate#fits fit} it
+     */
+    public static void writeStream(String href, RecordTemplate template, SweComponent record, StringBuilder out) {
+        out.append("<DataStream xmlns='").append(Swe.NAMESPACE).append("' xmlns:xlink='").append(Swe.XLINK_NAMESPACE)
+                .append("'><elementType name='value' xlink:href='");
+        escape(href, out);
+        out.append("'/><encoding><TextEncoding tokenSeparator='").append(Swe.TOKEN_SEPARATOR).append(
+                "' blockSeparator='").append(Swe.BLOCK_SEPARATOR).append("'/></encoding><values>");
+        template.writeValues(record, out);
+        out.append("</values></DataStream>");
     }
 
     /** @return the canonical XML of a component */

@@ -30,6 +30,8 @@ import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.internal.Endpoint;
+import sabot.controlml.payload.Goal;
+import sabot.model.geometry.Pose2D;
 
 /**
  * Every kind of bad input gets the right error, the device's state stays as it was, and nothing throws. (The same
@@ -168,6 +170,60 @@ class ControlMlBadInputTest {
         assertEquals(Condition.valueOf(condition.toLowerCase()), error.condition(), why + ": " + error);
         assertEquals(ControlMlCondition.valueOf(cm), error.cmCondition(), why + ": " + error);
         assertTrue(device.applied.isEmpty(), "state changed: " + device.applied);
+    }
+
+    /** A cm.goal set in the text form (docs/CONTROLML.md section 3) with the given parts. */
+    static String goalStream(String elementType, String encoding, String values) {
+        return HEAD + "<DataStream xmlns='http://www.opengis.net/swe/2.0' xmlns:xlink='http://www.w3.org/1999/xlink'>"
+                + elementType + encoding + "<values>" + values + "</values></DataStream></control-ml>";
+    }
+
+    static final String GOAL_TYPE = "<elementType name='value' xlink:href='urn:sabot:controlml:1:record:cm.goal'/>";
+    static final String TEXT_ENCODING = "<encoding><TextEncoding tokenSeparator=',' blockSeparator=' '/></encoding>";
+
+    @Test
+    void aTextFormSetIsApplied() throws Exception {
+        Endpoint.Answer a = serve(goalStream(GOAL_TYPE, TEXT_ENCODING, "1.5,-2,0.25,0.05,0.1"));
+
+        assertEquals(ControlMlType.RESULT, a.element().type(), () -> String.valueOf(a.element()));
+        assertEquals(new Goal(new Pose2D(1.5, -2, 0.25), 0.05, 0.1), device.state.get("cm.goal"));
+    }
+
+    @ParameterizedTest(name = "{0}")
+    @CsvSource(delimiter = '|', quoteCharacter = '"', value = {
+        "too few values | | | 1,2,0,0.05 | MALFORMED_PAYLOAD",
+        "too many values | | | 1,2,0,0.05,0.1,7 | MALFORMED_PAYLOAD",
+        "two blocks | | | 1,2,0,0.05,0.1 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "empty values | | | '' | MALFORMED_PAYLOAD",
+        "decimal comma | | | 1;5,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "hexadecimal number | | | 0x1p3,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "NaN is parsed then refused | | | NaN,2,0,0.05,0.1 | INVALID_VALUE",
+        "INF is parsed then refused | | | 1,INF,0,0.05,0.1 | INVALID_VALUE",
+        "out of range tolerance | | | 1,2,0,-0.05,0.1 | INVALID_VALUE",
+        "structure of another resource | <elementType name='value' xlink:href='urn:sabot:controlml:1:record:cm.position'/> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "unknown structure | <elementType name='value' xlink:href='urn:example:goal'/> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "elementType without name | <elementType xlink:href='urn:sabot:controlml:1:record:cm.goal'/> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "elementType without href | <elementType name='value'/> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "inline elementType content | <elementType name='value' xlink:href='urn:sabot:controlml:1:record:cm.goal'><Count/></elementType> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "other token separator | | <encoding><TextEncoding tokenSeparator=';' blockSeparator=' '/></encoding> | 1;2;0;0.05;0.1 | MALFORMED_PAYLOAD",
+        "no encoding | | <encoding/> | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD",
+        "element count | <elementCount><Count><value>1</value></Count></elementCount> | | 1,2,0,0.05,0.1 | MALFORMED_PAYLOAD" })
+    void badTextFormsAreRefused(String why, String elementType, String encoding, String values, String cm)
+            throws Exception {
+        String xml = goalStream(elementType == null ? GOAL_TYPE : elementType, encoding == null ? TEXT_ENCODING
+                : encoding, values == null ? "" : values);
+        ControlMlCondition condition = ControlMlCondition.valueOf(cm);
+        assertRefused(serve(xml), condition == ControlMlCondition.INVALID_VALUE ? Condition.not_acceptable
+                : Condition.bad_request, condition);
+    }
+
+    @Test
+    void aTextFormForAResourceWithoutRecordStructureIsRefused() throws Exception {
+        String xml = HEAD.replace("cm.goal", "cm.trajectory") + "<DataStream xmlns='http://www.opengis.net/swe/2.0' "
+                + "xmlns:xlink='http://www.w3.org/1999/xlink'><elementType name='value' "
+                + "xlink:href='urn:sabot:controlml:1:record:cm.trajectory'/>" + TEXT_ENCODING
+                + "<values>0,0,0,0,0,0</values></DataStream></control-ml>";
+        assertRefused(serve(xml), Condition.bad_request, ControlMlCondition.MALFORMED_PAYLOAD);
     }
 
     @ParameterizedTest(name = "{0}")

@@ -37,8 +37,10 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
 
 import sabot.controlml.AccessLevel;
+import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
+import sabot.controlml.RequestId;
 import sabot.controlml.Resources;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.PoseCovariance;
@@ -68,6 +70,7 @@ public final class ControlMlBench {
     private double rateHz = 10;
     private int durationS = 60;
     private boolean telemetry = true;
+    private boolean textForm = true;
 
     public static void main(String[] args) throws Exception {
         ControlMlBench bench = new ControlMlBench();
@@ -87,10 +90,11 @@ public final class ControlMlBench {
                 case "--rate" -> rateHz = Double.parseDouble(args[++i]);
                 case "--duration" -> durationS = Integer.parseInt(args[++i]);
                 case "--no-telemetry" -> telemetry = false;
+                case "--xml-form" -> textForm = false;
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
                             + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] [--rate HZ (10)] "
-                            + "[--duration S (60)] [--no-telemetry]");
+                            + "[--duration S (60)] [--no-telemetry] [--xml-form]");
                     System.exit(0);
                 }
                 default -> throw new IllegalArgumentException("unknown option " + a + " (--help)");
@@ -173,10 +177,11 @@ public final class ControlMlBench {
                 return IQ.createResultIQ(request);
             }
         });
-        // the same size as a cm.position result, as opaque XML, for the breakdown (raw with payload)
-        String sizedXml = sabot.controlml.swe.SweXml.toXml(Resources.POSITION.codec().encode(new PoseEstimate(Instant
-                .parse("2026-11-21T10:15:30.123456Z"), new Pose2D(1.25, -3.5, 0.785), new PoseCovariance(0.01, 0.001,
-                        -0.0002, 0.02, 0.0003, 0.0004))));
+        PoseEstimate pose = new PoseEstimate(Instant.parse("2026-11-21T10:15:30.123456Z"), new Pose2D(1.25, -3.5,
+                0.785), new PoseCovariance(0.01, 0.001, -0.0002, 0.02, 0.0003, 0.0004));
+        // the payload exactly as a cm.position result carries it, as opaque XML, for the breakdown (raw with payload)
+        String sizedXml = ControlMlElement.result(RequestId.parse("20261121:1"), Resources.POSITION.name(),
+                Resources.POSITION.codec().encode(pose)).withTextForm(textForm).contentXml();
         robot.registerIQRequestHandler(new AbstractIqRequestHandler("echo", ECHO_NS, IQ.Type.set, Mode.sync) {
             @Override
             public IQ handleIQRequest(IQ request) {
@@ -188,8 +193,7 @@ public final class ControlMlBench {
         ControlMlManager robotCm = ControlMlManager.getInstanceFor(robot);
         robotCm.setAccessPolicy(j -> j.asBareJid().equals(workbench.getUser().asBareJid()) ? AccessLevel.SET
                 : AccessLevel.NONE);
-        PoseEstimate pose = new PoseEstimate(Instant.parse("2026-11-21T10:15:30.123456Z"), new Pose2D(1.25, -3.5,
-                0.785), new PoseCovariance(0.01, 0.001, -0.0002, 0.02, 0.0003, 0.0004));
+        robotCm.setTextForm(textForm);
         robotCm.onGet(Resources.POSITION, (r, q) -> Outcome.success(pose));
         ControlMlManager client = ControlMlManager.getInstanceFor(workbench);
         FullJid robotJid = robot.getUser();
@@ -247,6 +251,8 @@ public final class ControlMlBench {
         figures.put("controlml_p99_ms", round(ms(cm, 0.99)));
         figures.put("controlml_to_raw_p50", round(ms(cm, 0.5) / ms(raw, 0.5)));
         figures.put("raw_iq_sized_p50_ms", round(ms(sizedRaw, 0.5)));
+        figures.put("payload_form", textForm ? "text" : "xml");
+        figures.put("payload_bytes", sizedXml.length());
         workbench.disconnect();
         robot.disconnect();
     }
@@ -334,6 +340,7 @@ public final class ControlMlBench {
         List<TelemetryPublication> publications = new ArrayList<>();
         for (XMPPTCPConnection c : robotConnections) {
             AtomicLong seq = new AtomicLong();
+            ControlMlManager.getInstanceFor(c).setTextForm(textForm);
             publications.add(ControlMlManager.getInstanceFor(c).publishTelemetry(Resources.POSITION, () -> {
                 Instant now = Instant.now();
                 if (window.contains(nanosOfInstant(now))) {
