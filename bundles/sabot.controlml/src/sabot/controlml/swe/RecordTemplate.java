@@ -141,9 +141,22 @@ public final class RecordTemplate {
                 throw malformed("a record's values are one block (no '" + Swe.BLOCK_SEPARATOR + "')");
             }
         }
-        String[] parts = block.split(Swe.TOKEN_SEPARATOR, -1);
-        if (block.isEmpty() || parts.length != tokens) {
-            throw malformed((block.isEmpty() ? 0 : parts.length) + " values for a record of " + tokens);
+        String[] parts = new String[tokens];
+        int found = 0;
+        int start = 0;
+        while (!block.isEmpty()) {
+            int end = block.indexOf(',', start);
+            if (found < tokens) {
+                parts[found] = end < 0 ? block.substring(start) : block.substring(start, end);
+            }
+            found++;
+            if (end < 0) {
+                break;
+            }
+            start = end + 1;
+        }
+        if (found != tokens) {
+            throw malformed(found + " values for a record of " + tokens);
         }
         int[] next = { 0 };
         return (DataRecord) rebuild(prototype, parts, next);
