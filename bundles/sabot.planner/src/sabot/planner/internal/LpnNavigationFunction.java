@@ -535,12 +535,20 @@ public final class LpnNavigationFunction {
             sortBuffer = new int[items.length];
         }
         int[] counts = bandCounts;
-        Arrays.fill(counts, 0);
         int shift = bandShift;
+        // only the bands the front spans are cleared and summed: a bucket often covers a fraction of the grid
+        int low = Integer.MAX_VALUE;
+        int high = 0;
+        for (int i = 0; i < size; i++) {
+            int band = items[i] >>> shift;
+            low = Math.min(low, band);
+            high = Math.max(high, band);
+        }
+        Arrays.fill(counts, low, high + 2, 0);
         for (int i = 0; i < size; i++) {
             counts[(items[i] >>> shift) + 1]++;
         }
-        for (int band = 1; band < counts.length; band++) {
+        for (int band = low + 1; band <= high + 1; band++) {
             counts[band] += counts[band - 1];
         }
         int[] sorted = sortBuffer;
