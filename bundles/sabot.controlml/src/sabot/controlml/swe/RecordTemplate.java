@@ -120,7 +120,7 @@ public final class RecordTemplate {
             }
             case Quantity q -> out.append(SweXml.formatDouble(q.value()));
             case Count n -> out.append(n.value());
-            case Time t -> out.append(t.value());
+            case Time t -> IsoInstant.format(t.value(), out);
             case SweBoolean b -> out.append(b.value());
             case Text t -> SweXml.escape(t.value(), out);
             case Category t -> SweXml.escape(t.value(), out);
@@ -194,7 +194,7 @@ public final class RecordTemplate {
             case Count n -> new Count(SweXml.parseLong(token));
             case Time t -> {
                 try {
-                    yield new Time(Instant.parse(token));
+                    yield new Time(IsoInstant.parse(token));
                 } catch (DateTimeParseException e) {
                     throw malformed("not an ISO 8601 UTC time stamp: '" + SweXml.abbreviate(token) + "'");
                 }

@@ -202,7 +202,7 @@ public final class SweXml {
         String text = readText(p, budget);
         expectEnd(p, budget);
         try {
-            return new Time(Instant.parse(text));
+            return new Time(IsoInstant.parse(text));
         } catch (DateTimeParseException e) {
             throw malformed("not an ISO 8601 UTC time stamp: '" + abbreviate(text) + "'");
         }
@@ -651,8 +651,12 @@ public final class SweXml {
                 out.append("'/><value>").append(formatDouble(q.value())).append("</value>");
             }
             case Count n -> out.append("<value>").append(n.value()).append("</value>");
-            case Time t -> out.append("<uom xmlns:xlink='").append(Swe.XLINK_NAMESPACE).append("' xlink:href='")
-                    .append(Swe.ISO_8601_UOM).append("'/><value>").append(t.value()).append("</value>");
+            case Time t -> {
+                out.append("<uom xmlns:xlink='").append(Swe.XLINK_NAMESPACE).append("' xlink:href='").append(
+                        Swe.ISO_8601_UOM).append("'/><value>");
+                IsoInstant.format(t.value(), out);
+                out.append("</value>");
+            }
             case Text t -> {
                 out.append("<value>");
                 escape(t.value(), out);
