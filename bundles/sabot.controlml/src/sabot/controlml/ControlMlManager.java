@@ -37,8 +37,11 @@ import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smackx.delay.DelayInformationManager;
 import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
 import org.jivesoftware.smackx.pep.PepManager;
+import org.jivesoftware.smackx.pubsub.NodeExtension;
 import org.jivesoftware.smackx.pubsub.PayloadItem;
 import org.jivesoftware.smackx.pubsub.PublishItem;
+import org.jivesoftware.smackx.pubsub.SubscribeExtension;
+import org.jivesoftware.smackx.pubsub.UnsubscribeExtension;
 import org.jivesoftware.smackx.pubsub.packet.PubSub;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
@@ -611,8 +614,55 @@ public final class ControlMlManager extends Manager {
     }
 
     /**
+     * Subscribes this client explicitly (XEP-0060 {@code subscribe}) to a device's telemetry node of a resource, so
+     * that its publications arrive at {@link #addTelemetryListener listeners} even where the server does not honour
+     * the {@code +notify} of the entity capabilities (ejabberd 23.01 now and then never does for a contact, while it
+     * always delivers to explicit subscribers). Servers keep one subscription per JID, so calling again does no harm.
+     * The node exists once the device has published the resource: before that the answer is {@code item-not-found};
+     * call again when the device comes online or publishes.
+     *
+     * @param device the device's bare JID (the owner of the PEP node)
+     * @return done, or why not ({@code item-not-found}, {@code forbidden} without a presence subscription, timeout,
+     *         not connected)
+     */
+    public Outcome<Void> followTelemetry(EntityBareJid device, Resource<?, ?> resource) {
+        return pubsubRequest(device, new SubscribeExtension(connection().getUser(), ControlMl.telemetryNode(resource
+                .name())));
+    }
+
+    /** Ends a subscription made by {@link #followTelemetry}; same answers. */
+    public Outcome<Void> unfollowTelemetry(EntityBareJid device, Resource<?, ?> resource) {
+        return pubsubRequest(device, new UnsubscribeExtension(connection().getUser().toString(), ControlMl
+                .telemetryNode(resource.name())));
+    }
+
+    private Outcome<Void> pubsubRequest(EntityBareJid device, NodeExtension request) {
+        // a plain request to the owner's PEP service: Smack's PubSubManager.getLeafNode() asks disco#info first, and
+        // ejabberd answers it for an auto-created PEP node without the identity Smack insists on
+        PubSub iq = PubSub.createPubsubPacket(device, IQ.Type.set, request);
+        IQ answer;
+        try (StanzaCollector collector = connection().createStanzaCollectorAndSend(iq)) {
+            answer = collector.nextResult(requestTimeout.toMillis());
+        } catch (NotConnectedException e) {
+            return Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected: " + e.getMessage());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "interrupted while waiting for " + device);
+        }
+        if (answer == null) {
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from the PEP service of " + device
+                    + " within " + requestTimeout.toMillis() + " ms");
+        }
+        if (answer.getType() == IQ.Type.error) {
+            return Outcome.failure(ControlMlError.fromStanzaError(answer.getError()));
+        }
+        return Outcome.done();
+    }
+
+    /**
      * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
-     * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence.
+     * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
+     * delivery that does not depend on it, also {@link #followTelemetry} each device.
      */
     public <T> void addTelemetryListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
         PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),

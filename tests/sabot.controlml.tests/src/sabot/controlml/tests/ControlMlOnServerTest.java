@@ -23,6 +23,7 @@ import org.jivesoftware.smack.StanzaCollector;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.Message;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.mam.MamManager;
 import org.junit.jupiter.api.BeforeAll;
@@ -51,11 +52,6 @@ import sabot.controlml.payload.PoseEstimate;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.testsupport.xmpp.Subscriptions;
-import sabot.controlml.ControlMl;
-import org.jivesoftware.smack.packet.StanzaError;
-import org.jivesoftware.smack.XMPPException;
-import org.jivesoftware.smackx.pubsub.SubscribeExtension;
-import org.jivesoftware.smackx.pubsub.packet.PubSub;
 
 /**
  * ControlML between a robot and workbenches through a real, unmodified server: every get/set/result/error path,
@@ -485,14 +481,19 @@ abstract class ControlMlOnServerTest {
         wb.connect().login();
         Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
 
+        ControlMlManager wbManager = ControlMlManager.getInstanceFor(wb);
+        EntityBareJid robotBare = robot.jid().asEntityBareJidIfPossible();
+        Outcome<Void> early = wbManager.followTelemetry(robotBare, Resources.POSITION);
+        assertEquals(StanzaError.Condition.item_not_found, assertInstanceOf(Outcome.Failure.class, early).error()
+                .condition(), "no node before the first publication: " + early);
+
         AtomicInteger tick = new AtomicInteger();
         try (TelemetryPublication p = robot.manager().publishTelemetry(Resources.POSITION, () -> new PoseEstimate(
                 Samples.T.plusMillis(tick.incrementAndGet()), new Pose2D(tick.get(), 0, 0), Samples.POSE.covariance()),
                 50)) {
             // Besides +notify, an explicit XEP-0060 subscription to the robot's telemetry node: ejabberd 23.01 now
             // and then never honours +notify for a contact (see SmackSmokeTest), the explicit one it always does.
-            subscribeExplicitly(wb, robot.jid().asEntityBareJidIfPossible(), ControlMl.telemetryNode(
-                    Resources.POSITION.name()));
+            followOncePublished(wbManager, robotBare);
             for (int i = 0; i < 5; i++) {
                 PoseEstimate p1 = poses.poll(TIMEOUT_S, TimeUnit.SECONDS);
                 assertNotNull(p1, "telemetry item " + i + " missing");
@@ -503,24 +504,18 @@ abstract class ControlMlOnServerTest {
         assertEquals(0, robot.manager().statistics().telemetryFailed()); // acknowledgements are counted asynchronously
     }
 
-    /** Subscribes to a PEP node once the publisher's first publication has created it. */
-    private static void subscribeExplicitly(XMPPTCPConnection subscriber, EntityBareJid owner, String node)
-            throws Exception {
+    /** Follows a robot's cm.position telemetry once its first publication has created the node. */
+    private static void followOncePublished(ControlMlManager manager, EntityBareJid robot) {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
         while (true) {
-            try {
-                // A plain subscribe request: Smack's getLeafNode() first asks disco#info, and ejabberd answers that
-                // for an auto-created PEP node without the pubsub identity Smack insists on.
-                PubSub subscribe = PubSub.createPubsubPacket(owner, IQ.Type.set, new SubscribeExtension(subscriber
-                        .getUser(), node));
-                subscriber.createStanzaCollectorAndSend(subscribe).nextResultOrThrow();
+            Outcome<Void> followed = manager.followTelemetry(robot, Resources.POSITION);
+            if (followed.isSuccess()) {
                 return;
-            } catch (XMPPException.XMPPErrorException notYet) {
-                if (notYet.getStanzaError().getCondition() != StanzaError.Condition.item_not_found
-                        || System.nanoTime() > deadline) {
-                    throw notYet;
-                }
-                // the node does not exist before the first publication (every 50 ms): ask again
+            }
+            ControlMlError error = ((Outcome.Failure<Void>) followed).error();
+            // the node does not exist before the first publication (every 20 ms): ask again
+            if (error.condition() != StanzaError.Condition.item_not_found || System.nanoTime() > deadline) {
+                throw new AssertionError("following telemetry failed: " + error);
             }
         }
     }
