@@ -60,6 +60,37 @@ class PluginInstallTest {
         }
     }
 
+    /**
+     * The onboard feature brings everything sabot.onboard needs beyond the base runtime: ControlML and the whole Smack
+     * client (sabot.controlml.feature), not only what a product build would pull in on its own. Installed into a copy
+     * of the workbench, which has the framework and the base feature but no XMPP client.
+     */
+    @Test
+    void onboardFeatureInstallsFromTheUpdateSiteWithItsControlMlRuntime() throws Exception {
+        Path target = copy(ProductProcess.product("sabot.workbench.product", "sabot-workbench"), dir.resolve(
+                "runtime"));
+        Path site = ProductProcess.root().resolve("product/sabot.site/target/repository");
+        Path director = ProductProcess.product("sabot.director.product", "sabot-director");
+        Path bundlesInfo = target.resolve("configuration/org.eclipse.equinox.simpleconfigurator/bundles.info");
+        assertFalse(Files.readString(bundlesInfo).contains("smack-core,"), "the copy had an XMPP client before");
+
+        try (ProductProcess install = ProductProcess.start(director, List.of(), List.of(
+                "-application", "org.eclipse.equinox.p2.director",
+                "-repository", site.toUri().toString(),
+                "-installIU", "sabot.onboard.feature.feature.group",
+                "-destination", target.toString(),
+                "-profile", "DefaultProfile"))) {
+            assertEquals(0, install.waitFor(), install.output());
+            assertTrue(install.output().contains("Operation completed"), install.output());
+        }
+        String bundles = Files.readString(bundlesInfo);
+        for (String bundle : List.of("sabot.onboard", "sabot.controlml", "sabot.model", "smack-core", "smack-tcp",
+                "smack-streammanagement", "smack-xmlparser-xpp3", "smack-java8", "smack-resolver-javax")) {
+            assertTrue(bundles.lines().anyMatch(l -> l.startsWith(bundle + ",")), bundle + " not installed:\n"
+                    + bundles);
+        }
+    }
+
     private ProductProcess startWorkbench(Path workbench) throws IOException {
         return ProductProcess.start(workbench, List.of(), List.of("-data", dir.resolve("workspace").toString(),
                 "-sabot.exit"));
