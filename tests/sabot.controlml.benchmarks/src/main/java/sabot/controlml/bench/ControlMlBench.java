@@ -201,7 +201,8 @@ public final class ControlMlBench {
         long[] raw = new long[requests];
         long[] sizedRaw = new long[requests];
         long[] cm = new long[requests];
-        System.out.printf("[bench] %s: %d warm-up + %d requests each, raw IQ, cm.position get and same-payload raw IQ in rotating order%n",
+        System.out.printf("[bench] %s: %d warm-up + %d requests each, raw IQ, cm.position get and same-payload raw IQ"
+                + " in rotating order%n",
                 kind.name().toLowerCase(Locale.ROOT), warmup, requests);
         long t0 = System.nanoTime();
         for (int i = -warmup; i < requests; i++) {
