@@ -22,6 +22,7 @@ public final class Resource<T, Q> {
     private final boolean gettable;
     private final boolean settable;
     private final String description;
+    private final String recordHref;
     private T recordPrototype;
     private volatile RecordTemplate recordTemplate;
 
@@ -36,6 +37,7 @@ public final class Resource<T, Q> {
         this.gettable = gettable;
         this.settable = settable;
         this.description = description;
+        this.recordHref = ControlMl.RECORD_STRUCTURE_PREFIX + name;
     }
 
     /** @return the {@code res} attribute value, e.g. {@code cm.position} */
@@ -90,7 +92,7 @@ public final class Resource<T, Q> {
 
     /** @return the {@code xlink:href} by which a text-form payload refers to {@link #recordTemplate()} */
     public String recordHref() {
-        return ControlMl.RECORD_STRUCTURE_PREFIX + name;
+        return recordHref;
     }
 
     /** @return a one-line description */

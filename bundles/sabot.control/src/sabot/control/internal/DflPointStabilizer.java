@@ -50,15 +50,12 @@ public final class DflPointStabilizer implements TrackingController {
     @Override
     public ControlCommand update(double time, Pose2D q, TrajectorySample r) {
         double dt = clock.advance(time);
-        if (dt < 0) {
-            seeded = false;
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_TIME);
-        }
-        if (q == null || !q.isFinite()) {
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_POSE);
-        }
-        if (r == null || !r.isFinite()) {
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_REFERENCE);
+        ControlStatus refused = ControllerInputs.refusal(dt, q, r);
+        if (refused != null) {
+            if (refused == ControlStatus.STOPPED_INVALID_TIME) {
+                seeded = false; // no step to integrate the compensator over
+            }
+            return ControlCommand.stop(refused);
         }
         Pose2D g = r.pose();
         if (!g.equals(goal)) {

@@ -27,14 +27,9 @@ public final class PseudoinverseController implements TrackingController {
 
     @Override
     public ControlCommand update(double time, Pose2D estimate, TrajectorySample reference) {
-        if (clock.advance(time) < 0) {
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_TIME);
-        }
-        if (estimate == null || !estimate.isFinite()) {
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_POSE);
-        }
-        if (reference == null || !reference.isFinite()) {
-            return ControlCommand.stop(ControlStatus.STOPPED_INVALID_REFERENCE);
+        ControlStatus refused = ControllerInputs.refusal(clock.advance(time), estimate, reference);
+        if (refused != null) {
+            return ControlCommand.stop(refused);
         }
         Twist2D t = law(gains.kp(), gains.kTheta(), estimate, reference);
         if (!t.isFinite()) {

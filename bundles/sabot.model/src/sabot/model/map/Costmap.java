@@ -55,7 +55,7 @@ public final class Costmap {
      * @throws IllegalArgumentException when the array length does not match the geometry
      */
     public static Costmap of(GridGeometry geometry, byte[] costs) {
-        checkLength(geometry, costs);
+        geometry.checkCellCount("costs", costs.length);
         return new Costmap(geometry, costs.clone());
     }
 
@@ -81,8 +81,7 @@ public final class Costmap {
 
     /** @return the cost of a cell, 0..255 */
     public int cost(int column, int row) {
-        checkInside(column, row);
-        return costs[geometry.index(column, row)] & 0xFF;
+        return costs[geometry.checkedIndex(column, row)] & 0xFF;
     }
 
     /** @return the cost of the cell at a row-major index, 0..255 */
@@ -97,9 +96,9 @@ public final class Costmap {
 
     /** Sets one cell's cost (0..255). */
     public void set(int column, int row, int cost) {
-        checkInside(column, row);
+        int index = geometry.checkedIndex(column, row);
         checkCost(cost);
-        costs[geometry.index(column, row)] = (byte) cost;
+        costs[index] = (byte) cost;
         recordChange(CellRegion.of(column, row));
     }
 
@@ -122,7 +121,7 @@ public final class Costmap {
      * as changed once; the cheap way to publish the result of a regional recomputation.
      */
     public void copyFrom(byte[] source, CellRegion region) {
-        checkLength(geometry, source);
+        geometry.checkCellCount("costs", source.length);
         CellRegion clipped = region.clip(width(), height());
         if (clipped.isEmpty()) {
             return;
@@ -140,9 +139,9 @@ public final class Costmap {
      * on the destination.
      */
     public void copyRow(int row, int fromColumn, int toColumnInclusive, byte[] destination, int destinationOffset) {
-        checkInside(fromColumn, row);
-        checkInside(toColumnInclusive, row);
-        System.arraycopy(costs, row * width() + fromColumn, destination, destinationOffset,
+        int from = geometry.checkedIndex(fromColumn, row);
+        geometry.checkedIndex(toColumnInclusive, row);
+        System.arraycopy(costs, from, destination, destinationOffset,
                 toColumnInclusive - fromColumn + 1);
     }
 
@@ -191,23 +190,9 @@ public final class Costmap {
         changeRegions[slot] = region;
     }
 
-    private void checkInside(int column, int row) {
-        if (!geometry.contains(column, row)) {
-            throw new IndexOutOfBoundsException("cell (" + column + ", " + row + ") is outside the "
-                    + geometry.width() + " x " + geometry.height() + " costmap");
-        }
-    }
-
     private static void checkCost(int cost) {
         if (cost < 0 || cost > 255) {
             throw new IllegalArgumentException("cost must be 0..255, got " + cost);
-        }
-    }
-
-    private static void checkLength(GridGeometry geometry, byte[] costs) {
-        if (costs.length != geometry.cellCount()) {
-            throw new IllegalArgumentException("expected " + geometry.cellCount() + " costs for a " + geometry.width()
-                    + " x " + geometry.height() + " grid, got " + costs.length);
         }
     }
 }

@@ -52,6 +52,32 @@ public record GridGeometry(int width, int height, double resolution, Pose2D orig
         return row * width + column;
     }
 
+    /**
+     * @return the row-major index of a cell
+     * @throws IndexOutOfBoundsException naming the cell and the grid's size when the cell is outside
+     */
+    public int checkedIndex(int column, int row) {
+        if (!contains(column, row)) {
+            throw new IndexOutOfBoundsException("cell (" + column + ", " + row + ") is outside the " + width + " x "
+                    + height + " grid");
+        }
+        return index(column, row);
+    }
+
+    /**
+     * Checks that an array of per-cell values fits this grid.
+     *
+     * @param what   what the values are, for the message (e.g. "costs")
+     * @param length the array's length
+     * @throws IllegalArgumentException when it is not {@link #cellCount()}
+     */
+    public void checkCellCount(String what, int length) {
+        if (length != cellCount()) {
+            throw new IllegalArgumentException("expected " + cellCount() + " " + what + " for a " + width + " x "
+                    + height + " grid, got " + length);
+        }
+    }
+
     /** @return the cell holding a map-frame point, or empty when the point is outside the grid or not finite */
     public Optional<Cell> cellAt(Point2D point) {
         if (point == null || !point.isFinite()) {

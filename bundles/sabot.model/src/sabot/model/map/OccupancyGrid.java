@@ -49,10 +49,7 @@ public final class OccupancyGrid {
      * @throws IllegalArgumentException when the array length does not match or a value is out of range
      */
     public static OccupancyGrid of(GridGeometry geometry, byte[] values) {
-        if (values.length != geometry.cellCount()) {
-            throw new IllegalArgumentException("expected " + geometry.cellCount() + " cell values for a "
-                    + geometry.width() + " x " + geometry.height() + " grid, got " + values.length);
-        }
+        geometry.checkCellCount("cell values", values.length);
         for (int i = 0; i < values.length; i++) {
             checkValue(values[i]);
         }
@@ -81,15 +78,14 @@ public final class OccupancyGrid {
 
     /** @return the value of a cell: -1 unknown, 0..100 occupancy in percent */
     public int get(int column, int row) {
-        checkInside(column, row);
-        return values[geometry.index(column, row)];
+        return values[geometry.checkedIndex(column, row)];
     }
 
     /** Sets a cell to -1 (unknown) or an occupancy 0..100 in percent. */
     public void set(int column, int row, int value) {
-        checkInside(column, row);
+        int index = geometry.checkedIndex(column, row);
         checkValue(value);
-        values[geometry.index(column, row)] = (byte) value;
+        values[index] = (byte) value;
     }
 
     /** @return a copy of all values, row-major, row 0 at the bottom */
@@ -100,13 +96,6 @@ public final class OccupancyGrid {
     /** @return true when both grids have the same geometry and values */
     public boolean sameAs(OccupancyGrid other) {
         return geometry.equals(other.geometry) && Arrays.equals(values, other.values);
-    }
-
-    private void checkInside(int column, int row) {
-        if (!geometry.contains(column, row)) {
-            throw new IndexOutOfBoundsException("cell (" + column + ", " + row + ") is outside the "
-                    + geometry.width() + " x " + geometry.height() + " grid");
-        }
     }
 
     private static void checkValue(int value) {

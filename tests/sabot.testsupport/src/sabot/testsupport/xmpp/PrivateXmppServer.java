@@ -34,6 +34,8 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.jid.parts.Localpart;
 
+import sabot.fleet.NoDelaySocketFactory;
+
 /**
  * A private XMPP server (Prosody or ejabberd) on a free loopback port, with its own configuration and state
  * directory, for one test class. Real server, real sockets: nothing is mocked.
