@@ -7,9 +7,10 @@ import sabot.model.map.Costmap;
 
 /**
  * Plans a path for the robot's centre over a costmap. Implementations are stateful (they keep their buffers between
- * requests so that re-planning allocates nothing) and not thread-safe: use one instance per thread.
+ * requests so that re-planning allocates nothing) and not thread-safe: use one instance per thread. A planner that
+ * runs helper threads ends them on {@link #close}.
  */
-public interface Planner {
+public interface Planner extends AutoCloseable {
 
     /** @return a short name for logs and the command line, e.g. {@code lpn} */
     String name();
@@ -26,5 +27,10 @@ public interface Planner {
     /** Plans to a single goal; see {@link #plan(Costmap, Point2D, List)}. */
     default PlanResult plan(Costmap costmap, Point2D start, Point2D goal) {
         return plan(costmap, start, List.of(goal));
+    }
+
+    /** Ends the planner's helper threads, if it has any; the planner must not be used afterwards. */
+    @Override
+    default void close() {
     }
 }

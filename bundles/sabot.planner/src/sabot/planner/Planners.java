@@ -22,7 +22,17 @@ public final class Planners {
 
     /** @return the LPN navigation-function planner over the whole reachable grid */
     public static Planner lpn(CostModel costModel) {
-        return new LpnPlanner(costModel, true);
+        return lpn(costModel, 1);
+    }
+
+    /**
+     * @param threads 1, or 2 to compute the navigation function of large grids (from 2^18 cells) on the calling
+     *                thread and a helper thread that the planner's {@link Planner#close} ends: about 1.4 times as
+     *                fast on 1000 x 1000, while both cores are busy
+     * @return the LPN navigation-function planner over the whole reachable grid
+     */
+    public static Planner lpn(CostModel costModel, int threads) {
+        return new LpnPlanner(costModel, true, false, threads);
     }
 
     /**
@@ -39,7 +49,12 @@ public final class Planners {
      *         full computation). The path equals a fresh computation's up to float rounding.
      */
     public static Planner lpnIncremental(CostModel costModel) {
-        return new LpnPlanner(costModel, true, true);
+        return lpnIncremental(costModel, 1);
+    }
+
+    /** @return {@link #lpnIncremental(CostModel)} whose full computations use {@code threads} (1 or 2) */
+    public static Planner lpnIncremental(CostModel costModel, int threads) {
+        return new LpnPlanner(costModel, true, true, threads);
     }
 
     /** @return the 8-connected A* reference, standard cost model */
@@ -57,12 +72,23 @@ public final class Planners {
         return new ReferencePlanner(costModel, false);
     }
 
-    /** @return the planner of that name (see {@link #NAMES}), if any */
+    /** @return the planner of that name (see {@link #NAMES}), if any, on one thread */
     public static Optional<Planner> byName(String name, CostModel costModel) {
+        return byName(name, costModel, 1);
+    }
+
+    /**
+     * @param threads 1 or 2: threads of {@code lpn} and {@code lpn-incremental}; the others use the calling thread
+     * @return the planner of that name (see {@link #NAMES}), if any
+     */
+    public static Optional<Planner> byName(String name, CostModel costModel, int threads) {
+        if (threads < 1 || threads > 2) {
+            throw new IllegalArgumentException("threads must be 1 or 2, not " + threads);
+        }
         return Optional.ofNullable(switch (name) {
-            case "lpn" -> lpn(costModel);
+            case "lpn" -> lpn(costModel, threads);
             case "lpn-bounded" -> lpnBounded(costModel);
-            case "lpn-incremental" -> lpnIncremental(costModel);
+            case "lpn-incremental" -> lpnIncremental(costModel, threads);
             case "reference" -> reference(costModel);
             case "dijkstra" -> dijkstra(costModel);
             default -> null;

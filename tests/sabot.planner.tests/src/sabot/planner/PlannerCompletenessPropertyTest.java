@@ -5,11 +5,17 @@ import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.util.Random;
+import java.util.function.Supplier;
+import java.util.stream.Stream;
 
-import org.junit.jupiter.api.Test;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.Arguments;
+import org.junit.jupiter.params.provider.MethodSource;
 
 import sabot.model.geometry.Point2D;
 import sabot.model.map.Costmap;
+import sabot.planner.internal.LpnNavigationFunction;
+import sabot.planner.internal.LpnPlanner;
 
 /**
  * Property-based completeness on random grids with fixed seeds: LPN finds a path exactly when the reference does,
@@ -22,9 +28,21 @@ class PlannerCompletenessPropertyTest {
     private static final double COST_TOLERANCE = 1.01;
     private static final double COST_SLACK = 2 * CostModel.COST_NEUTRAL;
 
-    @Test
-    void lpnFindsAPathExactlyWhenTheReferenceDoesAndEveryPathIsSafeAndDescending() {
-        Planner lpn = Planners.lpn();
+    /** LPN on one thread, and on two with bands of a few rows so that most cells lie near a band boundary. */
+    static Stream<Arguments> lpnPlanners() {
+        return Stream.of(
+                Arguments.of("one thread", (Supplier<Planner>) Planners::lpn),
+                Arguments.of("two threads, small bands",
+                        (Supplier<Planner>) () -> new LpnPlanner(
+                                CostModel.standard(), true, false, new LpnNavigationFunction(
+                                        CostModel.standard(), 2, 8, 0))));
+    }
+
+    @ParameterizedTest(name = "{0}")
+    @MethodSource("lpnPlanners")
+    void lpnFindsAPathExactlyWhenTheReferenceDoesAndEveryPathIsSafeAndDescending(String kind,
+            Supplier<Planner> lpnPlanner) {
+        Planner lpn = lpnPlanner.get();
         Planner reference = Planners.reference();
         int found = 0;
         int enclosed = 0;
@@ -66,7 +84,8 @@ class PlannerCompletenessPropertyTest {
         double median = ratios.get(ratios.size() / 2);
         assertTrue(median < 1.0, "LPN paths should mostly be cheaper than 8-connected ones; median ratio " + median);
         System.out.println("median LPN/reference cost " + median + ", ");
-        System.out.println("completeness: " + found + " solvable, " + enclosed + " unsolvable, worst LPN/reference cost "
+        lpn.close();
+        System.out.println(kind + " completeness: " + found + " solvable, " + enclosed + " unsolvable, worst LPN/reference cost "
                 + worstRatio);
     }
 }

@@ -8,16 +8,16 @@ import sabot.model.map.Costmap;
 import sabot.model.map.GridGeometry;
 
 /** Small deterministic costmaps for tests: 1 m cells, origin at (0, 0). */
-final class TestGrids {
+public final class TestGrids {
 
     private TestGrids() {
     }
 
-    static GridGeometry geometry(int width, int height) {
+    public static GridGeometry geometry(int width, int height) {
         return new GridGeometry(width, height, 1.0, Pose2D.ORIGIN);
     }
 
-    static Costmap free(int width, int height) {
+    public static Costmap free(int width, int height) {
         return Costmap.filled(geometry(width, height), Costmap.FREE);
     }
 
@@ -25,7 +25,7 @@ final class TestGrids {
      * A random costmap: lethal rectangles covering about {@code fill} of the area, a ring of inscribed cells and a
      * band of graded cost around each, so that every cost class appears.
      */
-    static Costmap random(long seed, int width, int height, double fill) {
+    public static Costmap random(long seed, int width, int height, double fill) {
         Random random = new Random(seed);
         Costmap costmap = free(width, height);
         int target = (int) (fill * width * height);
@@ -78,7 +78,7 @@ final class TestGrids {
     }
 
     /** @return the centre of a random passable cell */
-    static Point2D randomFreePoint(Random random, Costmap costmap) {
+    public static Point2D randomFreePoint(Random random, Costmap costmap) {
         while (true) {
             int c = random.nextInt(costmap.width());
             int r = random.nextInt(costmap.height());

@@ -46,7 +46,7 @@ import sabot.planner.CostModel;
  * stored as final {@code +infinity}, so one load and one sign test reject both final and impassable neighbours.
  * The loops allocate nothing once the buckets have grown to the map's wavefront size.
  */
-public final class LpnNavigationFunction {
+public final class LpnNavigationFunction implements AutoCloseable {
 
     /** Bits of an unreached passable cell: +infinity, not final. */
     public static final int UNREACHED = 0x7F800000;
@@ -57,8 +57,8 @@ public final class LpnNavigationFunction {
      * unreached cell but is not recorded again as newly reached.
      */
     private static final int RETRACTED = 0x7F7FFFFF;
-    private static final int FINAL = 0x80000000;
-    private static final int VALUE = 0x7FFFFFFF;
+    static final int FINAL = 0x80000000;
+    static final int VALUE = 0x7FFFFFFF;
 
     private static final float SQRT2 = (float) Math.sqrt(2);
     private static final float INV_SQRT2 = (float) (1 / Math.sqrt(2));
@@ -69,6 +69,13 @@ public final class LpnNavigationFunction {
     private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
     private static final int TOUCHED_FRACTION = 8;
+    /**
+     * Ownership bands of the two-thread propagation: 2^16 padded cells (65 rows of a 1000-wide grid), or more where
+     * rows are so long that a band would not hold two of them.
+     */
+    private static final int MIN_OWNER_BAND_LOG2 = 16;
+    /** Grids from this many padded cells are propagated on two threads when two are configured (4 bands or more). */
+    private static final int MIN_PARALLEL_CELLS = 1 << 18;
 
     private final float[] density;
     /** Half of {@link #density}: the edge density between two cells is the sum of their halves. */
@@ -103,8 +110,37 @@ public final class LpnNavigationFunction {
     private int bandShift;
     private int[] bandCounts = new int[2];
     private int[] sortBuffer = new int[0];
+    private final int threads;
+    private final int ownerBandLog2;
+    private final int minParallelCells;
+    private BandedPropagation banded;
 
+    /** A navigation function computed on the calling thread. */
     public LpnNavigationFunction(CostModel costModel) {
+        this(costModel, 1);
+    }
+
+    /**
+     * @param threads 1, or 2 to compute whole-grid navigation functions of large grids (from 2^18 cells) on the
+     *                calling thread and a helper thread ({@link BandedPropagation}); {@link #close} ends the helper
+     */
+    public LpnNavigationFunction(CostModel costModel, int threads) {
+        this(costModel, threads, MIN_OWNER_BAND_LOG2, MIN_PARALLEL_CELLS);
+    }
+
+    /**
+     * For tests: two threads on small grids.
+     *
+     * @param ownerBandLog2    log2 of the ownership bands' size in padded cells, raised to hold more than four rows
+     * @param minParallelCells the least padded grid size computed on two threads
+     */
+    public LpnNavigationFunction(CostModel costModel, int threads, int ownerBandLog2, int minParallelCells) {
+        if (threads < 1 || threads > 2) {
+            throw new IllegalArgumentException("threads must be 1 or 2, not " + threads);
+        }
+        this.threads = threads;
+        this.ownerBandLog2 = ownerBandLog2;
+        this.minParallelCells = minParallelCells;
         this.density = costModel.densityTable();
         this.halfDensity = new float[density.length];
         for (int i = 0; i < density.length; i++) {
@@ -121,6 +157,15 @@ public final class LpnNavigationFunction {
             buckets[i] = new int[INITIAL_BUCKET_CAPACITY];
         }
         this.bucketSizes = new int[ring];
+    }
+
+    /** Ends the helper thread of a two-thread navigation function, if one was started. */
+    @Override
+    public void close() {
+        if (banded != null) {
+            banded.close();
+            banded = null;
+        }
     }
 
     /** @return the value of stored bits: N in cost units, {@code +infinity} for unreached or impassable cells */
@@ -193,6 +238,18 @@ public final class LpnNavigationFunction {
         checkSize = 0;
         resetTouched();
         finalizedCount = 0;
+        if (threads == 2 && stopAtCell < 0 && potential.length >= minParallelCells) {
+            int bandLog2 = ownerBandLog2;
+            while (!BandedPropagation.bandsFit(bandLog2, grid.stride())) {
+                bandLog2++;
+            }
+            if (banded == null) {
+                banded = new BandedPropagation(halfDensity, inverseBucketWidth, bucketMask, bandLog2, bandShift);
+            }
+            touchedCount = touched.length + 1; // not recorded: the next reset copies the initial values whole
+            finalizedCount = banded.propagate(potential, grid.costs(), grid.stride(), goals);
+            return;
+        }
         queued = 0;
         currentBucket = 0;
         Arrays.fill(bucketSizes, 0);
@@ -374,9 +431,7 @@ public final class LpnNavigationFunction {
         float value = decode(bits);
         float c = 0.5f * (own + density[costs[axis] & 0xFF]);
         float corner = Math.min(finalValue(potential[corner1]), finalValue(potential[corner2]));
-        float limit = c * INV_SQRT2;
-        float delta = Math.min(Math.max(0f, value - corner), limit);
-        return Math.min(value + (float) Math.sqrt(c * c - delta * delta), corner + c * SQRT2);
+        return update(value, corner, c);
     }
 
     private static float finalValue(int bits) {
@@ -529,13 +584,22 @@ public final class LpnNavigationFunction {
      * within a band: one counting pass. All cells of the bucket are final, so any order is valid.
      */
     private void sortByMemoryBand(int slot) {
-        int size = bucketSizes[slot];
         int[] items = buckets[slot];
         if (sortBuffer.length < items.length) {
             sortBuffer = new int[items.length];
         }
-        int[] counts = bandCounts;
-        int shift = bandShift;
+        buckets[slot] = sortByMemoryBand(items, bucketSizes[slot], sortBuffer, bandCounts, bandShift);
+        sortBuffer = items;
+    }
+
+    /**
+     * Counting sort of {@code size} cells by memory band ({@code cell >>> shift}), stable within a band.
+     *
+     * @param buffer receives the sorted cells (at least {@code size} long)
+     * @param counts scratch, one more than the number of bands plus one
+     * @return {@code buffer}
+     */
+    static int[] sortByMemoryBand(int[] items, int size, int[] buffer, int[] counts, int shift) {
         // only the bands the front spans are cleared and summed: a bucket often covers a fraction of the grid
         int low = Integer.MAX_VALUE;
         int high = 0;
@@ -551,13 +615,11 @@ public final class LpnNavigationFunction {
         for (int band = low + 1; band <= high + 1; band++) {
             counts[band] += counts[band - 1];
         }
-        int[] sorted = sortBuffer;
         for (int i = 0; i < size; i++) {
             int item = items[i];
-            sorted[counts[item >>> shift]++] = item;
+            buffer[counts[item >>> shift]++] = item;
         }
-        buckets[slot] = sorted;
-        sortBuffer = items;
+        return buffer;
     }
 
     /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}. */
@@ -610,22 +672,30 @@ public final class LpnNavigationFunction {
     /**
      * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
-     * Selections are written as conditional expressions (compiled to conditional moves): whether a corner is lower is
-     * unpredictable, and mispredicted branches, not arithmetic, dominate this loop.
      */
     private void relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
             float[] halfDensity, byte[] costs) {
-        float c = halfDensity[costs[target] & 0xFF] + ownHalfDensity;
+        float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
+        if (Float.floatToRawIntBits(best) < targetBits) {
+            lower(target, targetBits, best);
+        }
+    }
+
+    /**
+     * The interpolated update (see the class comment) of a cell from a final axis neighbour of value {@code value}
+     * through the lower of its two diagonal corners next to that neighbour, {@code corner}, for edge density
+     * {@code c}. A corner at or above {@code value} gives the axis step {@code value + c}, whatever its value.
+     * Selections are written as conditional expressions (compiled to conditional moves): whether a corner is lower is
+     * unpredictable, and mispredicted branches, not arithmetic, dominate the propagation.
+     */
+    static float update(float value, float corner, float c) {
         float limit = c * INV_SQRT2;
         float delta = value - corner;
         delta = delta < 0f ? 0f : delta > limit ? limit : delta;
         // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner
         float interior = value + (float) Math.sqrt(c * c - delta * delta);
         float straight = corner + c * SQRT2;
-        float best = interior < straight ? interior : straight;
-        if (Float.floatToRawIntBits(best) < targetBits) {
-            lower(target, targetBits, best);
-        }
+        return interior < straight ? interior : straight;
     }
 
     private void lower(int target, int oldBits, float newValue) {

@@ -36,6 +36,21 @@ public final class LpnPlanner implements Planner {
      *                    instead of recomputing it; needs {@code wholeGrid}
      */
     public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental) {
+        this(costModel, wholeGrid, incremental, 1);
+    }
+
+    /**
+     * @param threads 1, or 2 to compute whole-grid navigation functions of large grids on two threads (see
+     *                {@link LpnNavigationFunction#LpnNavigationFunction(CostModel, int)}); bounded computations and
+     *                repairs run on the calling thread
+     */
+    public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental, int threads) {
+        this(costModel, wholeGrid, incremental, new LpnNavigationFunction(costModel, threads));
+    }
+
+    /** With a navigation function made for it (same cost model), e.g. two threads on small grids in tests. */
+    public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental,
+            LpnNavigationFunction navigationFunction) {
         if (incremental && !wholeGrid) {
             throw new IllegalArgumentException("incremental re-planning repairs a navigation function over the whole grid");
         }
@@ -43,7 +58,12 @@ public final class LpnPlanner implements Planner {
         this.costModel = costModel;
         this.wholeGrid = wholeGrid;
         this.density = costModel.densityTable();
-        this.navigationFunction = new LpnNavigationFunction(costModel);
+        this.navigationFunction = navigationFunction;
+    }
+
+    @Override
+    public void close() {
+        navigationFunction.close();
     }
 
     @Override

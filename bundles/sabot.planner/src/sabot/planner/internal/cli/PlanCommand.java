@@ -31,11 +31,13 @@ public final class PlanCommand {
     static final String USAGE = """
             usage: sabot plan (--map FILE.yaml | --costmap FILE.pgm) --start X,Y --goal X,Y [--goal X,Y ...]
                               [--cells] [--planner lpn|lpn-bounded|reference|dijkstra] [--repeat N] [--png OUT.png]
-                              [--resolution M] [--inscribed-radius M] [--inflation-radius M] [--cost-scaling F]
-                              [--allow-unknown]
+                              [--threads 1|2] [--resolution M] [--inscribed-radius M] [--inflation-radius M]
+                              [--cost-scaling F] [--allow-unknown]
               --map            ROS map_server YAML (+ PGM); obstacles are inflated for the robot
               --costmap        raw 8-bit costmap PGM (0 free, 1..252 cost, 253 inscribed, 254 lethal, 255 unknown)
               --cells          start/goal are column,row with row 0 at the top of the image (else metres, map frame)
+              --threads        2: lpn computes the navigation function of maps from 2^18 cells on two threads
+                               (default 1)
               --resolution     metres per cell of a --costmap image (default 1)
               --inscribed-radius, --inflation-radius (metres), --cost-scaling (1/m): inflation of a --map
                                (defaults 0.15, 0.55, 10)
@@ -100,14 +102,17 @@ public final class PlanCommand {
             goals.add(o.point(goal, geometry, "--goal"));
         }
         CostModel costModel = o.allowUnknown ? CostModel.allowingUnknown() : CostModel.standard();
-        Planner planner = Planners.byName(o.planner, costModel).orElseThrow(() -> new UsageException(
-                "unknown planner '" + o.planner + "', expected one of " + String.join(", ", Planners.NAMES)));
         double[] millis = new double[o.repeat];
         PlanResult result = null;
-        for (int i = 0; i < o.repeat; i++) {
-            long begin = System.nanoTime();
-            result = planner.plan(costmap, start, goals);
-            millis[i] = (System.nanoTime() - begin) / 1e6;
+        String plannerName;
+        try (Planner planner = Planners.byName(o.planner, costModel, o.threads).orElseThrow(() -> new UsageException(
+                "unknown planner '" + o.planner + "', expected one of " + String.join(", ", Planners.NAMES)))) {
+            plannerName = planner.name();
+            for (int i = 0; i < o.repeat; i++) {
+                long begin = System.nanoTime();
+                result = planner.plan(costmap, start, goals);
+                millis[i] = (System.nanoTime() - begin) / 1e6;
+            }
         }
         Arrays.sort(millis);
         double median = o.repeat % 2 == 1 ? millis[o.repeat / 2] : (millis[o.repeat / 2 - 1] + millis[o.repeat / 2]) / 2;
@@ -120,7 +125,8 @@ public final class PlanCommand {
             image.writePng(Path.of(o.png));
         }
         StringBuilder json = new StringBuilder("{");
-        json.append("\"planner\":\"").append(planner.name()).append('"');
+        json.append("\"planner\":\"").append(plannerName).append('"');
+        json.append(",\"threads\":").append(o.threads);
         switch (result) {
             case PlanResult.Found found -> json.append(",\"status\":\"ok\",\"reason\":null,\"detail\":null");
             case PlanResult.Unreachable u -> json.append(",\"status\":\"unreachable\",\"reason\":\"")
@@ -159,6 +165,7 @@ public final class PlanCommand {
         boolean cells;
         String planner = "lpn";
         int repeat = 1;
+        int threads = 1;
         String png;
         double resolution = 1.0;
         double inscribedRadius = 0.15;
@@ -179,6 +186,7 @@ public final class PlanCommand {
                     case "--cells" -> o.cells = true;
                     case "--planner" -> o.planner = value(args, ++i, arg);
                     case "--repeat" -> o.repeat = positiveInt(value(args, ++i, arg), arg);
+                    case "--threads" -> o.threads = threads(value(args, ++i, arg), arg);
                     case "--png" -> o.png = value(args, ++i, arg);
                     case "--resolution" -> o.resolution = positive(value(args, ++i, arg), arg);
                     case "--inscribed-radius" -> o.inscribedRadius = nonNegative(value(args, ++i, arg), arg);
@@ -224,6 +232,14 @@ public final class PlanCommand {
                         + geometry.width() + " x " + geometry.height() + " map");
             }
             return geometry.cellCentre(column, geometry.height() - 1 - imageRow);
+        }
+
+        private static int threads(String text, String option) throws UsageException {
+            int n = positiveInt(text, option);
+            if (n > 2) {
+                throw new UsageException(option + " must be 1 or 2, not " + text);
+            }
+            return n;
         }
 
         private static String value(String[] args, int index, String option) throws UsageException {

@@ -67,6 +67,19 @@ class PlanCommandTest {
     }
 
     @Test
+    void twoThreadsAreReportedAndGiveTheSamePath() throws IOException {
+        String costs = costmapFile().toString();
+        Run one = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells");
+        Run two = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells", "--threads", "2");
+        assertEquals(0, two.status(), two.err());
+        assertTrue(two.lastLine().contains("\"threads\":2") && one.lastLine().contains("\"threads\":1"), two.lastLine());
+        // a 20 x 10 map is below the two-thread threshold: the same computation, so the same path
+        String path = "\"path_length\"";
+        assertEquals(one.lastLine().substring(one.lastLine().indexOf(path)), two.lastLine().substring(two.lastLine()
+                .indexOf(path)));
+    }
+
+    @Test
     void referencePlannerAndUnreachableGoalAreReportedInJson() throws IOException {
         Run r = run("--costmap", costmapFile().toString(), "--start", "2,2", "--goal", "10,2", "--cells", "--planner",
                 "reference");
@@ -86,6 +99,8 @@ class PlanCommandTest {
             "--costmap COSTS --start 1,1 --goal 2,2 --cells --repeat 0|positive integer",
             "--costmap COSTS --start 1,1 --goal 99,2 --cells|outside the 20 x 10 map",
             "--costmap COSTS --start 1,1 --goal 2,2 --planner magic|unknown planner 'magic'",
+            "--costmap COSTS --start 1,1 --goal 2,2 --threads 3|--threads must be 1 or 2, not 3",
+            "--costmap COSTS --start 1,1 --goal 2,2 --threads 0|positive integer",
             "--costmap COSTS --start 1,1 --goal 2,2 --resolution -1|must be positive",
             "--costmap COSTS --start 1,1 --goal 2,2 --frobnicate|unknown argument",
             "--costmap MISSING --start 1,1 --goal 2,2|image file does not exist",

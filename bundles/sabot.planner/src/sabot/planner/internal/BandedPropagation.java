@@ -1,0 +1,515 @@
+package sabot.planner.internal;
+
+import java.lang.ref.Cleaner;
+import java.util.Arrays;
+import java.util.concurrent.locks.LockSupport;
+
+/**
+ * The propagation of {@link LpnNavigationFunction} on two threads, for the whole reachable grid.
+ *
+ * <p><b>Ownership.</b> The padded grid is cut into bands of {@code 2^bandLog2} consecutive cells (at least four rows),
+ * owned alternately by worker 0 and worker 1. A worker writes only the cells it owns, so the stored values need no
+ * atomic operations. A cell whose row above or below lies in the other band ("near the boundary") has neighbours of
+ * both owners: when its owner lowers it, it also hands the cell with its value to the other worker's <em>halo</em>
+ * queue, and the other worker expands it for the neighbours it owns. Halo entries carry the value they were queued
+ * with; an entry whose cell has been lowered again since is stale and skipped (its newer entry comes first).
+ *
+ * <p><b>Order.</b> Each worker has its own ring of Dial buckets (the same widths as the sequential propagation). A
+ * worker expands bucket k (its own cells, sorted by memory band, then its halo entries) once the other has finished
+ * bucket k - 1, so the two never drift more than one bucket apart. Values below bucket k are then final on both sides;
+ * but a worker may still write values into bucket k while the other expands it (an update through a much lower
+ * corner, the straight diagonal, raises N by less than a bucket over the value expanded). So that results do not
+ * depend on timing, a worker never reads the other's cells from the grid: it reads them from a snapshot the other
+ * took at the end of bucket k - 1 (two of them, alternating, hold the cells within two rows of a boundary). Every run
+ * gives the same bits. The workers stop at the first bucket k that both have passed without anything queued at k or
+ * later (each publishes the last bucket it queued into, its own or the other's halo, with the bucket it finished).
+ *
+ * <p><b>Versus one thread.</b> N is the same function up to which straight diagonal steps are seen: the sequential
+ * method already misses one when both axis cells beside it are expanded after the cell in the same bucket, so N
+ * depends on the order within a bucket, and two threads order it differently (and see the other band one bucket
+ * late). The reached cells are the same; values differ slightly in a few per cent of the cells (at most 0.03 % on a
+ * 600 x 520 test grid), both being the costs of real paths; paths meet the same properties
+ * (PlannerCompletenessPropertyTest runs on both).
+ *
+ * <p>The second worker runs on a daemon thread owned by this object, parked between computations; {@link #close}
+ * ends it (and a {@link Cleaner} does, should an instance be dropped unclosed). Workers wait for each other by
+ * spinning: a computation keeps both cores busy while it lasts.
+ */
+final class BandedPropagation implements AutoCloseable {
+
+    /** Ends helper threads of instances dropped without {@link #close}. */
+    private static final Cleaner CLEANER = Cleaner.create();
+
+    private final Crew crew;
+    private final Cleaner.Cleanable cleanable;
+
+    /**
+     * @param bandLog2 log2 of the band size in padded cells; bands must hold more than two rows (checked per run)
+     */
+    BandedPropagation(float[] halfDensity, float inverseBucketWidth, int bucketMask, int bandLog2, int sortBandLog2) {
+        this.crew = new Crew(halfDensity, inverseBucketWidth, bucketMask, bandLog2, sortBandLog2);
+        this.cleanable = CLEANER.register(this, crew::close);
+    }
+
+    /** @return whether bands of this size work for rows of {@code stride} cells: more than four rows per band */
+    static boolean bandsFit(int bandLog2, int stride) {
+        return (1L << bandLog2) > 4L * stride + 4;
+    }
+
+    /**
+     * Expands everything reachable from {@code goals} (padded indices of cells reset to {@link
+     * LpnNavigationFunction#UNREACHED}): on return every reachable cell holds its final value with the final flag.
+     *
+     * @return the number of cells finalized
+     */
+    int propagate(int[] potential, byte[] costs, int stride, int[] goals) {
+        return crew.propagate(potential, costs, stride, goals);
+    }
+
+    @Override
+    public void close() {
+        cleanable.clean();
+    }
+
+    /** Everything the helper thread touches: it must not refer to the {@link BandedPropagation} the cleaner watches. */
+    private static final class Crew {
+        final float[] halfDensity;
+        final float inverseBucketWidth;
+        final int bucketMask;
+        final int bandLog2;
+        final int sortBandLog2;
+        final Worker[] workers = new Worker[2];
+
+        int[] potential;
+        byte[] costs;
+        int stride;
+        /** Incremented (after the inputs are set) to start the helper's worker. */
+        volatile int generation;
+        volatile boolean closed;
+        volatile boolean helperFinished = true;
+        volatile Throwable helperFailure;
+        Thread helper;
+
+        Crew(float[] halfDensity, float inverseBucketWidth, int bucketMask, int bandLog2, int sortBandLog2) {
+            this.halfDensity = halfDensity;
+            this.inverseBucketWidth = inverseBucketWidth;
+            this.bucketMask = bucketMask;
+            this.bandLog2 = bandLog2;
+            this.sortBandLog2 = sortBandLog2;
+            workers[0] = new Worker(this, 0);
+            workers[1] = new Worker(this, 1);
+            workers[0].other = workers[1];
+            workers[1].other = workers[0];
+        }
+
+        int propagate(int[] potential, byte[] costs, int stride, int[] goals) {
+            if (closed) {
+                throw new IllegalStateException("the two-thread propagation is closed");
+            }
+            if (!bandsFit(bandLog2, stride)) {
+                throw new IllegalArgumentException("bands of 2^" + bandLog2 + " cells are too small for rows of "
+                        + stride);
+            }
+            this.potential = potential;
+            this.costs = costs;
+            this.stride = stride;
+            for (Worker worker : workers) {
+                worker.reset(potential.length >>> sortBandLog2);
+            }
+            for (int goal : goals) {
+                if (potential[goal] == LpnNavigationFunction.UNREACHED) {
+                    potential[goal] = 0;
+                    Worker owner = workers[(goal >>> bandLog2) & 1];
+                    owner.queue(goal, 0, 0, LpnNavigationFunction.UNREACHED);
+                }
+            }
+            for (Worker worker : workers) {
+                worker.progress.lastQueued = worker.lastQueued;
+                worker.initialSnapshots();
+            }
+            startHelper();
+            Throwable failure = null;
+            try {
+                workers[0].run();
+            } catch (RuntimeException | Error e) {
+                failure = e;
+                workers[0].abandon();
+            }
+            awaitHelper();
+            Throwable helperProblem = helperFailure;
+            if (failure == null && helperProblem != null) {
+                failure = helperProblem;
+            }
+            if (failure instanceof RuntimeException e) {
+                throw e;
+            }
+            if (failure instanceof Error e) {
+                throw e;
+            }
+            return workers[0].finalized + workers[1].finalized;
+        }
+
+        private void startHelper() {
+            helperFailure = null;
+            helperFinished = false;
+            if (helper == null) {
+                helper = new Thread(this::helperLoop, "sabot-lpn-band-worker");
+                helper.setDaemon(true);
+                helper.start();
+            }
+            generation++;
+            LockSupport.unpark(helper);
+        }
+
+        private void awaitHelper() {
+            int spins = 0;
+            while (!helperFinished) {
+                spins = Worker.pause(spins);
+            }
+        }
+
+        private void helperLoop() {
+            int seen = 0;
+            while (true) {
+                while (generation == seen && !closed) {
+                    LockSupport.park(this);
+                }
+                if (closed) {
+                    return;
+                }
+                seen = generation;
+                try {
+                    workers[1].run();
+                } catch (RuntimeException | Error e) {
+                    helperFailure = e;
+                    workers[1].abandon();
+                } finally {
+                    helperFinished = true;
+                }
+            }
+        }
+
+        void close() {
+            closed = true;
+            Thread thread = helper;
+            if (thread != null) {
+                LockSupport.unpark(thread);
+                boolean interrupted = false;
+                while (thread.isAlive()) {
+                    try {
+                        thread.join();
+                    } catch (InterruptedException e) {
+                        interrupted = true;
+                    }
+                }
+                if (interrupted) {
+                    Thread.currentThread().interrupt();
+                }
+            }
+        }
+    }
+
+    /** Padding on both sides of {@link Progress}' fields, which the other worker polls while this one works. */
+    private static class ProgressPadding {
+        long p1, p2, p3, p4, p5, p6, p7, p8;
+    }
+
+    private static class ProgressFields extends ProgressPadding {
+        /** The last bucket finished; {@link Integer#MAX_VALUE} once the worker has stopped. */
+        volatile int finished;
+        /** The last bucket this worker queued into (own ring or the other's halo) when {@link #finished} was set. */
+        volatile int lastQueued;
+    }
+
+    private static final class Progress extends ProgressFields {
+        long q1, q2, q3, q4, q5, q6, q7, q8;
+    }
+
+    /** A growable list of ints. */
+    private static final class IntList {
+        int[] items = new int[256];
+        int size;
+
+        void add(int value) {
+            if (size == items.length) {
+                items = Arrays.copyOf(items, size * 2);
+            }
+            items[size++] = value;
+        }
+
+        void clear() {
+            size = 0;
+        }
+    }
+
+    private static final class Worker {
+        private static final int INITIAL_CAPACITY = 1024;
+        private static final int INITIAL_HALO_CAPACITY = 256;
+
+        final Crew crew;
+        final int id;
+        Worker other;
+        final int[][] own;
+        final int[] ownSizes;
+        /** Cells of the other band with the value bits they were queued with, in pairs; written by the other worker. */
+        final int[][] halo;
+        final int[] haloSizes;
+        final Progress progress = new Progress();
+        int[] sortBuffer = new int[0];
+        int[] bandCounts = new int[2];
+        /**
+         * Values of this worker's cells within two rows of a band boundary (the only ones the other worker reads), as
+         * they were at the end of a bucket: [k & 1] after bucket k. The other worker, in bucket k, reads [(k - 1) & 1],
+         * which does not change while it may read it, so what it reads does not depend on timing.
+         */
+        final int[][] snapshots = { new int[0], new int[0] };
+        /** Such cells lowered during a bucket, [k & 1] for bucket k: copied into the snapshots at its end and next. */
+        final IntList[] lowered = { new IntList(), new IntList() };
+        int current;
+        int lastQueued;
+        int finalized;
+
+        Worker(Crew crew, int id) {
+            this.crew = crew;
+            this.id = id;
+            int ring = crew.bucketMask + 1;
+            own = new int[ring][];
+            halo = new int[ring][];
+            for (int i = 0; i < ring; i++) {
+                own[i] = new int[INITIAL_CAPACITY];
+                halo[i] = new int[INITIAL_HALO_CAPACITY];
+            }
+            ownSizes = new int[ring];
+            haloSizes = new int[ring];
+        }
+
+        void reset(int sortBands) {
+            if (snapshots[0].length != crew.potential.length) {
+                snapshots[0] = new int[crew.potential.length];
+                snapshots[1] = new int[crew.potential.length];
+            }
+            lowered[0].clear();
+            lowered[1].clear();
+            Arrays.fill(ownSizes, 0);
+            Arrays.fill(haloSizes, 0);
+            if (bandCounts.length != sortBands + 2) {
+                bandCounts = new int[sortBands + 2];
+            }
+            current = -1; // goals are queued before the run: into bucket 0 on both sides
+            lastQueued = -1;
+            finalized = 0;
+            progress.finished = -1;
+            progress.lastQueued = -1;
+        }
+
+        /** Lets the other worker run to its end after this one failed. */
+        void abandon() {
+            progress.lastQueued = -1;
+            progress.finished = Integer.MAX_VALUE;
+        }
+
+        static int pause(int spins) {
+            if (spins < 1 << 12) {
+                Thread.onSpinWait();
+            } else {
+                Thread.yield();
+            }
+            return spins + 1;
+        }
+
+        void run() {
+            final int[] potential = crew.potential;
+            final int mask = crew.bucketMask;
+            final int sortThreshold = bandCounts.length >> 3;
+            try {
+                for (int k = 0;; k++) {
+                    current = k;
+                    int spins = 0;
+                    while (other.progress.finished < k - 1) {
+                        spins = pause(spins);
+                    }
+                    if (lastQueued < k && other.progress.lastQueued < k) {
+                        return;
+                    }
+                    int slot = k & mask;
+                    if (ownSizes[slot] >= sortThreshold) {
+                        sortByMemoryBand(slot);
+                    }
+                    do {
+                        for (int head = 0; head < ownSizes[slot]; head++) {
+                            int cell = own[slot][head];
+                            int bits = potential[cell];
+                            if (bits < 0) {
+                                continue; // expanded from an earlier, lower entry
+                            }
+                            potential[cell] = bits | LpnNavigationFunction.FINAL;
+                            finalized++;
+                            expand(cell, Float.intBitsToFloat(bits), nearBoundary(cell));
+                        }
+                        ownSizes[slot] = 0;
+                        int[] entries = halo[slot];
+                        int haloSize = haloSizes[slot];
+                        int[] theirs = other.snapshots[(k - 1) & 1];
+                        for (int i = 0; i < haloSize; i += 2) {
+                            int cell = entries[i];
+                            int bits = theirs[cell];
+                            if (bits == entries[i + 1]) {
+                                expand(cell, Float.intBitsToFloat(bits), true);
+                            }
+                        }
+                        haloSizes[slot] = 0;
+                        // an update through a much lower corner (its straight diagonal) may fall into this bucket
+                    } while (ownSizes[slot] > 0);
+                    takeSnapshot(k);
+                    progress.lastQueued = lastQueued;
+                    progress.finished = k;
+                }
+            } finally {
+                progress.finished = Integer.MAX_VALUE;
+            }
+        }
+
+        /** The snapshot the other worker starts with: its cells near boundaries as they are before the run. */
+        void initialSnapshots() {
+            int[] potential = crew.potential;
+            int zone = 2 * crew.stride + 1;
+            int band = 1 << crew.bandLog2;
+            for (int boundary = band; boundary - zone < potential.length; boundary += band) {
+                int from = Math.max(0, boundary - zone);
+                int to = Math.min(potential.length, boundary + zone);
+                for (int cell = from; cell < to; cell++) {
+                    snapshots[0][cell] = potential[cell] & LpnNavigationFunction.VALUE;
+                    snapshots[1][cell] = snapshots[0][cell];
+                }
+            }
+        }
+
+        /** Brings snapshot [k & 1] up to date at the end of bucket k: it lacks what was lowered in buckets k - 1 and k. */
+        private void takeSnapshot(int k) {
+            int[] snapshot = snapshots[k & 1];
+            int[] potential = crew.potential;
+            for (int b = k - 1; b <= k; b++) {
+                IntList list = lowered[b & 1];
+                int[] cells = list.items;
+                for (int i = 0; i < list.size; i++) {
+                    snapshot[cells[i]] = potential[cells[i]] & LpnNavigationFunction.VALUE;
+                }
+            }
+            lowered[(k + 1) & 1].clear(); // bucket k - 1's, now in both snapshots: the list of bucket k + 1
+        }
+
+        /** @return whether the other worker may read this cell: within two rows of a band boundary */
+        private boolean inSnapshotZone(int cell) {
+            int shift = crew.bandLog2;
+            int reach = 2 * crew.stride;
+            return (cell - reach) >>> shift != (cell + reach) >>> shift;
+        }
+
+        private boolean nearBoundary(int cell) {
+            int shift = crew.bandLog2;
+            int stride = crew.stride;
+            return (cell - stride) >>> shift != (cell + stride) >>> shift;
+        }
+
+        private boolean owns(int cell) {
+            return ((cell >>> crew.bandLog2) & 1) == id;
+        }
+
+        /**
+         * Updates the axis neighbours of a final cell (own or, from the halo, the other's) that this worker owns; see
+         * {@link LpnNavigationFunction} for why the four neighbours are read once.
+         */
+        private void expand(int cell, float value, boolean checkOwner) {
+            final int stride = crew.stride;
+            float ownHalfDensity = crew.halfDensity[crew.costs[cell] & 0xFF];
+            int eastBits = read(cell + 1, checkOwner);
+            int westBits = read(cell - 1, checkOwner);
+            int northBits = read(cell + stride, checkOwner);
+            int southBits = read(cell - stride, checkOwner);
+            float northSouthCorner = Math.min(LpnNavigationFunction.decode(northBits),
+                    LpnNavigationFunction.decode(southBits));
+            float eastWestCorner = Math.min(LpnNavigationFunction.decode(eastBits),
+                    LpnNavigationFunction.decode(westBits));
+            if (eastBits >= 0 && (!checkOwner || owns(cell + 1))) {
+                relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity);
+            }
+            if (westBits >= 0 && (!checkOwner || owns(cell - 1))) {
+                relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity);
+            }
+            if (northBits >= 0 && (!checkOwner || owns(cell + stride))) {
+                relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity);
+            }
+            if (southBits >= 0 && (!checkOwner || owns(cell - stride))) {
+                relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity);
+            }
+        }
+
+        /**
+         * A neighbour's bits: this worker's from the grid, the other's from the snapshot the other finished before
+         * this bucket (without final flag: never a target here, a corner only).
+         */
+        private int read(int cell, boolean maybeOthers) {
+            if (!maybeOthers || owns(cell)) {
+                return crew.potential[cell];
+            }
+            return other.snapshots[(current - 1) & 1][cell];
+        }
+
+        private void relax(int target, int targetBits, float value, float corner, float ownHalfDensity) {
+            float c = crew.halfDensity[crew.costs[target] & 0xFF] + ownHalfDensity;
+            float best = LpnNavigationFunction.update(value, corner, c);
+            int bestBits = Float.floatToRawIntBits(best);
+            if (bestBits < targetBits) {
+                crew.potential[target] = bestBits;
+                queue(target, bestBits, (int) (best * crew.inverseBucketWidth), targetBits);
+            }
+        }
+
+        /** Queues a cell just lowered from {@code oldBits} to {@code bits} (bucket {@code bucket} by its value). */
+        void queue(int cell, int bits, int bucket, int oldBits) {
+            int ownBucket = Math.max(bucket, current);
+            // still queued in the same bucket: that entry reads the lower value when it comes up
+            if (oldBits == LpnNavigationFunction.UNREACHED
+                    || (int) (Float.intBitsToFloat(oldBits) * crew.inverseBucketWidth) != bucket) {
+                int slot = ownBucket & crew.bucketMask;
+                int size = ownSizes[slot];
+                int[] items = own[slot];
+                if (size == items.length) {
+                    items = Arrays.copyOf(items, size * 2);
+                    own[slot] = items;
+                }
+                items[size] = cell;
+                ownSizes[slot] = size + 1;
+                lastQueued = Math.max(lastQueued, ownBucket);
+            }
+            if (inSnapshotZone(cell)) {
+                lowered[current & 1].add(cell);
+            }
+            if (nearBoundary(cell)) {
+                // the other worker expands it for its own neighbours, at the earliest in its next bucket
+                int haloBucket = Math.max(bucket, current + 1);
+                int slot = haloBucket & crew.bucketMask;
+                int size = other.haloSizes[slot];
+                int[] entries = other.halo[slot];
+                if (size + 2 > entries.length) {
+                    entries = Arrays.copyOf(entries, entries.length * 2);
+                    other.halo[slot] = entries;
+                }
+                entries[size] = cell;
+                entries[size + 1] = bits;
+                other.haloSizes[slot] = size + 2;
+                lastQueued = Math.max(lastQueued, haloBucket);
+            }
+        }
+
+        private void sortByMemoryBand(int slot) {
+            int[] items = own[slot];
+            if (sortBuffer.length < items.length) {
+                sortBuffer = new int[items.length];
+            }
+            own[slot] = LpnNavigationFunction.sortByMemoryBand(items, ownSizes[slot], sortBuffer, bandCounts,
+                    crew.sortBandLog2);
+            sortBuffer = items;
+        }
+    }
+}
