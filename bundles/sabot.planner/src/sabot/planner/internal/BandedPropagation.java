@@ -98,8 +98,8 @@ final class BandedPropagation implements AutoCloseable {
             this.sortBandLog2 = sortBandLog2;
             workers[0] = new Worker(this, 0);
             workers[1] = new Worker(this, 1);
-            workers[0].other = workers[1];
-            workers[1].other = workers[0];
+            workers[0].meet(workers[1]);
+            workers[1].meet(workers[0]);
         }
 
         int propagate(int[] potential, byte[] costs, int stride, int[] goals) {
@@ -248,7 +248,14 @@ final class BandedPropagation implements AutoCloseable {
 
         final Crew crew;
         final int id;
-        Worker other;
+        /*
+         * The other worker's queues and progress, referred to from this object: reading them through the other's
+         * object would share a cache line with the counters it updates all the time.
+         */
+        private int[][] theirHalo;
+        private int[] theirHaloSizes;
+        private int[][] theirSnapshots;
+        private Progress theirProgress;
         final int[][] own;
         final int[] ownSizes;
         /** Cells of the other band with the value bits they were queued with, in pairs; written by the other worker. */
@@ -273,14 +280,22 @@ final class BandedPropagation implements AutoCloseable {
             this.crew = crew;
             this.id = id;
             int ring = crew.bucketMask + 1;
+            // the sizes this worker updates all the time and those the other one updates apart in memory
+            ownSizes = new int[ring];
             own = new int[ring][];
             halo = new int[ring][];
             for (int i = 0; i < ring; i++) {
                 own[i] = new int[INITIAL_CAPACITY];
                 halo[i] = new int[INITIAL_HALO_CAPACITY];
             }
-            ownSizes = new int[ring];
             haloSizes = new int[ring];
+        }
+
+        void meet(Worker other) {
+            theirHalo = other.halo;
+            theirHaloSizes = other.haloSizes;
+            theirSnapshots = other.snapshots;
+            theirProgress = other.progress;
         }
 
         void reset(int sortBands) {
@@ -325,10 +340,10 @@ final class BandedPropagation implements AutoCloseable {
                 for (int k = 0;; k++) {
                     current = k;
                     int spins = 0;
-                    while (other.progress.finished < k - 1) {
+                    while (theirProgress.finished < k - 1) {
                         spins = pause(spins);
                     }
-                    if (lastQueued < k && other.progress.lastQueued < k) {
+                    if (lastQueued < k && theirProgress.lastQueued < k) {
                         return;
                     }
                     int slot = k & mask;
@@ -349,7 +364,7 @@ final class BandedPropagation implements AutoCloseable {
                         ownSizes[slot] = 0;
                         int[] entries = halo[slot];
                         int haloSize = haloSizes[slot];
-                        int[] theirs = other.snapshots[(k - 1) & 1];
+                        int[] theirs = theirSnapshots[(k - 1) & 1];
                         for (int i = 0; i < haloSize; i += 2) {
                             int cell = entries[i];
                             int bits = theirs[cell];
@@ -452,7 +467,7 @@ final class BandedPropagation implements AutoCloseable {
             if (!maybeOthers || owns(cell)) {
                 return crew.potential[cell];
             }
-            return other.snapshots[(current - 1) & 1][cell];
+            return theirSnapshots[(current - 1) & 1][cell];
         }
 
         private void relax(int target, int targetBits, float value, float corner, float ownHalfDensity) {
@@ -489,15 +504,15 @@ final class BandedPropagation implements AutoCloseable {
                 // the other worker expands it for its own neighbours, at the earliest in its next bucket
                 int haloBucket = Math.max(bucket, current + 1);
                 int slot = haloBucket & crew.bucketMask;
-                int size = other.haloSizes[slot];
-                int[] entries = other.halo[slot];
+                int size = theirHaloSizes[slot];
+                int[] entries = theirHalo[slot];
                 if (size + 2 > entries.length) {
                     entries = Arrays.copyOf(entries, entries.length * 2);
-                    other.halo[slot] = entries;
+                    theirHalo[slot] = entries;
                 }
                 entries[size] = cell;
                 entries[size + 1] = bits;
-                other.haloSizes[slot] = size + 2;
+                theirHaloSizes[slot] = size + 2;
                 lastQueued = Math.max(lastQueued, haloBucket);
             }
         }
