@@ -63,6 +63,12 @@ class BandedPropagationTest {
         return goals;
     }
 
+    private static int[] randomGoals(Costmap costmap, long seed) {
+        PlanningGrid layout = new PlanningGrid();
+        layout.sync(costmap);
+        return goals(new Random(seed), costmap, layout);
+    }
+
     @Test
     void twoThreadsReachTheSameCellsWithTheSameValuesAsOne() {
         int differing = 0;
@@ -105,9 +111,7 @@ class BandedPropagationTest {
     @Test
     void everyRunGivesTheSameBits() {
         Costmap costmap = TestGrids.random(42, 150, 110, 0.2);
-        PlanningGrid layout = new PlanningGrid();
-        layout.sync(costmap);
-        int[] goals = goals(new Random(42), costmap, layout);
+        int[] goals = randomGoals(costmap, 42);
         Computed first = compute(costmap, 2, goals);
         int[] bits = first.function().potential().clone();
         for (int run = 0; run < 20; run++) {
@@ -176,9 +180,7 @@ class BandedPropagationTest {
     @Test
     void aRepairAfterATwoThreadComputationMatchesAFreshOne() {
         Costmap costmap = TestGrids.random(9, 120, 100, 0.15);
-        PlanningGrid layout = new PlanningGrid();
-        layout.sync(costmap);
-        int[] goals = goals(new Random(9), costmap, layout);
+        int[] goals = randomGoals(costmap, 9);
         Computed computed = compute(costmap, 2, goals);
         // a new obstacle near the middle, as a sonar would add it
         CellRegion block = new CellRegion(55, 45, 60, 52);
