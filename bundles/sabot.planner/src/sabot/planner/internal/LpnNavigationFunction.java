@@ -247,7 +247,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 banded = new BandedPropagation(halfDensity, inverseBucketWidth, bucketMask, bandLog2, bandShift);
             }
             touchedCount = touched.length + 1; // not recorded: the next reset copies the initial values whole
+            completeGoals = null; // until the computation has succeeded: a repair must not build on a partial one
             finalizedCount = banded.propagate(potential, grid.costs(), grid.stride(), goals);
+            completeGoals = goals.clone();
             return;
         }
         queued = 0;
