@@ -44,10 +44,11 @@ final class BandedPropagation implements AutoCloseable {
     private final Cleaner.Cleanable cleanable;
 
     /**
-     * @param bandLog2 log2 of the band size in padded cells; bands must hold more than two rows (checked per run)
+     * @param minBandLog2 log2 of the least ownership band size in padded cells; each run raises it until a band holds
+     *                    more than four rows of its grid
      */
-    BandedPropagation(float[] halfDensity, float inverseBucketWidth, int bucketMask, int bandLog2, int sortBandLog2) {
-        this.crew = new Crew(halfDensity, inverseBucketWidth, bucketMask, bandLog2, sortBandLog2);
+    BandedPropagation(float[] halfDensity, float inverseBucketWidth, int bucketMask, int minBandLog2) {
+        this.crew = new Crew(halfDensity, inverseBucketWidth, bucketMask, minBandLog2);
         this.cleanable = CLEANER.register(this, crew::close);
     }
 
@@ -60,10 +61,11 @@ final class BandedPropagation implements AutoCloseable {
      * Expands everything reachable from {@code goals} (padded indices of cells reset to {@link
      * LpnNavigationFunction#UNREACHED}): on return every reachable cell holds its final value with the final flag.
      *
+     * @param sortBandLog2 log2 of the memory bands a large bucket is sorted by (as in the sequential propagation)
      * @return the number of cells finalized
      */
-    int propagate(int[] potential, byte[] costs, int stride, int[] goals) {
-        return crew.propagate(potential, costs, stride, goals);
+    int propagate(int[] potential, byte[] costs, int stride, int[] goals, int sortBandLog2) {
+        return crew.propagate(potential, costs, stride, goals, sortBandLog2);
     }
 
     @Override
@@ -76,8 +78,10 @@ final class BandedPropagation implements AutoCloseable {
         final float[] halfDensity;
         final float inverseBucketWidth;
         final int bucketMask;
-        final int bandLog2;
-        final int sortBandLog2;
+        final int minBandLog2;
+        /** Per run: ownership bands, at least {@link #minBandLog2} and more than four rows. */
+        int bandLog2;
+        int sortBandLog2;
         final Worker[] workers = new Worker[2];
 
         int[] potential;
@@ -90,26 +94,27 @@ final class BandedPropagation implements AutoCloseable {
         volatile Throwable helperFailure;
         Thread helper;
 
-        Crew(float[] halfDensity, float inverseBucketWidth, int bucketMask, int bandLog2, int sortBandLog2) {
+        Crew(float[] halfDensity, float inverseBucketWidth, int bucketMask, int minBandLog2) {
             this.halfDensity = halfDensity;
             this.inverseBucketWidth = inverseBucketWidth;
             this.bucketMask = bucketMask;
-            this.bandLog2 = bandLog2;
-            this.sortBandLog2 = sortBandLog2;
+            this.minBandLog2 = minBandLog2;
             workers[0] = new Worker(this, 0);
             workers[1] = new Worker(this, 1);
             workers[0].meet(workers[1]);
             workers[1].meet(workers[0]);
         }
 
-        int propagate(int[] potential, byte[] costs, int stride, int[] goals) {
+        int propagate(int[] potential, byte[] costs, int stride, int[] goals, int sortBandLog2) {
             if (closed) {
                 throw new IllegalStateException("the two-thread propagation is closed");
             }
-            if (!bandsFit(bandLog2, stride)) {
-                throw new IllegalArgumentException("bands of 2^" + bandLog2 + " cells are too small for rows of "
-                        + stride);
+            int bands = minBandLog2;
+            while (!bandsFit(bands, stride)) {
+                bands++;
             }
+            this.bandLog2 = bands;
+            this.sortBandLog2 = sortBandLog2;
             this.potential = potential;
             this.costs = costs;
             this.stride = stride;

@@ -239,16 +239,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
         resetTouched();
         finalizedCount = 0;
         if (threads == 2 && stopAtCell < 0 && potential.length >= minParallelCells) {
-            int bandLog2 = ownerBandLog2;
-            while (!BandedPropagation.bandsFit(bandLog2, grid.stride())) {
-                bandLog2++;
-            }
             if (banded == null) {
-                banded = new BandedPropagation(halfDensity, inverseBucketWidth, bucketMask, bandLog2, bandShift);
+                banded = new BandedPropagation(halfDensity, inverseBucketWidth, bucketMask, ownerBandLog2);
             }
             touchedCount = touched.length + 1; // not recorded: the next reset copies the initial values whole
             completeGoals = null; // until the computation has succeeded: a repair must not build on a partial one
-            finalizedCount = banded.propagate(potential, grid.costs(), grid.stride(), goals);
+            finalizedCount = banded.propagate(potential, grid.costs(), grid.stride(), goals, bandShift);
             completeGoals = goals.clone();
             return;
         }

@@ -161,6 +161,22 @@ class BandedPropagationTest {
     }
 
     @Test
+    void oneFunctionServesGridsOfAnyWidthInTurn() {
+        try (LpnNavigationFunction two = new LpnNavigationFunction(MODEL, 2, SMALL_BANDS, 0)) {
+            for (int width : new int[] { 30, 400, 30 }) {
+                Costmap costmap = TestGrids.random(width, width, 40, 0.1);
+                PlanningGrid grid = new PlanningGrid();
+                two.gridChanged(grid, grid.sync(costmap));
+                int[] goals = randomGoals(costmap, width);
+                two.compute(goals, -1);
+                try (LpnNavigationFunction one = compute(costmap, 1, goals).function()) {
+                    assertEquals(one.finalizedCount(), two.finalizedCount(), width + " wide");
+                }
+            }
+        }
+    }
+
+    @Test
     void anEnclosedGoalReachesItsEnclosureOnly() {
         Costmap costmap = TestGrids.free(90, 90);
         for (int i = 30; i <= 50; i++) {
