@@ -150,7 +150,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
         this.inverseBucketWidth = 1f / bucketWidth;
         int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
-        int ring = Integer.highestOneBit(reach) << 1;
+        int ring = Integer.highestOneBit(reach + 1) << 1;
         this.bucketMask = ring - 1;
         this.buckets = new int[ring][];
         for (int i = 0; i < ring; i++) {
