@@ -9,6 +9,7 @@ import org.jivesoftware.smack.packet.ExtensionElement;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.packet.XmlEnvironment;
 
+import sabot.controlml.payload.PayloadException;
 import sabot.controlml.swe.RecordTemplate;
 import sabot.controlml.swe.SweComponent;
 import sabot.controlml.swe.SweXml;
@@ -37,6 +38,14 @@ public final class ControlMlElement implements ExtensionElement {
     private final ControlMlError defect;
     /** Write the payload in the text form when the resource has a record structure and the value fits it. */
     private final boolean textForm;
+    /**
+     * A received result's payload decoded by its resource's codec while it was read (the value, or the
+     * {@link PayloadException}), or null: decoded on the thread that built the payload, where it is still in cache, and
+     * not on the thread that waits for the answer (measured: ~10 us of a 0.4 ms round trip otherwise).
+     */
+    private final Object decoded;
+    /** {@link #contentXml()} once computed (an element is immutable). */
+    private volatile String content;
 
     private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
@@ -45,6 +54,12 @@ public final class ControlMlElement implements ExtensionElement {
 
     private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect, boolean textForm) {
+        this(type, id, res, payload, failure, defect, textForm, null);
+    }
+
+    private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect, boolean textForm, Object decoded) {
+        this.decoded = decoded;
         this.textForm = textForm;
         this.type = type;
         this.id = id;
@@ -86,7 +101,41 @@ public final class ControlMlElement implements ExtensionElement {
      */
     public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
-        return new ControlMlElement(type, id, res, payload, failure, defect, false);
+        Object decoded = null;
+        Resource<?, ?> resource = type == ControlMlType.RESULT && defect == null && payload != null ? Resources.byName(
+                res) : null;
+        if (resource != null) {
+            try {
+                decoded = resource.codec().decode(payload);
+            } catch (PayloadException e) {
+                decoded = e;
+            } catch (RuntimeException e) {
+                // a codec bug must not take the reader thread down: the payload is unreadable
+                decoded = new PayloadException(ControlMlCondition.MALFORMED_PAYLOAD, "unreadable payload: " + e);
+            }
+        }
+        return new ControlMlElement(type, id, res, payload, failure, defect, false, decoded);
+    }
+
+    /**
+     * @return the payload decoded by {@code resource}'s codec; for a received result of that resource, the value
+     *         decoded when it was read
+     * @throws PayloadException when the payload does not fit the resource's schema
+     * @throws IllegalStateException when there is no payload
+     */
+    public <T> T value(Resource<T, ?> resource) throws PayloadException {
+        if (payload == null) {
+            throw new IllegalStateException("no payload");
+        }
+        if (decoded != null && resource.name().equals(res)) {
+            if (decoded instanceof PayloadException e) {
+                throw e; // without a stack trace, so it can be thrown again
+            }
+            @SuppressWarnings("unchecked") // decoded by the codec of the resource of this name
+            T value = (T) decoded;
+            return value;
+        }
+        return resource.codec().decode(payload);
     }
 
     /**
@@ -105,8 +154,16 @@ public final class ControlMlElement implements ExtensionElement {
         return textForm;
     }
 
+    /**
+     * @return whether {@code res} matches {@link #RESOURCE_SYNTAX}; a catalogue resource's name does, found without
+     *         running the expression (it is met on every element read and written)
+     */
+    public static boolean isResourceName(String res) {
+        return res != null && (Resources.byName(res) != null || RESOURCE_SYNTAX.matcher(res).matches());
+    }
+
     private static String checkRes(String res) {
-        if (res == null || !RESOURCE_SYNTAX.matcher(res).matches()) {
+        if (!isResourceName(res)) {
             throw new IllegalArgumentException("not a resource name: " + res);
         }
         return res;
@@ -189,8 +246,20 @@ public final class ControlMlElement implements ExtensionElement {
         }
     }
 
-    /** @return the element's content (payload or failure) as XML, or the empty string */
+    /**
+     * @return the element's content (payload or failure) as XML, or the empty string; computed once (the device
+     *         computes it on the thread that made the answer, where the payload is still in cache)
+     */
     public String contentXml() {
+        String xml = content;
+        if (xml == null) {
+            xml = writeContent();
+            content = xml;
+        }
+        return xml;
+    }
+
+    private String writeContent() {
         StringBuilder sb = new StringBuilder();
         if (payload != null) {
             Resource<?, ?> resource = textForm ? Resources.byName(res) : null;

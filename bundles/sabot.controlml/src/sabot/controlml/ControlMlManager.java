@@ -335,7 +335,7 @@ public final class ControlMlManager extends Manager {
             }
         }
         try {
-            return Outcome.success(resource.codec().decode(answer.payload()));
+            return Outcome.success(answer.value(resource));
         } catch (PayloadException e) {
             return Outcome.failure(e.error());
         }
@@ -406,6 +406,8 @@ public final class ControlMlManager extends Manager {
             ControlMlType carrierType = iq.getType() == IQ.Type.get ? ControlMlType.GET : ControlMlType.SET;
             Endpoint.Answer answer = endpoint.serve(request, carrierType, iq.getFrom(), delayOf(iq), Carrier.IQ);
             if (answer.element() != null) {
+                // written here, while the payload the handler made is in this core's cache, not by the writer thread
+                answer.element().contentXml();
                 return new ControlMlIQ(answer.element());
             }
             return IQ.createErrorResponse(iq, answer.bareError().toStanzaError());
@@ -675,7 +677,7 @@ public final class ControlMlManager extends Manager {
                     }
                     T value;
                     try {
-                        value = resource.codec().decode(element.payload());
+                        value = element.value(resource);
                     } catch (PayloadException e) {
                         telemetryRejected.incrementAndGet();
                         LOGGER.fine("rejected telemetry from " + from + ": " + e.getMessage());

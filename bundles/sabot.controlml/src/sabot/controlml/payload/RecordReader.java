@@ -2,7 +2,6 @@ package sabot.controlml.payload;
 
 import java.time.Instant;
 import java.util.ArrayList;
-import java.util.HashSet;
 import java.util.List;
 import java.util.OptionalDouble;
 import java.util.Set;
@@ -51,20 +50,29 @@ public final class RecordReader {
     }
 
     private void expectFields(String... names) throws PayloadException {
-        Set<String> expected = Set.of(names);
-        Set<String> present = new HashSet<>();
+        // a record's field names are unique: all expected and as many as expected means all present
         for (DataRecord.Field f : record.fields()) {
-            if (!expected.contains(f.name())) {
+            if (!contains(names, f.name())) {
                 throw malformed("unexpected field " + path + f.name() + " (expected " + String.join(", ", names)
                         + ")");
             }
-            present.add(f.name());
         }
-        for (String n : names) {
-            if (!present.contains(n)) {
-                throw malformed("missing field " + path + n);
+        if (record.fields().size() != names.length) {
+            for (String n : names) {
+                if (record.get(n) == null) {
+                    throw malformed("missing field " + path + n);
+                }
             }
         }
+    }
+
+    private static boolean contains(String[] names, String name) {
+        for (String n : names) {
+            if (n.equals(name)) {
+                return true;
+            }
+        }
+        return false;
     }
 
     private SweComponent field(String name) {
@@ -81,26 +89,34 @@ public final class RecordReader {
         if (!(field(name) instanceof Quantity q)) {
             throw malformed(path + name + " must be a Quantity");
         }
-        return toCanonical(path + name, q.value(), q.uom(), canonicalUom, min, max);
+        return toCanonical(path, name, -1, null, q.value(), q.uom(), canonicalUom, min, max);
     }
 
-    static double toCanonical(String where, double value, String uom, String canonicalUom, double min, double max)
-            throws PayloadException {
+    /**
+     * @param path the path of the field's record, the field's name, and for a cell of an array its row and column
+     *             (row -1 otherwise): the name in messages, built only for one
+     */
+    private static double toCanonical(String path, String field, int row, String column, double value, String uom,
+            String canonicalUom, double min, double max) throws PayloadException {
         OptionalDouble v = Ucum.toCanonical(value, uom, canonicalUom);
         if (v.isEmpty()) {
-            throw new PayloadException(ControlMlCondition.WRONG_UNIT, where + " is in '" + uom + "', expected '"
-                    + canonicalUom + "' (or a unit of the same dimension)");
+            throw new PayloadException(ControlMlCondition.WRONG_UNIT, where(path, field, row, column) + " is in '" + uom
+                    + "', expected '" + canonicalUom + "' (or a unit of the same dimension)");
         }
         double d = v.getAsDouble();
         if (!Double.isFinite(d)) {
-            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where + " must be finite, was " + SweXml
-                    .formatDouble(value));
+            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where(path, field, row, column)
+                    + " must be finite, was " + SweXml.formatDouble(value));
         }
         if (d < min || d > max) {
-            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where + " = " + d + " " + canonicalUom
-                    + " is outside [" + min + ", " + max + "]");
+            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where(path, field, row, column) + " = " + d + " "
+                    + canonicalUom + " is outside [" + min + ", " + max + "]");
         }
         return d;
+    }
+
+    private static String where(String path, String field, int row, String column) {
+        return path + field + (row < 0 ? "" : "[" + row + "]." + column);
     }
 
     /** @return a field's count within [min, max] */
@@ -195,8 +211,8 @@ public final class RecordReader {
             for (int c = 0; c < columns.size(); c++) {
                 DataArray.Column want = columns.get(c);
                 double v = a.value(r, c);
-                row[c] = want.isCount() ? v : toCanonical(path + name + "[" + r + "]." + want.name(), v, a.columns()
-                        .get(c).uom(), want.uom(), Double.NEGATIVE_INFINITY, Double.POSITIVE_INFINITY);
+                row[c] = want.isCount() ? v : toCanonical(path, name, r, want.name(), v, a.columns().get(c).uom(),
+                        want.uom(), Double.NEGATIVE_INFINITY, Double.POSITIVE_INFINITY);
             }
             rows.add(row);
         }

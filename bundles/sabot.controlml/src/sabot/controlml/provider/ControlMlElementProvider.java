@@ -85,7 +85,7 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                         idText) + "'");
             }
         }
-        if (res != null && !ControlMlElement.RESOURCE_SYNTAX.matcher(res).matches()) {
+        if (res != null && !ControlMlElement.isResourceName(res)) {
             defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "res '" + abbreviate(res)
                     + "' is not a resource name (cm.<name>)");
             res = null;
