@@ -1,9 +1,9 @@
 package sabot.controlml.swe;
 
-import java.util.LinkedHashMap;
+import java.util.HashSet;
 import java.util.List;
-import java.util.Map;
 import java.util.Objects;
+import java.util.Set;
 
 /**
  * An ordered list of named fields (SWE {@code DataRecord}). Field names are unique.
@@ -11,6 +11,9 @@ import java.util.Objects;
  * @param fields the fields in document order; never null, never empty (SWE requires at least one field)
  */
 public record DataRecord(List<Field> fields) implements SweComponent {
+
+    /** Up to this many fields, names are checked for duplicates pair by pair; a set beyond (a payload may be large). */
+    private static final int PAIRWISE_CHECK = 16;
 
     /**
      * @param name      the field name (an NCName)
@@ -28,10 +31,22 @@ public record DataRecord(List<Field> fields) implements SweComponent {
         if (fields.isEmpty()) {
             throw new IllegalArgumentException("a DataRecord needs at least one field");
         }
-        Map<String, Field> seen = new LinkedHashMap<>();
-        for (Field f : fields) {
-            if (seen.put(f.name(), f) != null) {
-                throw new IllegalArgumentException("duplicate field name " + f.name());
+        if (fields.size() <= PAIRWISE_CHECK) {
+            // the usual handful of fields: comparing pairs costs less than a set built for each record read
+            for (int i = 1; i < fields.size(); i++) {
+                String name = fields.get(i).name();
+                for (int j = 0; j < i; j++) {
+                    if (fields.get(j).name().equals(name)) {
+                        throw new IllegalArgumentException("duplicate field name " + name);
+                    }
+                }
+            }
+        } else {
+            Set<String> seen = new HashSet<>();
+            for (Field f : fields) {
+                if (!seen.add(f.name())) {
+                    throw new IllegalArgumentException("duplicate field name " + f.name());
+                }
             }
         }
     }

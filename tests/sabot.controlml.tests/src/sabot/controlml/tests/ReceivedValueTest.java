@@ -23,6 +23,8 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PayloadException;
 import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.swe.Count;
+import sabot.controlml.swe.DataRecord;
 
 /**
  * {@link ControlMlElement#value}: a received result's payload is decoded while it is read (on the connection's reader
@@ -121,6 +123,29 @@ class ReceivedValueTest {
     @Test
     void nullIsNoResourceName() {
         assertFalse(ControlMlElement.isResourceName(null));
+    }
+
+    @ParameterizedTest
+    @ValueSource(ints = { 2, 16, 17, 40 })
+    void duplicateFieldNamesAreRefused(int fields) {
+        java.util.List<DataRecord.Field> list = new java.util.ArrayList<>();
+        for (int i = 0; i < fields - 1; i++) {
+            list.add(new DataRecord.Field("f" + i, new Count(i)));
+        }
+        list.add(new DataRecord.Field("f" + (fields - 1) / 2, new Count(-1)));
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> new DataRecord(list));
+        assertEquals("duplicate field name f" + (fields - 1) / 2, e.getMessage());
+        list.set(fields - 1, new DataRecord.Field("g", new Count(-1)));
+        assertEquals(fields, new DataRecord(list).fields().size());
+    }
+
+    @Test
+    void aReceivedRecordWithTwoFieldsOfOneNameIsMalformed() throws Exception {
+        String quantity = "<Quantity><uom code='m'/><value>1</value></Quantity>";
+        ControlMlElement received = Xml.element("<control-ml xmlns='urn:sabot:controlml:1' type='result' "
+                + "id='20261121:7' res='cm.goal'><DataRecord xmlns='http://www.opengis.net/swe/2.0'><field name='x'>"
+                + quantity + "</field><field name='x'>" + quantity + "</field></DataRecord></control-ml>");
+        assertEquals(ControlMlCondition.MALFORMED_PAYLOAD, received.defect().cmCondition());
     }
 
     @SuppressWarnings("unchecked")
