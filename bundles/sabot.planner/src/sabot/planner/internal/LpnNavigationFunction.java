@@ -150,6 +150,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
         this.inverseBucketWidth = 1f / bucketWidth;
         int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
+        // at least reach + 2 buckets: a worker of the two-thread propagation may queue reach buckets ahead of its own
+        // while the other still expands the bucket before it (BandedPropagation, "Overlap")
         int ring = Integer.highestOneBit(reach + 1) << 1;
         this.bucketMask = ring - 1;
         this.buckets = new int[ring][];
