@@ -127,7 +127,7 @@ public final class ControlMlElement implements ExtensionElement {
         if (payload == null) {
             throw new IllegalStateException("no payload");
         }
-        if (decoded != null && resource.name().equals(res)) {
+        if (decoded != null && resource == Resources.byName(res)) {
             if (decoded instanceof PayloadException e) {
                 throw e; // without a stack trace, so it can be thrown again
             }

@@ -109,8 +109,8 @@ public final class RecordReader {
                     + " must be finite, was " + SweXml.formatDouble(value));
         }
         if (d < min || d > max) {
-            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where(path, field, row, column) + " = " + d + " "
-                    + canonicalUom + " is outside [" + min + ", " + max + "]");
+            throw new PayloadException(ControlMlCondition.INVALID_VALUE, where(path, field, row, column) + " = " + d
+                    + " " + canonicalUom + " is outside [" + min + ", " + max + "]");
         }
         return d;
     }

@@ -295,7 +295,7 @@ final class BandedPropagation implements AutoCloseable {
         int current;
         int lastQueued;
         int finalized;
-        /** Cells of the current bucket next to the other band, expanded once the other has finished the bucket before. */
+        /** Cells of the current bucket next to the other band, expanded once the other has finished the one before. */
         int[] deferred = new int[1024];
         /** Cells within two rows of a boundary queued in the current bucket: (cell, bits, bucket) triples. */
         int[] near = new int[3 * 1024];

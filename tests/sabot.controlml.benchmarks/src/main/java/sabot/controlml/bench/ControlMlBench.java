@@ -343,8 +343,8 @@ public final class ControlMlBench {
         Arrays.sort(raw);
         Arrays.sort(shaped);
         System.out.printf("[bench] breakdown pass: raw IQ p50 %.3f ms, raw IQ shaped as control-ml (same attributes and"
-                + " result bytes, no ControlML code) p50 %.3f ms, ratio %.2f: the protocol's shape alone%n", ms(raw, 0.5),
-                ms(shaped, 0.5), ms(shaped, 0.5) / ms(raw, 0.5));
+                + " result bytes, no ControlML code) p50 %.3f ms, ratio %.2f: the protocol's shape alone%n",
+                ms(raw, 0.5), ms(shaped, 0.5), ms(shaped, 0.5) / ms(raw, 0.5));
         figures.put("shape_pass_raw_iq_p50_ms", round(ms(raw, 0.5)));
         figures.put("shape_pass_shaped_p50_ms", round(ms(shaped, 0.5)));
         figures.put("shaped_to_raw_p50", round(ms(shaped, 0.5) / ms(raw, 0.5)));
