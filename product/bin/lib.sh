@@ -33,3 +33,26 @@ sabot_mvn() {
     local jh; jh=$(sabot_java_home) || exit 1
     (cd "$SABOT_ROOT" && JAVA_HOME="$jh" ./mvnw -B -ntp "$@")
 }
+
+# The planner commands (sabot-plan, sabot-bench-planner) run from the shaded planner benchmark jar.
+SABOT_PLANNER_MODULES=bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,tests/sabot.planner.benchmarks
+
+# Prints the path of sabot-planner-bench.jar, building it first when it is missing or older than a planner source.
+sabot_planner_jar() {
+    local jar="$SABOT_ROOT/tests/sabot.planner.benchmarks/target/sabot-planner-bench.jar"
+    local stale=""
+    if [ -f "$jar" ]; then
+        stale=$(find "$SABOT_ROOT/bundles/sabot.model/src" "$SABOT_ROOT/bundles/sabot.model/META-INF" \
+            "$SABOT_ROOT/bundles/sabot.planner" "$SABOT_ROOT/tests/sabot.planner.benchmarks/src" \
+            "$SABOT_ROOT/tests/sabot.planner.benchmarks/pom.xml" \
+            \( -name '*.java' -o -name '*.MF' -o -name '*.properties' -o -name pom.xml \) -newer "$jar" \
+            -not -path '*/target/*' -print -quit 2>/dev/null)
+    fi
+    if [ ! -f "$jar" ] || [ -n "$stale" ]; then
+        sabot_log "building the planner jar (${stale:+$stale changed; }first run downloads JMH from Maven Central)"
+        sabot_mvn -q -DskipTests package -pl "$SABOT_PLANNER_MODULES" >&2 \
+            || sabot_die "building the planner jar failed (run: ./mvnw -B package -DskipTests -pl $SABOT_PLANNER_MODULES)"
+    fi
+    [ -f "$jar" ] || sabot_die "the build did not produce $jar"
+    echo "$jar"
+}
