@@ -385,40 +385,40 @@ public final class SweXml {
      */
     static boolean isDecimalDouble(String t) {
         int n = t.length();
-        int i = 0;
-        if (i < n && (t.charAt(i) == '+' || t.charAt(i) == '-')) {
-            i++;
-        }
-        int mantissaDigits = 0;
-        while (i < n && isDigit(t.charAt(i))) {
-            i++;
-            mantissaDigits++;
-        }
+        int i = skipSign(t, 0);
+        int end = skipDigits(t, i);
+        int mantissaDigits = end - i;
+        i = end;
         if (i < n && t.charAt(i) == '.') {
-            i++;
-            while (i < n && isDigit(t.charAt(i))) {
-                i++;
-                mantissaDigits++;
-            }
+            end = skipDigits(t, i + 1);
+            mantissaDigits += end - (i + 1);
+            i = end;
         }
         if (mantissaDigits == 0) {
             return false;
         }
         if (i < n && (t.charAt(i) == 'e' || t.charAt(i) == 'E')) {
-            i++;
-            if (i < n && (t.charAt(i) == '+' || t.charAt(i) == '-')) {
-                i++;
+            i = skipSign(t, i + 1);
+            end = skipDigits(t, i);
+            if (end == i) {
+                return false; // an exponent needs digits
             }
-            int exponentDigits = 0;
-            while (i < n && isDigit(t.charAt(i))) {
-                i++;
-                exponentDigits++;
-            }
-            if (exponentDigits == 0) {
-                return false;
-            }
+            i = end;
         }
         return i == n;
+    }
+
+    /** @return the index after an optional {@code +} or {@code -} at {@code i} */
+    private static int skipSign(String t, int i) {
+        return i < t.length() && (t.charAt(i) == '+' || t.charAt(i) == '-') ? i + 1 : i;
+    }
+
+    /** @return the index after the run of decimal digits starting at {@code i} */
+    private static int skipDigits(String t, int i) {
+        while (i < t.length() && isDigit(t.charAt(i))) {
+            i++;
+        }
+        return i;
     }
 
     private static boolean isDigit(char c) {
