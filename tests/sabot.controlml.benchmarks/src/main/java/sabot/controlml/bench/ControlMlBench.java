@@ -59,7 +59,9 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * <li>telemetry: N robots publishing {@code cm.position} to their PEP nodes at R Hz into S subscribed workbenches
  * for D seconds: delivered percentage, latency percentiles, server CPU.</li>
  * </ol>
- * The last line printed is one JSON object with the figures.
+ * The server runs on a CPU of its own and the clients (this JVM) on the others ({@link CpuLayout}; {@code
+ * --shared-cpus} leaves all on all CPUs); the JSON's {@code cpu_layout} says which. The last line printed is one JSON
+ * object with the figures.
  */
 public final class ControlMlBench {
 
@@ -74,6 +76,7 @@ public final class ControlMlBench {
     private int durationS = 60;
     private boolean telemetry = true;
     private boolean textForm = true;
+    private boolean sharedCpus = false;
 
     public static void main(String[] args) throws Exception {
         ControlMlBench bench = new ControlMlBench();
@@ -94,10 +97,11 @@ public final class ControlMlBench {
                 case "--duration" -> durationS = Integer.parseInt(args[++i]);
                 case "--no-telemetry" -> telemetry = false;
                 case "--xml-form" -> textForm = false;
+                case "--shared-cpus" -> sharedCpus = true;
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
                             + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] [--rate HZ (10)] "
-                            + "[--duration S (60)] [--no-telemetry] [--xml-form]");
+                            + "[--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]");
                     System.exit(0);
                 }
                 default -> throw new IllegalArgumentException("unknown option " + a + " (--help)");
@@ -117,6 +121,9 @@ public final class ControlMlBench {
         figures.put("server", kind.name().toLowerCase(Locale.ROOT));
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             figures.put("server_ready_ms", server.startupTime().toMillis());
+            CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
+            System.out.println("[bench] CPUs: " + cpus.description());
+            figures.put("cpu_layout", cpus.description());
             roundTrips(server, figures);
             if (telemetry) {
                 telemetry(server, figures);

@@ -1,0 +1,121 @@
+package sabot.controlml.bench;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * Where the benchmark's processes run: the server on a CPU of its own and the benchmark's clients (one JVM) on the
+ * others, as in a deployment, where the server never shares a CPU with the robots and workbenches it serves. The
+ * usual practice of latency benchmarks (the load generator apart from the system under test); on a machine with two
+ * CPUs, sharing them let the clients' threads and the server's event loop preempt each other, which moved the
+ * round-trip ratio by up to 0.15 from run to run (docs/CONTROLML.md, section 11).
+ *
+ * <p>Set with {@code taskset(1)} (util-linux) on every thread of both processes and of the server's descendants
+ * (ejabberd runs beam.smp under its control script); threads started later inherit their creator's CPUs.
+ */
+final class CpuLayout {
+
+    private final String description;
+
+    private CpuLayout(String description) {
+        this.description = description;
+    }
+
+    /** @return how the processes were placed, for the report, e.g. {@code server cpu 1, clients cpu 0} */
+    String description() {
+        return description;
+    }
+
+    /** Leaves every process on every CPU. */
+    static CpuLayout shared(String why) {
+        return new CpuLayout("shared (" + why + ")");
+    }
+
+    /**
+     * Puts the server (and its descendants) on the last CPU this JVM may use and this JVM on the others.
+     *
+     * @return the layout, or {@link #shared} with the reason when fewer than two CPUs are allowed or taskset fails
+     */
+    static CpuLayout split(long serverPid) {
+        long self = ProcessHandle.current().pid();
+        List<Integer> allowed;
+        try {
+            allowed = parseCpuList(run("taskset", "-pc", Long.toString(self)));
+        } catch (IOException | IllegalArgumentException e) {
+            return shared("taskset: " + e.getMessage());
+        }
+        if (allowed.size() < 2) {
+            return shared(allowed.size() + " CPU");
+        }
+        int server = allowed.get(allowed.size() - 1);
+        String clients = join(allowed.subList(0, allowed.size() - 1));
+        ProcessHandle serverProcess = ProcessHandle.of(serverPid).filter(ProcessHandle::isAlive).orElse(null);
+        if (serverProcess == null) {
+            return shared("no server process " + serverPid);
+        }
+        try {
+            List<Long> tree = new ArrayList<>();
+            tree.add(serverPid);
+            serverProcess.descendants().forEach(d -> tree.add(d.pid()));
+            for (long pid : tree) {
+                run("taskset", "-a", "-p", "-c", Integer.toString(server), Long.toString(pid));
+            }
+            // taskset -a exits 0 for a process that ended meanwhile: read the server's CPUs back
+            if (!parseCpuList(run("taskset", "-pc", Long.toString(serverPid))).equals(List.of(server))) {
+                return shared("the server did not move to cpu " + server);
+            }
+            run("taskset", "-a", "-p", "-c", clients, Long.toString(self));
+        } catch (IOException | IllegalArgumentException e) {
+            return shared("taskset: " + e.getMessage());
+        }
+        return new CpuLayout("server cpu " + server + ", clients cpu " + clients);
+    }
+
+    /**
+     * Parses the list of {@code taskset -pc}'s answer ({@code pid 42's current affinity list: 0,2-3}).
+     *
+     * @throws IllegalArgumentException when the answer has no list
+     */
+    static List<Integer> parseCpuList(String tasksetAnswer) {
+        int colon = tasksetAnswer.lastIndexOf(':');
+        if (colon < 0) {
+            throw new IllegalArgumentException("no affinity list in \"" + tasksetAnswer.strip() + "\"");
+        }
+        List<Integer> cpus = new ArrayList<>();
+        for (String part : tasksetAnswer.substring(colon + 1).strip().split(",")) {
+            int dash = part.indexOf('-');
+            int first = Integer.parseInt(dash < 0 ? part : part.substring(0, dash));
+            int last = dash < 0 ? first : Integer.parseInt(part.substring(dash + 1));
+            for (int c = first; c <= last; c++) {
+                cpus.add(c);
+            }
+        }
+        return cpus;
+    }
+
+    private static String join(List<Integer> cpus) {
+        StringBuilder sb = new StringBuilder();
+        for (int c : cpus) {
+            sb.append(sb.length() == 0 ? "" : ",").append(c);
+        }
+        return sb.toString();
+    }
+
+    private static String run(String... command) throws IOException {
+        Process p = new ProcessBuilder(command).redirectErrorStream(true).start();
+        try {
+            String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+            if (!p.waitFor(10, TimeUnit.SECONDS) || p.exitValue() != 0) {
+                throw new IOException(String.join(" ", command) + " failed: " + out.strip());
+            }
+            return out;
+        } catch (InterruptedException e) {
+            p.destroy();
+            Thread.currentThread().interrupt();
+            throw new IOException("interrupted: " + String.join(" ", command));
+        }
+    }
+}
