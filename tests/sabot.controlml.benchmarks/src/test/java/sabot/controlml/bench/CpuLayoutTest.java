@@ -24,20 +24,20 @@ class CpuLayoutTest {
 
     @Test
     void aServerThatIsGoneLeavesTheCpusSharedAndSaysWhy() {
-        long self = ProcessHandle.current().pid();
-        List<Integer> before = CpuLayout.parseCpuList(answerFor(self));
-        CpuLayout layout = CpuLayout.split((1L << 22) + 1); // above any kernel's pid_max
-        assertTrue(layout.description().startsWith("shared ("), layout.description());
-        assertEquals(before, CpuLayout.parseCpuList(answerFor(self)), "this JVM was moved");
+        assertLeftShared((1L << 22) + 1); // above any kernel's pid_max
     }
 
     @Test
     void aServerThatEndedLeavesTheCpusShared() throws Exception {
-        long self = ProcessHandle.current().pid();
-        List<Integer> before = CpuLayout.parseCpuList(answerFor(self));
         Process ended = new ProcessBuilder("true").start();
         ended.waitFor();
-        CpuLayout layout = CpuLayout.split(ended.pid());
+        assertLeftShared(ended.pid());
+    }
+
+    private static void assertLeftShared(long serverPid) {
+        long self = ProcessHandle.current().pid();
+        List<Integer> before = CpuLayout.parseCpuList(answerFor(self));
+        CpuLayout layout = CpuLayout.split(serverPid);
         assertTrue(layout.description().startsWith("shared ("), layout.description());
         assertEquals(before, CpuLayout.parseCpuList(answerFor(self)), "this JVM was moved");
     }
