@@ -10,8 +10,8 @@ import java.util.concurrent.TimeUnit;
  * Where the benchmark's processes run: the server on a CPU of its own and the benchmark's clients (one JVM) on the
  * others, as in a deployment, where the server never shares a CPU with the robots and workbenches it serves. The
  * usual practice of latency benchmarks (the load generator apart from the system under test); on a machine with two
- * CPUs, sharing them let the clients' threads and the server's event loop preempt each other, which moved the
- * round-trip ratio by up to 0.15 from run to run (docs/CONTROLML.md, section 11).
+ * CPUs, sharing them let the clients' threads and the server's event loop preempt each other, which spread the
+ * round-trip ratio over 1.29–1.46 from run to run (docs/CONTROLML.md, section 11).
  *
  * <p>Set with {@code taskset(1)} (util-linux) on every thread of both processes and of the server's descendants
  * (ejabberd runs beam.smp under its control script); threads started later inherit their creator's CPUs.
@@ -56,19 +56,26 @@ final class CpuLayout {
         if (serverProcess == null) {
             return shared("no server process " + serverPid);
         }
+        List<Long> tree = new ArrayList<>();
+        tree.add(serverPid);
+        serverProcess.descendants().forEach(d -> tree.add(d.pid()));
         try {
-            List<Long> tree = new ArrayList<>();
-            tree.add(serverPid);
-            serverProcess.descendants().forEach(d -> tree.add(d.pid()));
             for (long pid : tree) {
                 run("taskset", "-a", "-p", "-c", Integer.toString(server), Long.toString(pid));
             }
             // taskset -a exits 0 for a process that ended meanwhile: read the server's CPUs back
             if (!parseCpuList(run("taskset", "-pc", Long.toString(serverPid))).equals(List.of(server))) {
-                return shared("the server did not move to cpu " + server);
+                throw new IOException("the server did not move to cpu " + server);
             }
             run("taskset", "-a", "-p", "-c", clients, Long.toString(self));
         } catch (IOException | IllegalArgumentException e) {
+            for (long pid : tree) { // give the server back every CPU, so that the report's "shared" holds
+                try {
+                    run("taskset", "-a", "-p", "-c", join(allowed), Long.toString(pid));
+                } catch (IOException gone) {
+                    // ended meanwhile
+                }
+            }
             return shared("taskset: " + e.getMessage());
         }
         return new CpuLayout("server cpu " + server + ", clients cpu " + clients);
