@@ -11,9 +11,12 @@ public enum ControlMlType {
     /** the answer to a get or set that failed */
     ERROR;
 
+    /** Written on every request and answer: computed once, not per serialisation. */
+    private final String attribute = name().toLowerCase(java.util.Locale.ROOT);
+
     /** @return the attribute value, e.g. {@code get} */
     public String attribute() {
-        return name().toLowerCase(java.util.Locale.ROOT);
+        return attribute;
     }
 
     /** @return the type for an attribute value, or null when it is not one of get|set|result|error */
