@@ -1,0 +1,98 @@
+package sabot.onboard.robot;
+
+import java.util.Optional;
+
+
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PidGains;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+
+/**
+ * The robot's motion: one fixed-rate control loop (read encoders and inertial sample, update the estimate, run the
+ * tracker, write wheel speeds) behind a thread-safe facade. Every command returns at once (planning runs off the
+ * caller's thread); a refused command throws {@link CommandRefused} and changes nothing. Reads never block on the
+ * bus or the network: they return the loop's last published state.
+ */
+public interface RobotMotion {
+
+    /** @return the latest pose estimate (map frame, metres/radians) with its covariance and time; never null */
+    PoseEstimate pose();
+
+    /** @return the twist being executed (from the wheels' measured speeds) with its time; never null */
+    VelocityCommand velocity();
+
+    /**
+     * Re-localises: the estimate is reset to {@code pose} (covariance back to its initial value). Refused while moving.
+     */
+    void relocalise(Pose2D pose) throws CommandRefused;
+
+    /**
+     * A joystick twist (m/s, rad/s). Clamped to the limits; the robot stops by itself when no twist arrives for the
+     * teleop timeout (deadman, default 0.5 s). Refused (INVALID_STATE) while a mission runs, or after a fault until
+     * the fault is cleared by a new command.
+     */
+    void teleop(Twist2D twist) throws CommandRefused;
+
+    /** @return the goal of the current or last mission, if any */
+    Optional<Goal> goal();
+
+    /**
+     * Starts a mission to {@code goal}: plan on the map, follow, stop within the goal's tolerances. Replaces a
+     * running mission. Refused when the goal is off the map or in an obstacle (INVALID_VALUE), no path exists
+     * (INVALID_VALUE, "unreachable"), in maintenance (MAINTENANCE_LOCK) or in a board fault (DEVICE_FAULT).
+     */
+    void navigateTo(Goal goal) throws CommandRefused;
+
+    /** @return the trajectory being followed (empty point list when none); never null */
+    Trajectory trajectory();
+
+    /** Follows an imposed trajectory instead of a planned one (a mission without a goal pose check). */
+    void follow(Trajectory trajectory) throws CommandRefused;
+
+    /** @return the obstacles the sonar board sees now, map frame; never null */
+    Obstacles obstacles();
+
+    /** @return the static map the planner uses; never null */
+    GridMap map();
+
+    /** Replaces the static map (refused while a mission runs). */
+    void replaceMap(GridMap map) throws CommandRefused;
+
+    /** @return the motion limits in force; never null */
+    MotionLimits limits();
+
+    /** Sets new limits, never above the robot's physical ones (INVALID_VALUE). Applies at the next control period. */
+    void setLimits(MotionLimits limits) throws CommandRefused;
+
+    /** @return the motor gains read back from the motor board; DEVICE_FAULT when the board does not answer */
+    PidGains gains() throws CommandRefused;
+
+    /** Writes the motor gains and reads them back; bad gains are refused with nothing written. */
+    PidGains setGains(PidGains gains) throws CommandRefused;
+
+    /** @return the mission's state, progress and detail (the reason of a failure or fault); never null */
+    MissionStatus mission();
+
+    /**
+     * Applies a {@code cm.mission} set: PAUSED pauses a running mission, RUNNING resumes a paused one, ABORTED aborts;
+     * {@code maintenance} switches maintenance mode (the robot stops and takes no motion command).
+     */
+    void command(MissionStatus command) throws CommandRefused;
+
+    /** Brakes now and ends any mission or teleop with {@code reason} (failed for a fault, aborted otherwise). */
+    void stop(String reason, boolean fault);
+
+    /** Adds a listener of mission state changes (called off the control loop's thread). */
+    void addListener(MotionListener listener);
+
+    /** Removes a listener added with {@link #addListener}. */
+    void removeListener(MotionListener listener);
+}
