@@ -1,0 +1,663 @@
+package sabot.onboard.internal.motion;
+
+import java.io.IOException;
+import java.time.Instant;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Deque;
+import java.util.List;
+import java.util.Locale;
+import java.util.Optional;
+
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.control.ControlCommand;
+import sabot.control.DifferentialDrive;
+import sabot.control.GoalChecker;
+import sabot.control.MotionLimits;
+import sabot.control.ProgressChecker;
+import sabot.control.TrackingController;
+import sabot.control.VelocitySmoother;
+import sabot.control.WheelSpeeds;
+import sabot.control.trajectory.InvalidPathException;
+import sabot.control.trajectory.SplineTrajectory;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.Obstacle;
+import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+import sabot.model.path.TrajectorySample;
+import sabot.model.robot.RobotDescription;
+import sabot.planner.PlanResult;
+
+/**
+ * The control loop's state and one period of it. Every method runs on the loop's thread, except {@link #planPath},
+ * which only reads immutable inputs and the planner (serialised by itself).
+ */
+final class ControlLoop {
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
+    private static final Logger STATUS = LoggerFactory.getLogger("sabot.status");
+
+    /** Heading error (rad) above which the robot turns in place before it follows a new trajectory. */
+    static final double ALIGN_THRESHOLD = 0.35;
+    /** Heading error (rad) at which the turn in place ends. */
+    static final double ALIGNED = 0.08;
+    /** Proportional gain of the turn in place, 1/s. */
+    static final double ALIGN_GAIN = 2.0;
+    /** Spacing of the waypoints the spline is fitted through, m (planner paths come cell by cell). */
+    static final double WAYPOINT_SPACING = 0.3;
+    /** Seconds between two attempts to plan around a blocked path. */
+    static final double REPLAN_RETRY = 1.0;
+    /** Largest number of obstacle points kept (cm.obstacles allows 1024 rows). */
+    static final int MAX_OBSTACLES = 1024;
+    /** Reported radius of one sonar obstacle point, m (one echo: the sonar's resolution, not the object's size). */
+    static final double ECHO_RADIUS = 0.05;
+
+    /** What the loop is doing. */
+    enum Mode {
+        IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT
+    }
+
+    /** A planned path turned into a trajectory, or why not. */
+    record Plan(sabot.model.path.Trajectory trajectory, double length, String refusal) {
+    }
+
+    private final MotionTask owner;
+    private final MotionTask.Config config;
+    private final RobotBoards boards;
+    private final DifferentialDrive drive;
+    private final Localizer localizer;
+    private final LocalizerTask localizerTask;
+    private final PlannerTask plannerTask;
+    private final TrackerTask trackerTask;
+    private final long t0 = System.nanoTime();
+    private final LoopTiming timing;
+    private final Deque<double[]> echoes = new ArrayDeque<>();
+
+    private MotionLimits limits;
+    private VelocitySmoother smoother;
+    private TrackingController tracker;
+    private TrackingController stabilizer;
+    private GoalChecker goalChecker;
+    private ProgressChecker progressChecker;
+
+    private Mode mode = Mode.IDLE;
+    private Mode pausedFrom;
+    private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "idle");
+    private Goal goal;
+    private sabot.model.path.Trajectory trajectory;
+    private Trajectory trajectoryPayload = new Trajectory(Instant.EPOCH, List.of());
+    private double trajectoryStart;
+    private double modeSince;
+    private double lastReplan = Double.NEGATIVE_INFINITY;
+    private boolean replanPending;
+    private Twist2D teleopTwist = Twist2D.ZERO;
+    private double teleopTime = Double.NEGATIVE_INFINITY;
+    private boolean braked;
+    private int optionalRound;
+    private double lastStatus = Double.NEGATIVE_INFINITY;
+    private long lastImuCounter = -1;
+    private Pose2D pose;
+    private double[] velocity = { 0, 0 };
+
+    ControlLoop(MotionTask owner, MotionTask.Config config, RobotBoards boards, RobotDescription robot,
+            LocalizerTask localizerTask, PlannerTask plannerTask, TrackerTask trackerTask) {
+        this.owner = owner;
+        this.config = config;
+        this.boards = boards;
+        this.drive = DifferentialDrive.of(robot);
+        this.localizerTask = localizerTask;
+        this.localizer = localizerTask.newLocalizer();
+        this.plannerTask = plannerTask;
+        this.trackerTask = trackerTask;
+        this.timing = new LoopTiming(Math.round(1e9 / config.rate()));
+        this.pose = localizerTask.start();
+        limitsChanged(owner.currentLimits());
+    }
+
+    private double now() {
+        return (System.nanoTime() - t0) * 1e-9;
+    }
+
+    LoopTiming timing() {
+        return timing;
+    }
+
+    // --------------------------------------------------------------------------------------------- one period
+
+    MotionTask.Snapshot tick() {
+        long start = System.nanoTime();
+        timing.started(start);
+        double t = (start - t0) * 1e-9;
+        boolean encodersOk = readEncoders(t);
+        pose = localizer.pose(t);
+        velocity = localizer.velocity();
+        if (mode != Mode.FAULT) {
+            String unsafe = safetyCheck(t, encodersOk);
+            if (unsafe != null) {
+                fault(unsafe);
+            }
+        }
+        Twist2D command = command(t);
+        Twist2D applied = smoother.smooth(t, command);
+        if (!applied.isFinite()) {
+            applied = Twist2D.ZERO;
+        }
+        if (tracker != null) {
+            tracker.commandApplied(applied);
+        }
+        if (mode != Mode.FAULT) {
+            WheelSpeeds w = drive.toWheelSpeeds(applied);
+            try {
+                boards.writeWheelSpeeds(w.left(), w.right());
+            } catch (IOException e) {
+                LOG.warn("wheel speed write failed: {}", e.getMessage());
+            }
+        }
+        optionalReads(t, start);
+        timing.ended(System.nanoTime());
+        if (config.statusPeriod() > 0 && t - lastStatus >= config.statusPeriod()) {
+            lastStatus = t;
+            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}", f3(pose.x()), f3(pose.y()),
+                    f3(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
+                    Math.round(mission.progress()), mission.detail().isBlank() ? "" : "(" + mission.detail() + ") ",
+                    mode.name().toLowerCase(Locale.ROOT));
+        }
+        return snapshot(Instant.now());
+    }
+
+    private boolean readEncoders(double t) {
+        try {
+            RobotBoards.WheelCounts c = boards.readEncoders();
+            localizer.encoders(t, c.left(), c.right());
+            return true;
+        } catch (IOException e) {
+            LOG.debug("encoder read failed: {}", e.getMessage());
+            return false;
+        }
+    }
+
+    /** @return why the robot must stop now, or null */
+    private String safetyCheck(double t, boolean encodersOk) {
+        String board = boards.faultedBoard();
+        if (board != null) {
+            return "the " + board + " board does not answer";
+        }
+        if (localizer.isStale(t)) {
+            return "no odometry for " + localizerTask.config().odometryTimeout() + " s";
+        }
+        double sigma = localizer.positionSigma();
+        if (sigma > localizerTask.config().maxPositionSigma()) {
+            return String.format(Locale.ROOT, "position uncertainty %.2f m above the limit %.2f m", sigma,
+                    localizerTask.config().maxPositionSigma());
+        }
+        return null;
+    }
+
+    /** Reads the inertial board or one sonar sensor when the rest of the period leaves the time for it. */
+    private void optionalReads(double t, long periodStart) {
+        double left = (timing.periodNanos() - (System.nanoTime() - periodStart)) * 1e-9;
+        // margin: wake-up jitter and the next period's first request must not collide
+        if (left < boards.optionalReadWireTime() * 1.2 + 0.001) {
+            timing.skippedOptionalRead();
+            return;
+        }
+        int sonars = boards.sonarSensors();
+        int slot = optionalRound++ % (2 + 2 * sonars);
+        try {
+            if (slot % 2 == 0 || sonars == 0) {
+                RobotBoards.ImuSample s = boards.readImu();
+                if (s.counter() != lastImuCounter) {
+                    lastImuCounter = s.counter();
+                    localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
+                }
+            } else {
+                int sensor = (slot / 2) % sonars;
+                for (Point2D p : boards.readSonar(sensor)) {
+                    addEcho(t, p);
+                }
+            }
+        } catch (IOException e) {
+            LOG.debug("optional read failed: {}", e.getMessage());
+        }
+        pruneEchoes(t);
+    }
+
+    private void addEcho(double t, Point2D robotFrame) {
+        double c = Math.cos(pose.theta());
+        double s = Math.sin(pose.theta());
+        Point2D p = new Point2D(pose.x() + c * robotFrame.x() - s * robotFrame.y(),
+                pose.y() + s * robotFrame.x() + c * robotFrame.y());
+        if (plannerTask.planner().isStaticObstacle(p)) {
+            return;
+        }
+        echoes.addLast(new double[] { t, p.x(), p.y() });
+        while (echoes.size() > MAX_OBSTACLES) {
+            echoes.removeFirst();
+        }
+    }
+
+    private void pruneEchoes(double t) {
+        while (!echoes.isEmpty() && t - echoes.peekFirst()[0] > config.obstacleMemory()) {
+            echoes.removeFirst();
+        }
+    }
+
+    private List<Point2D> echoPoints() {
+        List<Point2D> points = new ArrayList<>(echoes.size());
+        for (double[] e : echoes) {
+            points.add(new Point2D(e[1], e[2]));
+        }
+        return points;
+    }
+
+    // -------------------------------------------------------------------------------------------------- modes
+
+    private Twist2D command(double t) {
+        switch (mode) {
+            case TELEOP -> {
+                TeleopTask teleop = owner.teleop();
+                double timeout = teleop == null ? 0 : teleop.config().timeout();
+                if (t - teleopTime > timeout) {
+                    LOG.warn("joystick silent for more than {} s: stopping (deadman)", timeout);
+                    brake();
+                    setMode(Mode.IDLE, t);
+                    return Twist2D.ZERO;
+                }
+                return teleopTwist;
+            }
+            case ALIGN -> {
+                double target = trajectory.startPose().theta();
+                double error = Pose2D.normalizeAngle(target - pose.theta());
+                if (Math.abs(error) < ALIGNED && Math.abs(velocity[1]) < 0.3) {
+                    startFollowing(t);
+                    return follow(t);
+                }
+                return new Twist2D(0, MotionTask.clamp(ALIGN_GAIN * error, limits.maxAngularSpeed() * 0.8));
+            }
+            case FOLLOW -> {
+                return follow(t);
+            }
+            case SETTLE -> {
+                return settle(t);
+            }
+            case BLOCKED -> {
+                if (!replanPending && t - lastReplan >= REPLAN_RETRY) {
+                    replan(t);
+                }
+                if (t - modeSince > plannerTask.config().blockedTimeout()) {
+                    fail("path blocked for " + plannerTask.config().blockedTimeout() + " s");
+                }
+                return Twist2D.ZERO;
+            }
+            default -> {
+                return Twist2D.ZERO;
+            }
+        }
+    }
+
+    private Twist2D follow(double t) {
+        double tau = t - trajectoryStart;
+        if (tau >= trajectory.duration()) {
+            setMode(Mode.SETTLE, t);
+            stabilizer.reset();
+            return settle(t);
+        }
+        if (blocked(tau)) {
+            LOG.info("obstacle on the path ahead: stopping to replan");
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+            return Twist2D.ZERO;
+        }
+        if (!progressChecker.isMakingProgress(t, pose)) {
+            LOG.info("no progress for {} s: replanning", trackerTask.config().progressTime());
+            progressChecker.reset();
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+            return Twist2D.ZERO;
+        }
+        updateProgress(Math.min(99, 100 * tau / trajectory.duration()));
+        TrajectorySample ref = trajectory.sample(tau);
+        ControlCommand c = tracker.update(t, pose, shift(ref, t));
+        return c.twist();
+    }
+
+    private Twist2D settle(double t) {
+        Pose2D target = goal == null ? trajectory.endPose() : goal.pose();
+        if (goalChecker.isGoalReached(pose, target) && Math.abs(velocity[0]) < 0.05) {
+            brake();
+            complete(t);
+            return Twist2D.ZERO;
+        }
+        if (t - modeSince > trackerTask.config().settleTimeout()) {
+            fail(String.format(Locale.ROOT, "did not settle on the goal within %.0f s (%.2f m away)",
+                    trackerTask.config().settleTimeout(), Math.hypot(target.x() - pose.x(), target.y() - pose.y())));
+            return Twist2D.ZERO;
+        }
+        ControlCommand c = stabilizer.update(t, pose, TrajectorySample.stationary(t, target));
+        return c.twist();
+    }
+
+    /** The controllers run on the loop clock: a reference sample at trajectory time tau is re-stamped at t. */
+    private static TrajectorySample shift(TrajectorySample s, double t) {
+        return new TrajectorySample(t, s.x(), s.y(), s.theta(), s.linearVelocity(), s.angularVelocity(), s.xDot(),
+                s.yDot(), s.xDdot(), s.yDdot());
+    }
+
+    private boolean blocked(double tau) {
+        if (echoes.isEmpty()) {
+            return false;
+        }
+        double clearance = plannerTask.config().robotRadius() + config.blockedClearance();
+        double end = Math.min(trajectory.duration(), tau + config.blockedLookahead());
+        for (double s = tau; s <= end; s += 0.1) {
+            TrajectorySample r = trajectory.sample(s);
+            for (double[] e : echoes) {
+                if (Math.hypot(e[1] - r.x(), e[2] - r.y()) < clearance) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    private void replan(double t) {
+        lastReplan = t;
+        if (goal == null) {
+            fail("the imposed trajectory is blocked");
+            return;
+        }
+        replanPending = true;
+        Pose2D from = pose;
+        Goal g = goal;
+        List<Point2D> obstacles = echoPoints();
+        owner.plan(() -> {
+            Plan plan = planPath(from, g, obstacles);
+            owner.enqueue(loop -> loop.replanned(g, plan));
+        });
+    }
+
+    private void replanned(Goal g, Plan plan) {
+        replanPending = false;
+        if (mode != Mode.BLOCKED || g != goal) {
+            return;
+        }
+        if (plan.refusal() != null) {
+            LOG.info("no path yet: {}", plan.refusal());
+            return;
+        }
+        LOG.info("replanned around the obstacle: {} m", MotionTask.fmt(plan.length()));
+        setTrajectory(plan, now());
+    }
+
+    // ----------------------------------------------------------------------------------------------- commands
+
+    /**
+     * Plans from {@code from} to the goal around {@code obstacles}; thread-safe (the planner serialises requests).
+     */
+    Plan planPath(Pose2D from, Goal goal, List<Point2D> obstacles) {
+        PlanResult result = plannerTask.planner().plan(from.position(), goal.pose().position(), obstacles);
+        if (result instanceof PlanResult.Unreachable u) {
+            return new Plan(null, 0, "unreachable goal: " + u.detail());
+        }
+        List<Point2D> path = ((PlanResult.Found) result).path().waypoints();
+        List<Point2D> waypoints = thin(path, from.position(), goal.pose().position());
+        if (waypoints.size() < 2) {
+            return new Plan(null, 0, null);
+        }
+        try {
+            MotionLimits planning = owner.currentLimits().withHeadroom(trackerTask.config().headroom());
+            SplineTrajectory t = SplineTrajectory.plan(waypoints, false, planning.maxLinearSpeed(), planning);
+            return new Plan(t, t.length(), null);
+        } catch (InvalidPathException e) {
+            return new Plan(null, 0, "no trajectory through the path: " + e.getMessage());
+        }
+    }
+
+    /** Keeps a waypoint every {@link #WAYPOINT_SPACING} m, the exact start and the exact goal. */
+    static List<Point2D> thin(List<Point2D> path, Point2D start, Point2D goal) {
+        List<Point2D> out = new ArrayList<>();
+        out.add(start);
+        Point2D last = start;
+        for (int i = 1; i < path.size() - 1; i++) {
+            Point2D p = path.get(i);
+            if (Math.hypot(p.x() - last.x(), p.y() - last.y()) >= WAYPOINT_SPACING
+                    && Math.hypot(p.x() - goal.x(), p.y() - goal.y()) >= WAYPOINT_SPACING / 2) {
+                out.add(p);
+                last = p;
+            }
+        }
+        if (Math.hypot(goal.x() - start.x(), goal.y() - start.y()) > 1e-3) {
+            out.add(goal);
+        }
+        return out;
+    }
+
+    void startMission(Goal g, Plan plan) {
+        double t = now();
+        clearFault();
+        this.goal = g;
+        goalChecker = new GoalChecker(g.positionTolerance(), Math.min(Math.PI, g.headingTolerance()), true);
+        setMission(MissionState.RUNNING, 0, "to (" + MotionTask.fmt(g.pose().x()) + ", "
+                + MotionTask.fmt(g.pose().y()) + ")");
+        if (plan.trajectory() == null) {
+            trajectory = null;
+            trajectoryPayload = new Trajectory(Instant.now(), List.of());
+            stabilizer.reset();
+            setMode(Mode.SETTLE, t);
+            return;
+        }
+        setTrajectory(plan, t);
+    }
+
+    void followImposed(Trajectory imposed) {
+        double t = now();
+        clearFault();
+        this.goal = null;
+        sabot.model.path.Trajectory path = new SampledTrajectory(imposed.points());
+        goalChecker = new GoalChecker(config.goalTolerance(), Math.PI, true);
+        setMission(MissionState.RUNNING, 0, "imposed trajectory");
+        setTrajectory(new Plan(path, path.length(), null), t);
+    }
+
+    private void setTrajectory(Plan plan, double t) {
+        trajectory = plan.trajectory();
+        trajectoryPayload = new Trajectory(Instant.now(), MotionTask.sample(trajectory));
+        progressChecker = new ProgressChecker(trackerTask.config().progressRadius(), trackerTask.config()
+                .progressTime());
+        double error = Pose2D.normalizeAngle(trajectory.startPose().theta() - pose.theta());
+        if (Math.abs(error) > ALIGN_THRESHOLD) {
+            setMode(Mode.ALIGN, t);
+        } else {
+            startFollowing(t);
+        }
+    }
+
+    private void startFollowing(double t) {
+        trajectoryStart = t;
+        tracker.reset();
+        progressChecker.reset();
+        setMode(Mode.FOLLOW, t);
+    }
+
+    void teleop(Twist2D twist, long receivedNanos) {
+        double t = (receivedNanos - t0) * 1e-9;
+        clearFault();
+        if (mode != Mode.TELEOP && mode != Mode.IDLE) {
+            return;
+        }
+        teleopTwist = twist;
+        teleopTime = t;
+        if (mode != Mode.TELEOP) {
+            setMode(Mode.TELEOP, now());
+        }
+    }
+
+    void relocalise(Pose2D p) {
+        localizer.reset(p, now());
+        LOG.info("re-localised at {}", p);
+    }
+
+    void limitsChanged(MotionLimits l) {
+        this.limits = l;
+        smoother = new VelocitySmoother(l, 1.0);
+        tracker = trackerTask.newTracker(l);
+        stabilizer = trackerTask.newStabilizer(l);
+        try {
+            boards.writeLimits(l.maxWheelRimSpeed() > l.maxLinearSpeed() * 2 ? l.maxLinearSpeed() * 2
+                    : l.maxWheelRimSpeed(), l.maxLinearAcceleration());
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("board limits not written: {}", e.getMessage());
+        }
+    }
+
+    void pause() {
+        if (mission.state() != MissionState.RUNNING) {
+            return;
+        }
+        pausedFrom = mode;
+        setMode(Mode.PAUSED, now());
+        setMission(MissionState.PAUSED, mission.progress(), "paused");
+    }
+
+    void resume() {
+        if (mode != Mode.PAUSED) {
+            return;
+        }
+        double t = now();
+        setMission(MissionState.RUNNING, mission.progress(), "resumed");
+        if (pausedFrom == Mode.FOLLOW || pausedFrom == Mode.ALIGN || pausedFrom == Mode.BLOCKED) {
+            // the trajectory's clock went on while paused: plan again from where the robot stands
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+        } else {
+            setMode(pausedFrom, t);
+        }
+    }
+
+    void abort(String reason) {
+        double t = now();
+        brake();
+        if (mission.state() == MissionState.RUNNING || mission.state() == MissionState.PAUSED) {
+            setMission(MissionState.ABORTED, mission.progress(), reason);
+        }
+        setMode(Mode.IDLE, t);
+        LOG.info("stopped: {}", reason);
+    }
+
+    void maintenance(boolean on, String detail) {
+        brake();
+        setMode(on ? Mode.IDLE : mode, now());
+        mission = new MissionStatus(on ? MissionState.IDLE : mission.state(), on, mission.progress(),
+                on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "idle");
+        owner.missionChanged(mission);
+        LOG.info("maintenance {}", on ? "on" : "off");
+    }
+
+    /** Brakes and marks the mission failed with the reason; the robot stays still until a new command. */
+    void fault(String reason) {
+        if (mode == Mode.FAULT && reason.equals(mission.detail())) {
+            return;
+        }
+        LOG.warn("fault: {} - braking", reason);
+        brake();
+        setMode(Mode.FAULT, now());
+        mission = new MissionStatus(MissionState.FAILED, mission.maintenance(), mission.progress(), reason);
+        owner.missionChanged(mission);
+    }
+
+    /** Releases the brake (after a stop or a fault) so that a new command can move the robot. */
+    private void clearFault() {
+        if (braked) {
+            try {
+                boards.acknowledgeFaults();
+                boards.brake(false);
+                braked = false;
+            } catch (IOException e) {
+                LOG.warn("could not release the brake: {}", e.getMessage());
+            }
+            smoother.reset();
+        }
+        if (mode == Mode.FAULT) {
+            setMode(Mode.IDLE, now());
+        }
+    }
+
+    private void brake() {
+        smoother.reset();
+        try {
+            boards.brake(true);
+            braked = true;
+        } catch (IOException e) {
+            LOG.warn("brake command failed ({}); the motor board's own deadman stops the wheels", e.getMessage());
+            braked = true;
+        }
+    }
+
+    private void complete(double t) {
+        setMission(MissionState.DONE, 100, "goal reached");
+        setMode(Mode.IDLE, t);
+        LOG.info("goal reached at ({}, {}, {})", MotionTask.fmt(pose.x()), MotionTask.fmt(pose.y()),
+                MotionTask.fmt(pose.theta()));
+    }
+
+    private void fail(String reason) {
+        brake();
+        setMission(MissionState.FAILED, mission.progress(), reason);
+        setMode(Mode.IDLE, now());
+        LOG.warn("mission failed: {}", reason);
+    }
+
+    private void setMode(Mode m, double t) {
+        if (m != mode) {
+            LOG.debug("mode {} -> {}", mode, m);
+        }
+        mode = m;
+        modeSince = t;
+    }
+
+    private void setMission(MissionState state, double progress, String detail) {
+        mission = new MissionStatus(state, mission.maintenance(), progress, detail);
+        owner.missionChanged(mission);
+    }
+
+    private void updateProgress(double progress) {
+        // listeners hear about whole-percent steps only; the snapshot carries the exact figure
+        boolean step = Math.floor(progress / 10) != Math.floor(mission.progress() / 10);
+        mission = new MissionStatus(mission.state(), mission.maintenance(), progress, mission.detail());
+        if (step) {
+            owner.missionChanged(mission);
+        }
+    }
+
+    // ----------------------------------------------------------------------------------------------- snapshot
+
+    MotionTask.Snapshot snapshot(Instant now) {
+        PoseEstimate p = new PoseEstimate(now, pose, MotionTask.covariance(localizer.covariance()));
+        VelocityCommand v = new VelocityCommand(now, new Twist2D(velocity[0], velocity[1]));
+        List<Obstacle> obstacles = new ArrayList<>(echoes.size());
+        for (double[] e : echoes) {
+            obstacles.add(new Obstacle(e[1], e[2], ECHO_RADIUS));
+        }
+        boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
+                || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
+        return new MotionTask.Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
+                new Obstacles(now, obstacles), moving, mode == Mode.FAULT, timing.summary());
+    }
+
+    private static String f3(double v) {
+        return String.format(Locale.ROOT, "%.3f", v);
+    }
+
+    private static String f2(double v) {
+        return String.format(Locale.ROOT, "%.2f", v);
+    }
+}

@@ -1,0 +1,100 @@
+package sabot.onboard.internal.motion;
+
+import sabot.localization.EkfNoise;
+import sabot.localization.EncoderOdometry;
+import sabot.localization.OdometryCalibration;
+import sabot.localization.PoseEkf;
+import sabot.model.geometry.Pose2D;
+import sabot.model.robot.RobotDescription;
+
+/**
+ * The robot's pose estimate: wheel odometry (RK2 on encoder counts) fused with the inertial board's yaw rate and
+ * longitudinal acceleration in an EKF. Used by the control loop's thread only (not thread-safe).
+ */
+final class Localizer {
+
+    private final RobotDescription robot;
+    private final LocalizerTask.Config config;
+    private EncoderOdometry odometry;
+    private PoseEkf ekf;
+    private double lastOdometryTime = Double.NaN;
+
+    Localizer(RobotDescription robot, LocalizerTask.Config config) {
+        this.robot = robot;
+        this.config = config;
+        reset(new Pose2D(config.startX(), config.startY(), config.startTheta()), Double.NaN);
+    }
+
+    /** Resets the estimate to {@code pose} with the configured initial uncertainty; the next counts start odometry. */
+    void reset(Pose2D pose, double time) {
+        odometry = null;
+        ekf = new PoseEkf(pose, new double[] { config.initialSigmaXY(), config.initialSigmaXY(),
+                config.initialSigmaTheta() }, EkfNoise.defaults(), config.odometryTimeout());
+        if (Double.isFinite(time)) {
+            ekf.start(time);
+        }
+        lastOdometryTime = time;
+        this.pendingPose = pose;
+    }
+
+    private Pose2D pendingPose;
+
+    /** Feeds one encoder reading taken at {@code time} (seconds, loop clock). */
+    void encoders(double time, int left, int right) {
+        if (odometry == null) {
+            odometry = new EncoderOdometry(robot, OdometryCalibration.nominal(robot), pendingPose);
+            odometry.update(left, right);
+            if (Double.isNaN(ekf.time())) {
+                ekf.start(time);
+            }
+            ekf.updateOdometry(time, 0, 0, 0);
+            lastOdometryTime = time;
+            return;
+        }
+        odometry.update(left, right);
+        double interval = Double.isNaN(lastOdometryTime) ? 0 : time - lastOdometryTime;
+        ekf.updateOdometry(time, interval, odometry.lastDistance(), odometry.lastRotation());
+        lastOdometryTime = time;
+    }
+
+    /** Feeds one inertial sample taken at {@code time}. */
+    void inertial(double time, double yawRate, double forwardAcceleration) {
+        if (!config.useImu() || Double.isNaN(ekf.time())) {
+            return;
+        }
+        ekf.updateGyro(time, yawRate);
+        ekf.updateAccelerometer(time, forwardAcceleration);
+    }
+
+    /** @return the estimate predicted to {@code time} */
+    Pose2D pose(double time) {
+        if (!Double.isNaN(ekf.time()) && time > ekf.time()) {
+            ekf.predict(time);
+        }
+        return ekf.pose();
+    }
+
+    /** @return x, y, θ covariance (3 × 3) */
+    double[][] covariance() {
+        return ekf.poseCovariance();
+    }
+
+    /** @return the largest positional standard deviation (m): the square root of the larger eigenvalue of Pxy */
+    double positionSigma() {
+        double[][] c = ekf.poseCovariance();
+        double a = c[0][0], b = c[0][1], d = c[1][1];
+        double mean = (a + d) / 2;
+        double radius = Math.sqrt(((a - d) / 2) * ((a - d) / 2) + b * b);
+        return Math.sqrt(Math.max(0, mean + radius));
+    }
+
+    /** @return true when odometry has been missing for longer than the configured timeout */
+    boolean isStale(double time) {
+        return ekf.isStale(time);
+    }
+
+    /** @return measured forward speed and yaw rate (EKF state), m/s and rad/s */
+    double[] velocity() {
+        return new double[] { ekf.state(PoseEkf.V), ekf.state(PoseEkf.OMEGA) };
+    }
+}

@@ -1,0 +1,77 @@
+package sabot.onboard.internal.motion;
+
+import org.osgi.service.component.annotations.Activate;
+import org.osgi.service.component.annotations.Component;
+import org.osgi.service.component.annotations.ConfigurationPolicy;
+
+import sabot.model.geometry.Pose2D;
+import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.task.OnboardTask;
+
+/**
+ * Task {@code localizer}: the settings of the pose estimate (start pose, initial uncertainty, inertial fusion). The
+ * control loop creates its {@link Localizer} from them. Settings: OSGI-INF/metatype/localizer.xml.
+ */
+@Component(name = "sabot.task.localizer", configurationPolicy = ConfigurationPolicy.REQUIRE,
+        service = { OnboardTask.class, LocalizerTask.class })
+public final class LocalizerTask implements OnboardTask {
+
+    /** Settings (names match the Metatype description). */
+    public @interface Config {
+        /** @return start x in the map frame, m */
+        double startX() default 0;
+
+        /** @return start y in the map frame, m */
+        double startY() default 0;
+
+        /** @return start heading, rad */
+        double startTheta() default 0;
+
+        /** @return initial standard deviation of x and y, m */
+        double initialSigmaXY() default 0.02;
+
+        /** @return initial standard deviation of the heading, rad */
+        double initialSigmaTheta() default 0.02;
+
+        /** @return fuse the inertial board's gyro and accelerometer */
+        boolean useImu() default true;
+
+        /** @return seconds without odometry after which the estimate is stale (the robot stops) */
+        double odometryTimeout() default 0.2;
+
+        /** @return largest positional standard deviation, m, above which the robot stops (safety) */
+        double maxPositionSigma() default 0.5;
+    }
+
+    private Config config;
+
+    @Activate
+    void activate(Config c) {
+        this.config = c;
+    }
+
+    /** @return a new estimator at the configured start pose */
+    Localizer newLocalizer() {
+        return new Localizer(RobotDescriptions.defaults(), config);
+    }
+
+    /** @return the configured settings */
+    Config config() {
+        return config;
+    }
+
+    /** @return the configured start pose */
+    Pose2D start() {
+        return new Pose2D(config.startX(), config.startY(), config.startTheta());
+    }
+
+    @Override
+    public String name() {
+        return "localizer";
+    }
+
+    @Override
+    public String status() {
+        return "odometry + EKF" + (config.useImu() ? " with the inertial board" : "") + ", start " + start();
+    }
+}

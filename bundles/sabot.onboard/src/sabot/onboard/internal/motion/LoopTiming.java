@@ -1,0 +1,104 @@
+package sabot.onboard.internal.motion;
+
+import java.util.Locale;
+
+/**
+ * Measures the control loop: the jitter of each period's start against its schedule (|actual − expected|), the time
+ * the period's work took, and how many optional reads were skipped for lack of bus time. Histograms in microseconds
+ * (1 µs bins up to 100 ms), so percentiles over hours cost no memory growth. Written by the loop's thread; summaries
+ * may be read from any thread (slightly stale).
+ */
+final class LoopTiming {
+
+    private static final int BINS = 100_000;
+
+    private final long periodNanos;
+    private final long[] jitter = new long[BINS];
+    private final long[] busy = new long[BINS];
+    private long expected = Long.MIN_VALUE;
+    private long started;
+    private long periods;
+    private long overruns;
+    private long skipped;
+    private volatile Summary summary = new Summary(0, 0, 0, 0, 0, 0, 0, 0);
+
+    /** Percentiles in microseconds. */
+    record Summary(long periods, double jitterP50, double jitterP99, double jitterMax, double busyP50, double busyP99,
+            long overruns, long skippedOptionalReads) {
+        @Override
+        public String toString() {
+            return String.format(Locale.ROOT,
+                    "%d periods, start jitter p50 %.0f us p99 %.0f us max %.0f us, work p50 %.1f ms p99 %.1f ms, "
+                            + "%d overruns, %d optional reads skipped",
+                    periods, jitterP50, jitterP99, jitterMax, busyP50 / 1000, busyP99 / 1000, overruns,
+                    skippedOptionalReads);
+        }
+    }
+
+    LoopTiming(long periodNanos) {
+        this.periodNanos = periodNanos;
+    }
+
+    long periodNanos() {
+        return periodNanos;
+    }
+
+    void started(long now) {
+        if (expected == Long.MIN_VALUE) {
+            expected = now;
+        }
+        long late = Math.abs(now - expected);
+        jitter[(int) Math.min(BINS - 1, late / 1000)]++;
+        // a fixed-rate schedule catches up after a long period: the next start is expected one period later
+        expected += periodNanos;
+        while (now - expected > periodNanos) {
+            expected += periodNanos;
+        }
+        started = now;
+    }
+
+    void ended(long now) {
+        long work = now - started;
+        busy[(int) Math.min(BINS - 1, work / 1000)]++;
+        if (work > periodNanos) {
+            overruns++;
+        }
+        if (++periods % 50 == 0) {
+            summary = compute();
+        }
+    }
+
+    void skippedOptionalRead() {
+        skipped++;
+    }
+
+    Summary summary() {
+        return summary;
+    }
+
+    private Summary compute() {
+        return new Summary(periods, percentile(jitter, 0.50), percentile(jitter, 0.99), max(jitter),
+                percentile(busy, 0.50), percentile(busy, 0.99), overruns, skipped);
+    }
+
+    private double percentile(long[] h, double q) {
+        long target = (long) Math.ceil(q * periods);
+        long seen = 0;
+        for (int i = 0; i < BINS; i++) {
+            seen += h[i];
+            if (seen >= target && seen > 0) {
+                return i;
+            }
+        }
+        return BINS;
+    }
+
+    private static double max(long[] h) {
+        for (int i = BINS - 1; i >= 0; i--) {
+            if (h[i] > 0) {
+                return i;
+            }
+        }
+        return 0;
+    }
+}

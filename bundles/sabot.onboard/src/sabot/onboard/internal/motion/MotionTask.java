@@ -1,0 +1,557 @@
+package sabot.onboard.internal.motion;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Optional;
+import java.util.concurrent.ConcurrentLinkedQueue;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
+import java.util.function.Consumer;
+
+import org.osgi.service.component.annotations.Activate;
+import org.osgi.service.component.annotations.Component;
+import org.osgi.service.component.annotations.ConfigurationPolicy;
+import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.component.annotations.Reference;
+import org.osgi.service.component.annotations.ReferenceCardinality;
+import org.osgi.service.component.annotations.ReferencePolicy;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.control.MotionLimits;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.Obstacle;
+import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PidGains;
+import sabot.controlml.payload.PoseCovariance;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPoint;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+import sabot.model.map.GridGeometry;
+import sabot.model.map.OccupancyGrid;
+import sabot.model.robot.RobotDescription;
+import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.robot.CommandRefused;
+import sabot.onboard.robot.MotionListener;
+import sabot.onboard.robot.RobotMotion;
+import sabot.onboard.session.RobotSession;
+import sabot.onboard.session.SessionListener;
+import sabot.onboard.task.OnboardTask;
+
+/**
+ * Task {@code motion}: the robot's fixed-rate control loop and the {@link RobotMotion} service. Each period, on the
+ * thread {@code sabot-control-loop}: commands queued by other threads are applied, the encoders are read, the
+ * estimate updated, the safety checks run, the mode's controller computes a twist, the velocity smoother bounds it,
+ * and the wheel speeds are written; the time left in the period then reads the inertial board or one sonar sensor
+ * (their wire time is budgeted, so the loop never overruns on optional reads). Nothing in the loop waits on the
+ * network; planning runs on the thread {@code sabot-planner}. Settings: OSGI-INF/metatype/motion.xml.
+ */
+@Component(name = "sabot.task.motion", configurationPolicy = ConfigurationPolicy.REQUIRE,
+        service = { OnboardTask.class, RobotMotion.class })
+public final class MotionTask implements OnboardTask, RobotMotion {
+
+    /** Settings (names match the Metatype description). */
+    public @interface Config {
+        /** @return control loop rate, Hz */
+        double rate() default 50;
+
+        /** @return the motor board's own deadman, s: no set-point for this long and the board stops the wheels */
+        double boardDeadman() default 0.3;
+
+        /** @return seconds between two status log lines (0: none) */
+        double statusPeriod() default 1;
+
+        /** @return brake when the XMPP connection is lost while moving */
+        boolean stopOnDisconnect() default true;
+
+        /** @return seconds a sonar echo stays in the obstacle list */
+        double obstacleMemory() default 3;
+
+        /** @return how far ahead on the trajectory (s of driving) an obstacle blocks the path */
+        double blockedLookahead() default 3;
+
+        /** @return clearance (m) beyond the robot's radius that an obstacle must keep from the path ahead */
+        double blockedClearance() default 0.05;
+
+        /** @return default goal position tolerance, m (when a goal does not carry one) */
+        double goalTolerance() default 0.1;
+    }
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
+
+    @Reference
+    private RobotBoards boards;
+    @Reference
+    private LocalizerTask localizerTask;
+    @Reference
+    private PlannerTask plannerTask;
+    @Reference
+    private TrackerTask trackerTask;
+    @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
+    private volatile TeleopTask teleopTask;
+
+    private final List<MotionListener> listeners = new CopyOnWriteArrayList<>();
+    private final ConcurrentLinkedQueue<Consumer<ControlLoop>> commands = new ConcurrentLinkedQueue<>();
+    private final SessionListener sessionListener = new SessionListener() {
+        @Override
+        public void online() {
+            LOG.info("XMPP session online");
+        }
+
+        @Override
+        public void offline(String reason) {
+            if (config.stopOnDisconnect() && snapshot.moving()) {
+                LOG.warn("XMPP connection lost while moving: braking ({})", reason);
+                commands.add(loop -> loop.fault("XMPP connection lost while moving"));
+            }
+        }
+    };
+
+    private Config config;
+    private RobotDescription robot;
+    private MotionLimits physicalLimits;
+    private volatile MotionLimits limits;
+    private ScheduledExecutorService loopThread;
+    private ExecutorService plannerThread;
+    private ExecutorService notifier;
+    private ControlLoop loop;
+    private volatile Snapshot snapshot;
+    private volatile RobotSession session;
+
+    /** What other threads read: the loop's state at the end of its last period. Immutable. */
+    record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
+            Trajectory trajectory, Obstacles obstacles, boolean moving, boolean faulted, LoopTiming.Summary timing) {
+    }
+
+    @Activate
+    void activate(Config c) throws IOException {
+        this.config = c;
+        this.robot = RobotDescriptions.defaults();
+        this.physicalLimits = MotionLimits.of(robot);
+        this.limits = physicalLimits;
+        boards.setBoardDeadman(Duration.ofMillis(Math.round(c.boardDeadman() * 1000)));
+        boards.acknowledgeFaults();
+        boards.brake(false);
+        boards.writeWheelSpeeds(0, 0);
+        notifier = Executors.newSingleThreadExecutor(named("sabot-motion-events"));
+        plannerThread = Executors.newSingleThreadExecutor(named("sabot-planner"));
+        loop = new ControlLoop(this, c, boards, robot, localizerTask, plannerTask, trackerTask);
+        snapshot = loop.snapshot(Instant.now());
+        loopThread = Executors.newSingleThreadScheduledExecutor(r -> {
+            Thread t = new Thread(r, "sabot-control-loop");
+            t.setPriority(Thread.MAX_PRIORITY);
+            t.setDaemon(true);
+            return t;
+        });
+        long periodNanos = Math.round(1e9 / c.rate());
+        loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
+        LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}", c.rate(),
+                plannerTask.planner().algorithm(), trackerTask.config().controller());
+    }
+
+    @Deactivate
+    void deactivate() throws InterruptedException {
+        loopThread.shutdown();
+        loopThread.awaitTermination(2, TimeUnit.SECONDS);
+        try {
+            boards.writeWheelSpeeds(0, 0);
+            boards.brake(true);
+        } catch (IOException e) {
+            LOG.warn("could not brake on stop: {}", e.getMessage());
+        }
+        plannerThread.shutdownNow();
+        notifier.shutdown();
+        LOG.info("motion task stopped, robot braked; control loop {}", loop.timing().summary());
+    }
+
+    @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
+    void bindSession(RobotSession s) {
+        this.session = s;
+        s.addListener(sessionListener);
+    }
+
+    void unbindSession(RobotSession s) {
+        s.removeListener(sessionListener);
+        if (this.session == s) {
+            this.session = null;
+        }
+    }
+
+    private void tick() {
+        try {
+            Consumer<ControlLoop> command;
+            while ((command = commands.poll()) != null) {
+                command.accept(loop);
+            }
+            snapshot = loop.tick();
+        } catch (RuntimeException e) {
+            // A bug must not stop the loop's thread (scheduleAtFixedRate would end silently): brake and say why.
+            LOG.error("control loop error, braking", e);
+            loop.fault("internal error: " + e);
+        }
+    }
+
+    /** Called by the loop (its thread) when the mission's status changed. */
+    void missionChanged(MissionStatus status) {
+        for (MotionListener l : listeners) {
+            notifier.execute(() -> l.missionChanged(status));
+        }
+    }
+
+    /** Runs a planning job off the loop's thread; its result comes back through the command queue. */
+    void plan(Runnable job) {
+        plannerThread.execute(job);
+    }
+
+    /** Queues a command for the loop's next period. */
+    void enqueue(Consumer<ControlLoop> command) {
+        commands.add(command);
+    }
+
+    MotionLimits currentLimits() {
+        return limits;
+    }
+
+    TeleopTask teleop() {
+        return teleopTask;
+    }
+
+    // ------------------------------------------------------------------------------------------------ RobotMotion
+
+    @Override
+    public PoseEstimate pose() {
+        return snapshot.pose();
+    }
+
+    @Override
+    public VelocityCommand velocity() {
+        return snapshot.velocity();
+    }
+
+    @Override
+    public void relocalise(Pose2D pose) throws CommandRefused {
+        requireFinite(pose);
+        if (snapshot.moving()) {
+            throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the robot is moving: stop it before re-localising");
+        }
+        requireOnMap(pose.position(), "pose");
+        enqueue(l -> l.relocalise(pose));
+    }
+
+    @Override
+    public void teleop(Twist2D twist) throws CommandRefused {
+        TeleopTask t = teleopTask;
+        if (t == null) {
+            throw new CommandRefused(ControlMlCondition.UNSUPPORTED_OPERATION, "the teleop task is not running");
+        }
+        if (!twist.isFinite()) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "twist must be finite");
+        }
+        Snapshot s = snapshot;
+        if (s.mission().state() == MissionState.RUNNING || s.mission().state() == MissionState.PAUSED) {
+            throw new CommandRefused(ControlMlCondition.INVALID_STATE,
+                    "a mission is " + s.mission().state().name().toLowerCase() + ": abort it before driving by joystick");
+        }
+        if (s.mission().maintenance()) {
+            throw new CommandRefused(ControlMlCondition.MAINTENANCE_LOCK, "the robot is in maintenance");
+        }
+        requireBoardsAnswer();
+        double v = clamp(twist.linear(), Math.min(t.config().maxLinear(), limits.maxLinearSpeed()));
+        double w = clamp(twist.angular(), Math.min(t.config().maxAngular(), limits.maxAngularSpeed()));
+        Twist2D bounded = new Twist2D(v, w);
+        long received = System.nanoTime();
+        enqueue(l -> l.teleop(bounded, received));
+    }
+
+    @Override
+    public Optional<Goal> goal() {
+        return snapshot.goal();
+    }
+
+    @Override
+    public void navigateTo(Goal goal) throws CommandRefused {
+        requireFinite(goal.pose());
+        if (!(goal.positionTolerance() > 0) || !(goal.headingTolerance() > 0)) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "goal tolerances must be > 0");
+        }
+        if (snapshot.mission().maintenance()) {
+            throw new CommandRefused(ControlMlCondition.MAINTENANCE_LOCK, "the robot is in maintenance");
+        }
+        requireBoardsAnswer();
+        requireOnMap(goal.pose().position(), "goal");
+        Pose2D from = snapshot.pose().pose();
+        List<Point2D> obstacles = obstaclePoints(snapshot.obstacles());
+        ControlLoop.Plan plan = loop.planPath(from, goal, obstacles);
+        if (plan.refusal() != null) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, plan.refusal());
+        }
+        enqueue(l -> l.startMission(goal, plan));
+        LOG.info("new goal ({}, {}, {}): path {} m", fmt(goal.pose().x()), fmt(goal.pose().y()),
+                fmt(goal.pose().theta()), fmt(plan.length()));
+    }
+
+    @Override
+    public Trajectory trajectory() {
+        return snapshot.trajectory();
+    }
+
+    @Override
+    public void follow(Trajectory trajectory) throws CommandRefused {
+        if (trajectory.points().size() < 2) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "a trajectory needs at least two points");
+        }
+        if (snapshot.mission().maintenance()) {
+            throw new CommandRefused(ControlMlCondition.MAINTENANCE_LOCK, "the robot is in maintenance");
+        }
+        requireBoardsAnswer();
+        for (TrajectoryPoint p : trajectory.points()) {
+            requireOnMap(new Point2D(p.x(), p.y()), "trajectory point");
+            if (Math.abs(p.v()) > limits.maxLinearSpeed() * 1.0001
+                    || Math.abs(p.omega()) > limits.maxAngularSpeed() * 1.0001) {
+                throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "trajectory point at t = " + p.t()
+                        + " s exceeds the motion limits (" + limits.maxLinearSpeed() + " m/s, "
+                        + limits.maxAngularSpeed() + " rad/s)");
+            }
+        }
+        enqueue(l -> l.followImposed(trajectory));
+    }
+
+    @Override
+    public Obstacles obstacles() {
+        return snapshot.obstacles();
+    }
+
+    @Override
+    public GridMap map() {
+        OccupancyGrid g = plannerTask.planner().map();
+        GridGeometry geo = g.geometry();
+        return new GridMap(geo.resolution(), geo.width(), geo.height(), geo.origin(), g.toArray());
+    }
+
+    @Override
+    public void replaceMap(GridMap map) throws CommandRefused {
+        if (snapshot.moving()) {
+            throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the robot is moving: replace the map at rest");
+        }
+        OccupancyGrid grid;
+        try {
+            grid = OccupancyGrid.of(new GridGeometry(map.width(), map.height(), map.resolution(), map.origin()),
+                    map.cells());
+        } catch (IllegalArgumentException e) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, e.getMessage());
+        }
+        plannerTask.planner().replaceMap(grid);
+        LOG.info("map replaced: {} x {} cells of {} m", map.width(), map.height(), map.resolution());
+    }
+
+    @Override
+    public sabot.controlml.payload.MotionLimits limits() {
+        MotionLimits l = limits;
+        return new sabot.controlml.payload.MotionLimits(l.maxLinearSpeed(), l.maxAngularSpeed(),
+                l.maxLinearAcceleration(), l.maxAngularAcceleration());
+    }
+
+    @Override
+    public void setLimits(sabot.controlml.payload.MotionLimits requested) throws CommandRefused {
+        MotionLimits p = physicalLimits;
+        check(requested.maxLinearSpeed(), p.maxLinearSpeed(), "maxLinearSpeed", "m/s");
+        check(requested.maxAngularSpeed(), p.maxAngularSpeed(), "maxAngularSpeed", "rad/s");
+        check(requested.maxLinearAcceleration(), p.maxLinearAcceleration(), "maxLinearAcceleration", "m/s2");
+        check(requested.maxAngularAcceleration(), p.maxAngularAcceleration(), "maxAngularAcceleration", "rad/s2");
+        // The smoother bounds each wheel's rim acceleration by a_lin; a lower angular bound lowers it accordingly.
+        double linearAcceleration = Math.min(requested.maxLinearAcceleration(),
+                requested.maxAngularAcceleration() * p.trackWidth() / 2);
+        MotionLimits l = new MotionLimits(requested.maxLinearSpeed(), linearAcceleration, requested.maxAngularSpeed(),
+                Math.min(p.maxLateralAcceleration(), requested.maxLinearAcceleration()), p.maxWheelRimSpeed(),
+                p.trackWidth());
+        this.limits = l;
+        enqueue(loop -> loop.limitsChanged(l));
+        LOG.info("motion limits set: {} m/s, {} rad/s, {} m/s2", l.maxLinearSpeed(), l.maxAngularSpeed(),
+                l.maxLinearAcceleration());
+    }
+
+    @Override
+    public PidGains gains() throws CommandRefused {
+        try {
+            return boards.readGains();
+        } catch (IOException e) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
+        }
+    }
+
+    @Override
+    public PidGains setGains(PidGains gains) throws CommandRefused {
+        try {
+            return boards.writeGains(gains);
+        } catch (IllegalArgumentException e) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, e.getMessage());
+        } catch (IOException e) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
+        }
+    }
+
+    @Override
+    public MissionStatus mission() {
+        return snapshot.mission();
+    }
+
+    @Override
+    public void command(MissionStatus command) throws CommandRefused {
+        Snapshot s = snapshot;
+        MissionState current = s.mission().state();
+        if (command.maintenance() != s.mission().maintenance()) {
+            if (command.maintenance() && (current == MissionState.RUNNING || current == MissionState.PAUSED)) {
+                throw new CommandRefused(ControlMlCondition.INVALID_STATE,
+                        "a mission is " + current.name().toLowerCase() + ": abort it before maintenance");
+            }
+            enqueue(l -> l.maintenance(command.maintenance(), command.detail()));
+            return;
+        }
+        switch (command.state()) {
+            case PAUSED -> {
+                if (current != MissionState.RUNNING) {
+                    throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no running mission to pause");
+                }
+                enqueue(ControlLoop::pause);
+            }
+            case RUNNING -> {
+                if (current != MissionState.PAUSED) {
+                    throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no paused mission to resume");
+                }
+                enqueue(ControlLoop::resume);
+            }
+            case ABORTED -> {
+                if (current != MissionState.RUNNING && current != MissionState.PAUSED) {
+                    throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no mission to abort");
+                }
+                enqueue(l -> l.abort("aborted by " + (command.detail().isBlank() ? "the operator" : command.detail())));
+            }
+            default -> throw new CommandRefused(ControlMlCondition.INVALID_VALUE,
+                    "a mission command is paused, running (resume) or aborted, not " + command.state().name()
+                            .toLowerCase());
+        }
+    }
+
+    @Override
+    public void stop(String reason, boolean fault) {
+        enqueue(l -> {
+            if (fault) {
+                l.fault(reason);
+            } else {
+                l.abort(reason);
+            }
+        });
+    }
+
+    @Override
+    public void addListener(MotionListener listener) {
+        listeners.add(listener);
+    }
+
+    @Override
+    public void removeListener(MotionListener listener) {
+        listeners.remove(listener);
+    }
+
+    // ----------------------------------------------------------------------------------------------------- task
+
+    @Override
+    public String name() {
+        return "motion";
+    }
+
+    @Override
+    public String status() {
+        Snapshot s = snapshot;
+        return "mission " + s.mission().state().name().toLowerCase() + ", control loop " + s.timing();
+    }
+
+    /** @return the loop's last published state */
+    Snapshot snapshot() {
+        return snapshot;
+    }
+
+    private void requireBoardsAnswer() throws CommandRefused {
+        String faulted = boards.faultedBoard();
+        if (faulted != null) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "the " + faulted + " board does not answer");
+        }
+    }
+
+    private void requireOnMap(Point2D p, String what) throws CommandRefused {
+        if (plannerTask.planner().map().geometry().cellAt(p).isEmpty()) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE,
+                    what + " (" + fmt(p.x()) + ", " + fmt(p.y()) + ") is outside the map");
+        }
+    }
+
+    private static void requireFinite(Pose2D p) throws CommandRefused {
+        if (p == null || !p.isFinite()) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "pose must be finite");
+        }
+    }
+
+    private static void check(double value, double physical, String name, String unit) throws CommandRefused {
+        if (!(value > 0) || value > physical * (1 + 1e-9)) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE,
+                    name + " must be in (0, " + physical + "] " + unit + " (the robot's physical limit), was " + value);
+        }
+    }
+
+    static List<Point2D> obstaclePoints(Obstacles o) {
+        List<Point2D> points = new ArrayList<>(o.obstacles().size());
+        for (Obstacle x : o.obstacles()) {
+            points.add(new Point2D(x.x(), x.y()));
+        }
+        return points;
+    }
+
+    static double clamp(double v, double bound) {
+        return Math.max(-bound, Math.min(bound, v));
+    }
+
+    static String fmt(double v) {
+        return String.format(java.util.Locale.ROOT, "%.3f", v);
+    }
+
+    static java.util.concurrent.ThreadFactory named(String name) {
+        return r -> {
+            Thread t = new Thread(r, name);
+            t.setDaemon(true);
+            return t;
+        };
+    }
+
+    static PoseCovariance covariance(double[][] c) {
+        return new PoseCovariance(c[0][0], c[0][1], c[0][2], c[1][1], c[1][2], c[2][2]);
+    }
+
+    /** Sampling step of cm.trajectory answers, s. */
+    private static final double TRAJECTORY_REPORT_STEP = 0.1;
+
+    static List<TrajectoryPoint> sample(sabot.model.path.Trajectory t) {
+        List<TrajectoryPoint> points = new ArrayList<>();
+        int n = (int) Math.min(4095, Math.ceil(t.duration() / TRAJECTORY_REPORT_STEP));
+        double step = n == 0 ? 0 : t.duration() / n;
+        for (int i = 0; i <= n; i++) {
+            sabot.model.path.TrajectorySample s = t.sample(i * step);
+            points.add(new TrajectoryPoint(i * step, s.x(), s.y(), s.theta(), s.linearVelocity(),
+                    s.angularVelocity()));
+        }
+        return points;
+    }
+}

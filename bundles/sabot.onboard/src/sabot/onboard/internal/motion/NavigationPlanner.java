@@ -1,0 +1,94 @@
+package sabot.onboard.internal.motion;
+
+import java.util.Collection;
+import java.util.List;
+import java.util.Optional;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.map.Cell;
+import sabot.model.map.GridGeometry;
+import sabot.model.map.OccupancyGrid;
+import sabot.planner.CostModel;
+import sabot.planner.PlanResult;
+import sabot.planner.Planner;
+import sabot.planner.Planners;
+import sabot.planner.costmap.CostmapLayers;
+import sabot.planner.costmap.InflationParameters;
+import sabot.planner.costmap.MovingObstacleModel;
+
+/**
+ * Plans on the robot's static map plus the obstacles the sonar sees: each request builds the costmap (map, sonar
+ * points as lethal cells, inflation by the robot's radius) and runs the configured planner. Thread-safe: requests are
+ * serialised (the planner holds its work arrays).
+ */
+final class NavigationPlanner implements AutoCloseable {
+
+    private final Planner planner;
+    private final InflationParameters inflation;
+    private volatile OccupancyGrid map;
+
+    NavigationPlanner(OccupancyGrid map, String algorithm, int threads, double robotRadius, double inflationRadius) {
+        this.map = map;
+        this.planner = Planners.byName(algorithm, CostModel.standard(), threads).orElseThrow(
+                () -> new IllegalArgumentException("unknown planner '" + algorithm + "', one of " + Planners.NAMES));
+        this.inflation = InflationParameters.forRobot(robotRadius).withDecay(Math.max(inflationRadius, robotRadius),
+                InflationParameters.DEFAULT_COST_SCALING_FACTOR);
+    }
+
+    /** @return the static map (a copy is not made: callers must not change it) */
+    OccupancyGrid map() {
+        return map;
+    }
+
+    /** Replaces the static map. */
+    void replaceMap(OccupancyGrid newMap) {
+        this.map = newMap;
+    }
+
+    /** @return the planner's name, e.g. lpn */
+    String algorithm() {
+        return planner.name();
+    }
+
+    /**
+     * @param obstacles sonar points in the map frame, m
+     * @return a path or the reason there is none
+     */
+    synchronized PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles) {
+        OccupancyGrid grid = map;
+        OccupancyGrid withObstacles = OccupancyGrid.of(grid.geometry(), grid.toArray());
+        for (Point2D p : obstacles) {
+            grid.geometry().cellAt(p).ifPresent(c -> withObstacles.set(c.column(), c.row(), OccupancyGrid.OCCUPIED));
+        }
+        CostmapLayers layers = CostmapLayers.fromOccupancy(withObstacles, inflation, MovingObstacleModel.defaults());
+        return planner.plan(layers.costmap(), start, List.of(goal));
+    }
+
+    /**
+     * @return true when {@code p} lies on or next to (8-neighbourhood) an occupied cell of the static map: a sonar
+     *         echo of a wall the planner already knows
+     */
+    boolean isStaticObstacle(Point2D p) {
+        OccupancyGrid grid = map;
+        GridGeometry g = grid.geometry();
+        Optional<Cell> cell = g.cellAt(p);
+        if (cell.isEmpty()) {
+            return true;
+        }
+        for (int dr = -1; dr <= 1; dr++) {
+            for (int dc = -1; dc <= 1; dc++) {
+                int c = cell.get().column() + dc;
+                int r = cell.get().row() + dr;
+                if (g.contains(c, r) && grid.get(c, r) >= OccupancyGrid.OCCUPIED / 2) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    @Override
+    public void close() {
+        planner.close();
+    }
+}

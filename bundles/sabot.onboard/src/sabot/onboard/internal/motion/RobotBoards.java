@@ -1,0 +1,66 @@
+package sabot.onboard.internal.motion;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.List;
+
+import sabot.controlml.payload.PidGains;
+import sabot.model.geometry.Point2D;
+
+/**
+ * What the control loop needs of the robot's RS-485 bus, in SI units: one method per bus transaction, so the loop can
+ * budget its period. Provided as a service by the {@code bus} task over {@code sabot.modbus}. The
+ * bus serialises transactions itself, callers other than the loop (gains) take a few milliseconds of bus time.
+ */
+public interface RobotBoards {
+
+    /** Encoder counts of both wheels (wrap modulo 2^32). */
+    record WheelCounts(int left, int right) {
+    }
+
+    /** The inertial sample the estimator uses: yaw rate (rad/s) and longitudinal specific force (m/s²). */
+    record ImuSample(long counter, double yawRate, double forwardAcceleration) {
+    }
+
+    /** @return both encoders, one transaction */
+    WheelCounts readEncoders() throws IOException;
+
+    /** Writes both wheel speed set-points (rad/s at the wheel, positive forward) in one transaction. */
+    void writeWheelSpeeds(double left, double right) throws IOException;
+
+    /** @return the inertial board's latest sample, one transaction */
+    ImuSample readImu() throws IOException;
+
+    /** @return the number of sonar sensors */
+    int sonarSensors();
+
+    /** @return the echo of one sonar sensor as a point in the robot frame (metres), or empty; one transaction */
+    List<Point2D> readSonar(int sensor) throws IOException;
+
+    /** Brakes both motors (set-points zeroed) or releases the brake. */
+    void brake(boolean on) throws IOException;
+
+    /** @return true when the motor board latched a fault (over-current, following error); one transaction */
+    boolean motorFault() throws IOException;
+
+    /** Clears latched motor faults. */
+    void acknowledgeFaults() throws IOException;
+
+    /** Sets the motor board's own deadman: no set-point write for this long and it stops the wheels. */
+    void setBoardDeadman(Duration timeout) throws IOException;
+
+    /** Sets the motor board's wheel speed and acceleration limits (m/s, m/s² at the wheel rim). */
+    void writeLimits(double maxWheelSpeed, double maxWheelAcceleration) throws IOException;
+
+    /** @return the gains read back from the board */
+    PidGains readGains() throws IOException;
+
+    /** Writes the gains (validated before anything is written) and returns them read back. */
+    PidGains writeGains(PidGains gains) throws IOException;
+
+    /** @return the name of the first board that has not answered for longer than the bus's fault time, or null */
+    String faultedBoard();
+
+    /** @return computed wire time of the loop's optional reads (IMU, one sonar sensor), seconds */
+    double optionalReadWireTime();
+}
