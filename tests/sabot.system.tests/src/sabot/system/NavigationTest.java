@@ -1,0 +1,67 @@
+package sabot.system;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Path;
+
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import sabot.controlml.Resources;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * Proof 1 of the onboard issue: a goal sent over XMPP moves the simulated robot. Real processes: a private Prosody,
+ * sabot-sim on the lab map, the onboard product on the simulator's pty; the operator is a Smack client. Success is
+ * judged on the simulator's ground truth, not on what the robot believes.
+ */
+class NavigationTest {
+
+    /** Left of the lab's partition (x 3.0–3.6 m, y 2.2–6.0 m), facing +x. */
+    static final double[] START = { 1.5, 4.0, 0.0 };
+    /** Behind the partition, 5.2 m away in a straight line; the path goes round the partition's end. */
+    static final Pose2D GOAL = new Pose2D(6.5, 3.0, 0.0);
+    static final double TOLERANCE = 0.10;
+
+    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
+
+    @BeforeEach
+    void startServer() throws Exception {
+        xmpp.start();
+    }
+
+    @AfterEach
+    void stopServer() {
+        xmpp.close();
+    }
+
+    @Test
+    void goalBehindThePartitionIsReachedWithoutContact(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            assertTrue(Math.hypot(GOAL.x() - START[0], GOAL.y() - START[1]) >= 5.0);
+            assertEquals(MissionState.IDLE, rig.get(Resources.MISSION).state());
+
+            Goal goal = new Goal(GOAL, TOLERANCE, 0.2);
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, goal).isSuccess(), rig.onboard.output());
+            MissionStatus running = rig.get(Resources.MISSION);
+            assertEquals(MissionState.RUNNING, running.state(), running.toString());
+
+            rig.onboard.await(l -> l.contains("goal reached"), "saying the goal is reached", 120);
+            MissionStatus done = rig.get(Resources.MISSION);
+            assertEquals(MissionState.DONE, done.state(), done.toString());
+
+            SimProcess.Truth truth = rig.sim.truth();
+            assertTrue(truth.distanceTo(GOAL.x(), GOAL.y()) <= TOLERANCE, "truth " + truth + " not within "
+                    + TOLERANCE + " m of " + GOAL + "\n" + rig.onboard.output());
+            assertEquals(0, truth.contacts(), "contacts: " + truth);
+            assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
+        }
+    }
+}

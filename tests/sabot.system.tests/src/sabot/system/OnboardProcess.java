@@ -1,0 +1,203 @@
+package sabot.system;
+
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+import java.util.function.Predicate;
+import java.util.stream.Stream;
+
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * The materialized Sabot Onboard product as a process, started as {@code ./sabot onboard --config FILE} starts it,
+ * configured for one simulated robot: the bus on the simulator's pty, the lab map, the ControlML account on a private
+ * server. Its console is captured so that tests wait for log lines instead of sleeping.
+ */
+final class OnboardProcess implements AutoCloseable {
+
+    static final long TIMEOUT_S = 60;
+
+    private final Process process;
+    private final List<String> lines = new ArrayList<>();
+    private final Path config;
+
+    private OnboardProcess(Process process, Path config) {
+        this.process = process;
+        this.config = config;
+        Thread reader = new Thread(this::pump, "onboard-console");
+        reader.setDaemon(true);
+        reader.start();
+    }
+
+    /** The settings of one robot's configuration file. */
+    record Robot(String name, String pty, double[] start, int xmppPort, String operator) {
+    }
+
+    /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
+    static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
+        Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+        return String.format(Locale.ROOT, """
+                robot.name = %s
+                tasks = bus, localizer, planner, tracker, teleop, motion, controlml, remotefs
+                bus.port = %s
+                bus.parity = NONE
+                localizer.startX = %.3f
+                localizer.startY = %.3f
+                localizer.startTheta = %.4f
+                planner.map = %s
+                controlml.server = 127.0.0.1
+                controlml.port = %d
+                controlml.jid = %s@%s
+                controlml.passwordFile = %s
+                controlml.operators = %s
+                remotefs.root = %s
+                %s
+                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, r.xmppPort(), r.name(),
+                PrivateXmppServer.DOMAIN, passwordFile, r.operator(), fsRoot, extra);
+    }
+
+    /** Writes the password file (mode 0600) and the configuration into {@code dir}, then starts the product. */
+    static OnboardProcess start(Path dir, Robot robot, String password, String extra) throws IOException {
+        Path passwordFile = dir.resolve("xmpp-password");
+        Files.writeString(passwordFile, password + "\n");
+        Files.setPosixFilePermissions(passwordFile, PosixFilePermissions.fromString("rw-------"));
+        Path fsRoot = Files.createDirectories(dir.resolve("fs"));
+        Path config = dir.resolve("onboard.conf");
+        Files.writeString(config, configuration(robot, passwordFile, fsRoot, extra));
+        return start(config);
+    }
+
+    /** Starts the product with a configuration file as it is. */
+    static OnboardProcess start(Path config) throws IOException {
+        Path product = product();
+        List<String> cmd = new ArrayList<>();
+        cmd.add(Paths.get(System.getProperty("java.home"), "bin", "java").toString());
+        cmd.add("-Dlogback.configurationFile=" + product.resolve("etc/logback.xml"));
+        cmd.add("-jar");
+        cmd.add(launcherJar(product).toString());
+        cmd.add("-consoleLog");
+        cmd.add("-config");
+        cmd.add(config.toString());
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true);
+        return new OnboardProcess(pb.start(), config);
+    }
+
+    static Path product() {
+        Path p = PrivateXmppServer.repositoryRoot().resolve(
+                "product/sabot.onboard.product/target/products/sabot-onboard/linux/gtk/x86_64");
+        if (!Files.isDirectory(p.resolve("plugins"))) {
+            throw new IllegalStateException("onboard product not built: " + p + " (run the whole reactor)");
+        }
+        return p;
+    }
+
+    private static Path launcherJar(Path product) throws IOException {
+        try (Stream<Path> s = Files.list(product.resolve("plugins"))) {
+            return s.filter(p -> p.getFileName().toString().matches("org\\.eclipse\\.equinox\\.launcher_.*\\.jar"))
+                    .findFirst().orElseThrow(() -> new IllegalStateException("no launcher in " + product));
+        }
+    }
+
+    private void pump() {
+        try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(),
+                StandardCharsets.UTF_8))) {
+            String line;
+            while ((line = r.readLine()) != null) {
+                synchronized (lines) {
+                    lines.add(line);
+                    lines.notifyAll();
+                }
+            }
+        } catch (IOException ended) {
+            // process gone
+        } finally {
+            synchronized (lines) {
+                lines.notifyAll();
+            }
+        }
+    }
+
+    /**
+     * Waits for a console line matching {@code p} (one already printed counts).
+     *
+     * @param what for the failure message, e.g. "the robot's XMPP login"
+     */
+    String await(Predicate<String> p, String what) throws InterruptedException {
+        return await(p, what, TIMEOUT_S);
+    }
+
+    String await(Predicate<String> p, String what, long seconds) throws InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
+        int seen = 0;
+        synchronized (lines) {
+            while (true) {
+                for (; seen < lines.size(); seen++) {
+                    if (p.test(lines.get(seen))) {
+                        return lines.get(seen);
+                    }
+                }
+                long left = deadline - System.nanoTime();
+                if (left <= 0 || !process.isAlive() && seen == lines.size()) {
+                    throw new AssertionError("onboard product: no line " + what + " within " + seconds
+                            + " s; exit " + (process.isAlive() ? "-" : process.exitValue()) + "; console:\n"
+                            + output());
+                }
+                TimeUnit.NANOSECONDS.timedWait(lines, left);
+            }
+        }
+    }
+
+    /** @return the console so far */
+    String output() {
+        synchronized (lines) {
+            return String.join("\n", lines);
+        }
+    }
+
+    /** @return the configuration file */
+    Path config() {
+        return config;
+    }
+
+    /** SIGTERM, then wait for the exit status. */
+    int stop() throws InterruptedException {
+        process.destroy();
+        if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
+            process.destroyForcibly();
+            throw new AssertionError("onboard product did not stop within " + TIMEOUT_S + " s:\n" + output());
+        }
+        return process.exitValue();
+    }
+
+    /** @return the exit status, waiting for the process to end */
+    int waitFor() throws InterruptedException {
+        if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
+            throw new AssertionError("onboard product still running after " + TIMEOUT_S + " s:\n" + output());
+        }
+        return process.exitValue();
+    }
+
+    @Override
+    public void close() {
+        if (process.isAlive()) {
+            process.destroy();
+            try {
+                if (!process.waitFor(20, TimeUnit.SECONDS)) {
+                    process.destroyForcibly();
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                process.destroyForcibly();
+            }
+        }
+    }
+}

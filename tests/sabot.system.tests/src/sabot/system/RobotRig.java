@@ -1,0 +1,90 @@
+package sabot.system;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jxmpp.jid.Jid;
+import org.jxmpp.jid.impl.JidCreate;
+
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.Resource;
+import sabot.controlml.payload.NoQuery;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * One simulated robot as a lab runs it: {@code sabot-sim} on the lab map, the onboard product on the simulator's pty
+ * with an account on the private server, and an operator's Smack client with its ControlML manager. Closed in reverse
+ * order of start.
+ */
+final class RobotRig implements AutoCloseable {
+
+    static final String ROBOT = "sabot-01";
+    static final String OPERATOR = "operator";
+
+    final SimProcess sim;
+    final OnboardProcess onboard;
+    final XMPPTCPConnection operatorConnection;
+    final ControlMlManager operator;
+    final Jid robot;
+
+    private RobotRig(SimProcess sim, OnboardProcess onboard, XMPPTCPConnection connection, Jid robot) {
+        this.sim = sim;
+        this.onboard = onboard;
+        this.operatorConnection = connection;
+        this.operator = ControlMlManager.getInstanceFor(connection);
+        this.operator.setRequestTimeout(Duration.ofSeconds(10));
+        this.robot = robot;
+    }
+
+    /**
+     * Starts the simulator with the robot at {@code start}, the onboard product (waiting until its ControlML session is
+     * online) and the operator's client.
+     *
+     * @param simOptions extra sabot-sim options
+     * @param extraConfig extra lines of the onboard configuration
+     */
+    static RobotRig start(PrivateXmppServer xmpp, Path dir, double[] start, String[] simOptions, String extraConfig)
+            throws Exception {
+        xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
+        Files.createDirectories(dir);
+        SimProcess sim = SimProcess.start(dir, start, simOptions);
+        OnboardProcess onboard = null;
+        try {
+            onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), start, xmpp.port(),
+                    OPERATOR + "@" + PrivateXmppServer.DOMAIN), "robot-pw", extraConfig);
+            onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
+            onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
+            XMPPTCPConnection c = xmpp.login(OPERATOR);
+            return new RobotRig(sim, onboard, c, JidCreate.from(ROBOT + "@" + PrivateXmppServer.DOMAIN + "/onboard"));
+        } catch (Exception | AssertionError e) {
+            if (onboard != null) {
+                onboard.close();
+            }
+            sim.close();
+            throw e;
+        }
+    }
+
+    /** A get that must succeed. */
+    <T> T get(Resource<T, NoQuery> resource) {
+        Outcome<T> o = operator.get(robot, resource);
+        if (!o.isSuccess()) {
+            throw new AssertionError("get " + resource.name() + " failed: " + o.errorOrNull() + "\n"
+                    + onboard.output());
+        }
+        return o.orElseThrow();
+    }
+
+    @Override
+    public void close() throws IOException {
+        if (operatorConnection.isConnected()) {
+            operatorConnection.instantShutdown();
+        }
+        onboard.close();
+        sim.close();
+    }
+}
