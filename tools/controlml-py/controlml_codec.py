@@ -86,6 +86,11 @@ class RequestIds:
         return f"{day}:{self._counter}"
 
 
+def is_resource(text: str) -> bool:
+    """True when ``text`` is a resource name: 'cm.' and dot-separated lower-case words."""
+    return bool(_RES_RE.fullmatch(text))
+
+
 def is_request_id(text: str) -> bool:
     """True when ``text`` is 'YYYYMMDD:UINT32' with a date that exists and a counter <= 4294967295."""
     m = _ID_RE.fullmatch(text)
