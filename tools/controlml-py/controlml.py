@@ -64,8 +64,8 @@ class Client(slixmpp.ClientXMPP):
         self.add_event_handler("session_start", self._on_start)
         self.add_event_handler("failed_all_auth", lambda _: self._fail("authentication failed"))
         self.add_event_handler("connection_failed", lambda e: self._fail(f"connection failed: {e}"))
-        self.add_event_handler("presence_available", self._on_presence)
-        self.add_event_handler("presence_unavailable", self._on_presence)
+        # 'presence' sees every presence; slixmpp's presence_available misses a robot that is busy (show dnd)
+        self.add_event_handler("presence", self._on_presence)
 
     def _fail(self, why: str) -> None:
         self.failed = why
@@ -77,10 +77,13 @@ class Client(slixmpp.ClientXMPP):
 
     def _on_presence(self, pres) -> None:
         full = str(pres["from"])
-        if pres["type"] == "unavailable":
+        kind = pres["type"]  # slixmpp gives the show (away, dnd, ...) as the type of an available presence
+        if kind == "unavailable":
             self.presences.pop(full, None)
-        else:
+        elif kind in ("available", "chat", "away", "xa", "dnd"):
             self.presences[full] = (pres["show"] or "available", cm.decode_presence_level(pres.xml), pres["status"])
+        else:
+            return  # subscription requests and answers
         self.presence_changed.set()
 
     async def login(self, server: str, port: int, timeout: float) -> None:
