@@ -1,0 +1,291 @@
+#!/usr/bin/env python3
+"""controlml.py: a ControlML client over XMPP (slixmpp), written from docs/CONTROLML.md.
+
+  controlml.py --jid operator@sabot.local --password sabot get sabot-01@sabot.local cm.position
+  controlml.py ... set-goal sabot-01@sabot.local 1.5 4.0 3.14 [--tol 0.1] [--heading-tol 0.2] [--xml-form]
+  controlml.py ... mission sabot-01@sabot.local pause|resume|abort
+  controlml.py ... watch sabot-01@sabot.local [--count N]
+
+A robot given as a bare JID is reached at the full JID of its presence (resource 'onboard' preferred): the client
+subscribes to the robot's presence and waits for it. Exit status: 0 done, 1 the robot refused (its condition,
+reason and text on stderr), 2 bad usage, 3 no connection, no login, robot offline or no answer in time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import os
+import signal
+import ssl
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+import slixmpp
+from slixmpp.exceptions import IqError, IqTimeout
+
+import controlml_codec as cm
+
+EXIT_REFUSED, EXIT_USAGE, EXIT_UNREACHABLE = 1, 2, 3
+ROBOT_RESOURCE = "onboard"  # the onboard product's XMPP resource
+
+
+class Failure(Exception):
+    def __init__(self, status: int, message: str):
+        super().__init__(message)
+        self.status = status
+
+
+class Client(slixmpp.ClientXMPP):
+    """One XMPP session: login, robot presence tracking, ControlML request/answer."""
+
+    def __init__(self, jid: str, password: str, starttls: bool, verify_tls: bool = True):
+        super().__init__(jid, password)
+        # slixmpp writes a namespaced attribute only when its namespace has a prefix here (xlink:href of the text
+        # form and of Time units would be dropped otherwise)
+        self.namespace_map[cm.XLINK_NS] = "xlink"
+        # one way in: the server's c2s port, plain or upgraded with STARTTLS (slixmpp would otherwise try direct TLS
+        # first and report its failure as a failed connection)
+        self.enable_direct_tls = False
+        self.enable_starttls = starttls
+        self.enable_plaintext = not starttls
+        # on a plain stream only SCRAM, which never sends the password (PLAIN stays refused)
+        self.plugin["feature_mechanisms"].unencrypted_scram = not starttls
+        if not verify_tls:  # a private server's self-signed certificate (loopback demo)
+            self.ssl_context.check_hostname = False
+            self.ssl_context.verify_mode = ssl.CERT_NONE
+        self.ids = cm.RequestIds()
+        self.started = asyncio.Event()
+        self.failed: str | None = None
+        self.presences: dict[str, tuple[str, cm.PresenceLevel | None, str]] = {}  # full JID -> (show, level, status)
+        self.presence_changed = asyncio.Event()
+        self.add_event_handler("session_start", self._on_start)
+        self.add_event_handler("failed_all_auth", lambda _: self._fail("authentication failed"))
+        self.add_event_handler("connection_failed", lambda e: self._fail(f"connection failed: {e}"))
+        # 'presence' sees every presence; slixmpp's presence_available misses a robot that is busy (show dnd)
+        self.add_event_handler("presence", self._on_presence)
+
+    def _fail(self, why: str) -> None:
+        self.failed = why
+        self.started.set()
+
+    async def _on_start(self, _event) -> None:
+        self.send_presence()
+        self.started.set()
+
+    def _on_presence(self, pres) -> None:
+        full = str(pres["from"])
+        kind = pres["type"]  # slixmpp gives the show (away, dnd, ...) as the type of an available presence
+        if kind == "unavailable":
+            self.presences.pop(full, None)
+        elif kind in ("available", "chat", "away", "xa", "dnd"):
+            self.presences[full] = (pres["show"] or "available", cm.decode_presence_level(pres.xml), pres["status"])
+        else:
+            return  # subscription requests and answers
+        self.presence_changed.set()
+
+    async def login(self, server: str, port: int, timeout: float) -> None:
+        self.connect(server, port)
+        try:
+            await asyncio.wait_for(self.started.wait(), timeout)
+        except asyncio.TimeoutError:
+            raise Failure(EXIT_UNREACHABLE, f"no XMPP session with {server}:{port} within {timeout:g} s") from None
+        if self.failed:
+            raise Failure(EXIT_UNREACHABLE, f"{self.failed} ({self.boundjid.bare} on {server}:{port})")
+
+    def robot_jid(self, robot: slixmpp.JID) -> str | None:
+        """The full JID to address: the onboard resource when it is online, else any online resource of ``robot``."""
+        online = [j for j in self.presences if slixmpp.JID(j).bare == robot.bare]
+        preferred = [j for j in online if slixmpp.JID(j).resource == ROBOT_RESOURCE]
+        return (preferred or online or [None])[0]
+
+    async def find_robot(self, robot: str, timeout: float) -> str:
+        jid = slixmpp.JID(robot)
+        if jid.resource:
+            return str(jid)
+        # presence subscription: the robot approves anyone it lets read (spec section 9), then sends its presence
+        self.send_presence(pto=jid.bare, ptype="subscribe")
+        deadline = time.monotonic() + timeout
+        while (full := self.robot_jid(jid)) is None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise Failure(EXIT_UNREACHABLE, f"{jid.bare} is offline (no presence within {timeout:g} s)")
+            self.presence_changed.clear()
+            try:
+                await asyncio.wait_for(self.presence_changed.wait(), left)
+            except asyncio.TimeoutError:
+                pass
+        return full
+
+    async def request(self, to: str, kind: str, res: str, payload: ET.Element | None, timeout: float) -> cm.Element:
+        """Sends a get or set and returns the decoded result; a refusal raises Failure(EXIT_REFUSED)."""
+        iq = self.make_iq(ito=to, itype=kind)
+        iq.append(cm.control_ml(kind, self.ids.next(), res, payload))
+        try:
+            answer = await iq.send(timeout=timeout)
+        except IqError as e:
+            raise Failure(EXIT_REFUSED, f"{to} refused {kind} {res}: {cm.decode_error(e.iq.xml)}") from None
+        except IqTimeout:
+            raise Failure(EXIT_UNREACHABLE, f"no answer from {to} to {kind} {res} within {timeout:g} s") from None
+        elem = cm.find_control_ml(answer.xml)
+        if elem is None:
+            raise Failure(EXIT_REFUSED, f"{to} answered {kind} {res} without a control-ml element")
+        try:
+            return cm.decode(elem)
+        except cm.PayloadError as e:
+            raise Failure(EXIT_REFUSED, f"{to}'s answer to {kind} {res} is malformed: {e}") from None
+
+
+def measure(record: dict, name: str) -> float:
+    value = record.get(name)
+    return value.value if isinstance(value, cm.Measure) else float("nan")
+
+
+def status_line(pose: cm.Element | Failure, mission: cm.Element | Failure, presence) -> str:
+    """One line of 'watch', in the onboard product's status format: pose | mission | presence."""
+    if isinstance(pose, Failure):
+        p = f"pose unavailable ({pose})"
+    else:
+        v = pose.value
+        p = f"pose x={measure(v, 'x'):.3f} y={measure(v, 'y'):.3f} theta={measure(v, 'theta'):.3f}"
+    if isinstance(mission, Failure):
+        m = f"mission unavailable ({mission})"
+    else:
+        v = mission.value
+        m = f"mission {v.get('state')} {measure(v, 'progress'):.0f}%"
+        if v.get("detail"):
+            m += f" ({v['detail']})"
+    if presence is None:
+        pr = "presence offline"
+    else:
+        show, level, _ = presence
+        pr = f"presence {level.level if level else show}" + (" maintenance" if level and level.maintenance else "")
+    return f"{p} | {m} | {pr}"
+
+
+async def run(args: argparse.Namespace) -> int:
+    client = Client(args.jid, args.password, args.tls == "starttls", not args.no_verify)
+    try:
+        await client.login(args.server, args.port, args.timeout)
+        robot = await client.find_robot(args.robot, args.timeout)
+        if args.command == "get":
+            answer = await client.request(robot, "get", args.res, None, args.timeout)
+            for path, text in cm.flatten(answer.value):
+                print(f"{path} = {text}")
+        elif args.command == "set-goal":
+            payload = cm.encode_record("cm.goal", cm.goal(args.x, args.y, args.theta, args.tol, args.heading_tol),
+                                       text_form=not args.xml_form)
+            await client.request(robot, "set", "cm.goal", payload, args.timeout)
+            print(f"goal ({args.x:g}, {args.y:g}, {args.theta:g}) accepted by {robot}")
+        elif args.command == "mission":
+            state = {"pause": "paused", "resume": "running", "abort": "aborted"}[args.action]
+            current = (await client.request(robot, "get", "cm.mission", None, args.timeout)).value
+            payload = cm.encode_record("cm.mission", {"state": state, "maintenance": bool(current["maintenance"]),
+                                                      "progress": measure(current, "progress"),
+                                                      "detail": f"operator {args.action}"})
+            await client.request(robot, "set", "cm.mission", payload, args.timeout)
+            print(f"mission {args.action} accepted by {robot}")
+        elif args.command == "watch":
+            n = 0
+            next_tick = time.monotonic()
+            while args.count == 0 or n < args.count:
+                pose, mission = await asyncio.gather(
+                    client.request(robot, "get", "cm.position", None, args.timeout),
+                    client.request(robot, "get", "cm.mission", None, args.timeout), return_exceptions=True)
+                for r in (pose, mission):
+                    if isinstance(r, BaseException) and not isinstance(r, Failure):
+                        raise r
+                print(time.strftime("%H:%M:%S ") + status_line(pose, mission, client.presences.get(robot)),
+                      flush=True)
+                n += 1
+                next_tick += 1.0
+                await asyncio.sleep(max(0.0, next_tick - time.monotonic()))
+        return 0
+    except Failure as f:
+        print(f"controlml: {f}", file=sys.stderr)
+        return f.status
+    finally:
+        client.cancel_connection_attempt()
+        if client.transport is not None:
+            try:
+                await asyncio.wait_for(client.disconnect(wait=0.5), 1.0)
+            except (asyncio.TimeoutError, asyncio.CancelledError):
+                pass
+        client.abort()
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    p = argparse.ArgumentParser(prog="controlml", description="ControlML client (docs/CONTROLML.md) over XMPP.")
+    p.add_argument("--jid", default=os.environ.get("CONTROLML_JID", "operator@sabot.local"),
+                   help="the operator's account (default $CONTROLML_JID or operator@sabot.local)")
+    pw = p.add_mutually_exclusive_group()
+    pw.add_argument("--password", help="the account's password")
+    pw.add_argument("--password-file", help="a file whose first line is the password")
+    p.add_argument("--server", default=os.environ.get("CONTROLML_SERVER", "127.0.0.1"))
+    p.add_argument("--port", type=int, default=int(os.environ.get("SABOT_XMPP_PORT", "15222")))
+    p.add_argument("--timeout", type=float, default=10.0, help="seconds for login, presence and each answer")
+    p.add_argument("--tls", choices=("off", "starttls"),
+                   help="STARTTLS or a plain stream (default: off on a loopback server, whose private Prosody offers "
+                        "STARTTLS but fails the handshake when it has no certificate; starttls elsewhere). The "
+                        "password never travels in clear: SCRAM is used on a plain stream.")
+    p.add_argument("--no-verify", action="store_true", help="accept a self-signed TLS certificate")
+    p.add_argument("-v", "--verbose", action="store_true", help="log the XMPP traffic")
+    sub = p.add_subparsers(dest="command", required=True)
+    g = sub.add_parser("get", help="get a resource and print its fields")
+    g.add_argument("robot", help="robot JID (bare: its presence gives the resource)")
+    g.add_argument("res", help="resource, e.g. cm.position, cm.mission, cm.goal, cm.limits")
+    s = sub.add_parser("set-goal", help="send a navigation goal (m, m, rad)")
+    s.add_argument("robot")
+    for name in ("x", "y", "theta"):
+        s.add_argument(name, type=float)
+    s.add_argument("--tol", type=float, default=0.1, help="position tolerance in m (default 0.1)")
+    s.add_argument("--heading-tol", type=float, default=0.2, help="heading tolerance in rad (default 0.2)")
+    s.add_argument("--xml-form", action="store_true", help="send the XML form instead of the text form")
+    m = sub.add_parser("mission", help="pause, resume or abort the running mission")
+    m.add_argument("robot")
+    m.add_argument("action", choices=("pause", "resume", "abort"))
+    w = sub.add_parser("watch", help="print pose, mission and presence once a second")
+    w.add_argument("robot")
+    w.add_argument("--count", type=int, default=0, help="lines to print (default: until interrupted)")
+    args = p.parse_args(argv)
+    if args.password_file:
+        try:
+            with open(args.password_file, encoding="utf-8") as f:
+                args.password = f.readline().rstrip("\n")
+        except OSError as e:
+            p.error(f"--password-file: {e}")
+    if args.tls is None:
+        args.tls = "off" if args.server in ("127.0.0.1", "localhost", "::1") else "starttls"
+    if args.password is None:
+        p.error("give --password or --password-file")
+    if args.command in ("get",) and not cm.is_resource(args.res):
+        p.error(f"'{args.res}' is not a resource name (cm.<word>[.<word>...])")
+    if args.command == "set-goal":
+        try:
+            cm.encode_record("cm.goal", cm.goal(args.x, args.y, args.theta, args.tol, args.heading_tol))
+        except cm.PayloadError as e:
+            p.error(f"set-goal: {e}")
+    if args.command == "watch" and args.count < 0:
+        p.error("--count must be >= 0")
+    return args
+
+
+def main(argv: list[str]) -> int:
+    args = parse_args(argv)
+    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.CRITICAL,
+                        format="%(levelname)s %(name)s: %(message)s")
+    loop = asyncio.new_event_loop()
+    asyncio.set_event_loop(loop)
+    task = loop.create_task(run(args))
+    for sig in (signal.SIGINT, signal.SIGTERM):  # stop at once, leaving the session cleanly
+        loop.add_signal_handler(sig, task.cancel)
+    try:
+        return loop.run_until_complete(task)
+    except asyncio.CancelledError:
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
