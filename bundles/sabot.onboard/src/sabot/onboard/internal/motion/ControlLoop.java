@@ -104,7 +104,6 @@ final class ControlLoop {
     private boolean braked;
     private int optionalRound;
     private double lastStatus = Double.NEGATIVE_INFINITY;
-    private long lastImuCounter = -1;
     private Pose2D pose;
     private double[] velocity = { 0, 0 };
 
@@ -215,10 +214,7 @@ final class ControlLoop {
         try {
             if (slot % 2 == 0 || sonars == 0) {
                 RobotBoards.ImuSample s = boards.readImu();
-                if (s.counter() != lastImuCounter) {
-                    lastImuCounter = s.counter();
-                    localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
-                }
+                localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
             } else {
                 int sensor = (slot / 2) % sonars;
                 for (Point2D p : boards.readSonar(sensor)) {

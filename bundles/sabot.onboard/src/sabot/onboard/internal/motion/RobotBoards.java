@@ -19,7 +19,7 @@ public interface RobotBoards {
     }
 
     /** The inertial sample the estimator uses: yaw rate (rad/s) and longitudinal specific force (m/s²). */
-    record ImuSample(long counter, double yawRate, double forwardAcceleration) {
+    record ImuSample(double yawRate, double forwardAcceleration) {
     }
 
     /** @return both encoders, one transaction */

@@ -1,0 +1,138 @@
+package sabot.onboard.internal.motion;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+
+import sabot.controlml.payload.PidGains;
+import sabot.model.geometry.Point2D;
+import sabot.modbus.Board;
+import sabot.modbus.InsMotion;
+import sabot.modbus.ModbusBus;
+import sabot.modbus.Motor;
+import sabot.modbus.MotorGains;
+import sabot.modbus.SonarReading;
+
+/** {@link RobotBoards} over the three board clients of one Modbus bus. */
+final class ModbusBoards implements RobotBoards {
+
+    /** cm.pid motor index → SACT motor file: 0 left, 1 right (docs/CONTROLML.md §4). */
+    private static final Motor[] MOTORS = { Motor.LEFT, Motor.RIGHT };
+    /** The SACT gain registers are uint16 limited to 0..32767 (docs/SACT-MODBUS.md, files 1 and 2). */
+    private static final int MAX_GAIN = 32767;
+
+    private final ModbusBus bus;
+
+    ModbusBoards(ModbusBus bus) {
+        this.bus = bus;
+    }
+
+    @Override
+    public WheelCounts readEncoders() throws IOException {
+        sabot.modbus.WheelCounts c = bus.sact().readPositions();
+        return new WheelCounts(c.left(), c.right());
+    }
+
+    @Override
+    public void writeWheelSpeeds(double left, double right) throws IOException {
+        bus.sact().setWheelSpeeds(left, right);
+    }
+
+    @Override
+    public ImuSample readImu() throws IOException {
+        InsMotion m = bus.ins().readMotion();
+        return new ImuSample(m.gyroZ(), m.accelX());
+    }
+
+    @Override
+    public int sonarSensors() {
+        return bus.sonar().sensorCount();
+    }
+
+    @Override
+    public List<Point2D> readSonar(int sensor) throws IOException {
+        SonarReading r = bus.sonar().readSensor(sensor);
+        return r.valid() && r.range().isPresent() ? List.of(new Point2D(r.x(), r.y())) : List.of();
+    }
+
+    @Override
+    public void brake(boolean on) throws IOException {
+        bus.sact().brake(on);
+    }
+
+    @Override
+    public boolean motorFault() throws IOException {
+        sabot.modbus.Wheels w = bus.sact().readWheels();
+        return w.left().faultLatched() || w.right().faultLatched();
+    }
+
+    @Override
+    public void acknowledgeFaults() throws IOException {
+        bus.sact().acknowledgeFaults();
+    }
+
+    @Override
+    public void setBoardDeadman(Duration timeout) throws IOException {
+        bus.sact().setCommandTimeout(timeout);
+    }
+
+    @Override
+    public void writeLimits(double maxWheelSpeed, double maxWheelAcceleration) throws IOException {
+        bus.sact().writeLimits(maxWheelSpeed, maxWheelAcceleration);
+    }
+
+    @Override
+    public PidGains readGains() throws IOException {
+        List<sabot.controlml.payload.MotorGains> motors = new ArrayList<>();
+        for (int i = 0; i < MOTORS.length; i++) {
+            MotorGains g = bus.sact().readGains(MOTORS[i]);
+            motors.add(new sabot.controlml.payload.MotorGains(i, g.kp(), g.ki(), g.kd()));
+        }
+        return new PidGains(motors);
+    }
+
+    @Override
+    public PidGains writeGains(PidGains gains) throws IOException {
+        // every value is checked before the first write, so a bad one changes nothing
+        MotorGains[] next = new MotorGains[MOTORS.length];
+        for (sabot.controlml.payload.MotorGains m : gains.motors()) {
+            if (m.motor() < 0 || m.motor() >= MOTORS.length) {
+                throw new IllegalArgumentException("motor " + m.motor() + ": this robot has motors 0 (left) and 1 "
+                        + "(right)");
+            }
+            MotorGains current = bus.sact().readGains(MOTORS[m.motor()]);
+            next[m.motor()] = new MotorGains(gain("kp", m.motor(), m.kp()), gain("ki", m.motor(), m.ki()),
+                    gain("kd", m.motor(), m.kd()), current.integralLimit());
+        }
+        for (int i = 0; i < MOTORS.length; i++) {
+            if (next[i] != null) {
+                bus.sact().writeGains(MOTORS[i], next[i]);
+            }
+        }
+        return readGains();
+    }
+
+    private static int gain(String name, int motor, double value) {
+        if (!(value >= 0 && value <= MAX_GAIN) || value != Math.rint(value)) {
+            throw new IllegalArgumentException(name + " of motor " + motor + " must be a whole number 0.." + MAX_GAIN
+                    + " (SACT board units), was " + value);
+        }
+        return (int) value;
+    }
+
+    @Override
+    public String faultedBoard() {
+        for (Board b : new Board[] { bus.sact(), bus.ins(), bus.sonar() }) {
+            if (b.faulted()) {
+                return b.counters().board();
+            }
+        }
+        return null;
+    }
+
+    @Override
+    public double optionalReadWireTime() {
+        return Math.max(bus.ins().readMotionWireTime().toNanos(), bus.sonar().readSensorWireTime().toNanos()) * 1e-9;
+    }
+}
