@@ -149,14 +149,15 @@ public final class ControlMlEndpoint {
     /** Stops telemetry and presence updates and unregisters the handlers. */
     @Deactivate
     void deactivate() {
-        motion.removeListener(presence);
+        // commands stop first; the listener goes last, so that its removal tells the robot the endpoint is gone
+        for (Resource<?, ?> r : SERVED) {
+            manager.removeHandlers(r);
+        }
         synchronized (publications) {
             publications.forEach(TelemetryPublication::stop);
             publications.clear();
         }
-        for (Resource<?, ?> r : SERVED) {
-            manager.removeHandlers(r);
-        }
+        motion.removeListener(presence);
         LOG.info("ControlML endpoint of {} stopped", session.jid());
     }
 
