@@ -19,7 +19,7 @@ import sabot.onboard.task.OnboardTask;
  * activation to deactivation. The handlers live on the session's ControlML manager, so they keep serving across
  * reconnections. Settings: OSGI-INF/metatype/remotefs.xml, checked by {@link RemoteFsSettingsCheck}.
  */
-@Component(name = "sabot.task.remotefs", configurationPolicy = ConfigurationPolicy.REQUIRE,
+@Component(name = "sabot.task.remotefs", configurationPolicy = ConfigurationPolicy.REQUIRE, immediate = true,
         service = OnboardTask.class)
 public final class RemoteFsTask implements OnboardTask {
 

@@ -51,13 +51,13 @@ import sabot.onboard.task.OnboardTask;
  * <p>
  * Activation never waits for the network: the thread {@code sabot-session-connect} connects, and after a failed
  * attempt or a loss tries again after {@code reconnectMin}, doubling the delay up to {@code reconnectMax}, forever.
- * After each login it sends the robot's presence (the last {@link #setPresence}; at first FREE "idle") and publishes
- * the vCard identity with the QR inventory (again when the set of running tasks changes). Listeners are told on the
+ * After each login it publishes the vCard identity with the QR inventory (again when the set of running tasks
+ * changes), then sends the robot's presence (the last {@link #setPresence}; at first FREE "idle"). Listeners are told on the
  * thread {@code sabot-session-events}, in the order the changes happened.
  * <p>
  * Settings: OSGI-INF/metatype/controlml.xml, read by {@link ControlMlSettings}; authorization: {@link OperatorPolicy}.
  */
-@Component(name = "sabot.task.controlml", configurationPolicy = ConfigurationPolicy.REQUIRE,
+@Component(name = "sabot.task.controlml", configurationPolicy = ConfigurationPolicy.REQUIRE, immediate = true,
         service = { OnboardTask.class, RobotSession.class })
 public final class ControlMlSession implements OnboardTask, RobotSession {
 
@@ -169,13 +169,13 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     }
 
     /**
-     * Plain TCP only to a server on this machine (the private test and demo servers); elsewhere the password never
-     * leaves without TLS.
+     * Plain TCP to a server on this machine (the private test and demo servers, which offer STARTTLS without a usable
+     * certificate); elsewhere TLS is required, so the password never crosses a network in clear.
      */
     static SecurityMode securityFor(String server) {
         boolean loopback = server.equals("localhost") || server.startsWith("127.") || server.equals("::1")
                 || server.equals("[::1]");
-        return loopback ? SecurityMode.ifpossible : SecurityMode.required;
+        return loopback ? SecurityMode.disabled : SecurityMode.required;
     }
 
     @Deactivate
@@ -281,8 +281,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         LOG.info("online as {}{}", connection.getUser(), failures == 0 ? "" : String.format(
                 " after %d failed attempt(s), %.1f s offline", failures, offlineFor));
         failures = 0;
+        publishIdentity(); // first: whoever sees the presence finds the vCard already stored
         sendPresence();
-        publishIdentity();
     }
 
     private void failed(String reason) {
@@ -401,6 +401,9 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             return;
         }
         if (result instanceof IdentityResult.Err<QrInventory.Encoded> err) {
+            if (stopping) {
+                return; // interrupted by deactivation
+            }
             LOG.warn("vCard identity not published: {} ({})", err.text(), err.problem());
         } else {
             QrInventory.Encoded qr = result.orElseThrow();
