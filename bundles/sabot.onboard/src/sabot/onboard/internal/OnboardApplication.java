@@ -30,6 +30,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import sabot.onboard.task.OnboardTask;
+import sabot.onboard.task.TaskSettingsCheck;
 
 /**
  * The robot's headless application: reads the configuration file, starts the tasks it enables, runs until SIGTERM
@@ -77,11 +78,13 @@ public final class OnboardApplication implements IApplication {
         try {
             config = OnboardConfigFile.read(file);
             enabled = TaskSettings.resolve(config, catalog);
+            TaskSettings.check(config, enabled, task -> settingsChecks(bc, task));
         } catch (ConfigError e) {
             LOG.error("configuration error: {}", e.getMessage());
             return EXIT_CONFIG_ERROR;
         }
         String robot = config.robotName("unnamed");
+        enabled.values().forEach(settings -> settings.put(OnboardTask.ROBOT_NAME, robot));
         installSignalHandlers();
         context.applicationRunning();
 
@@ -129,6 +132,23 @@ public final class OnboardApplication implements IApplication {
             tracker.close();
             LOG.info("Sabot Onboard stopped");
         }
+    }
+
+    /** @return the {@link TaskSettingsCheck} services registered for a task (see its {@link TaskSettingsCheck#TASK}) */
+    private static List<TaskSettingsCheck> settingsChecks(BundleContext bc, String task) {
+        List<TaskSettingsCheck> checks = new ArrayList<>();
+        try {
+            for (ServiceReference<TaskSettingsCheck> ref : bc.getServiceReferences(TaskSettingsCheck.class, "("
+                    + TaskSettingsCheck.TASK + "=" + task + ")")) {
+                TaskSettingsCheck check = bc.getService(ref);
+                if (check != null) {
+                    checks.add(check); // (released when the framework stops: the checks are stateless services)
+                }
+            }
+        } catch (org.osgi.framework.InvalidSyntaxException e) {
+            throw new IllegalArgumentException("task name '" + task + "' in a filter", e); // names are [a-z0-9_-]
+        }
+        return checks;
     }
 
     @Override

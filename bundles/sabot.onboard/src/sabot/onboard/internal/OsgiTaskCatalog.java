@@ -36,15 +36,27 @@ final class OsgiTaskCatalog {
             if (info != null && contains(info.getPids(), component.name)) {
                 ObjectClassDefinition ocd = info.getObjectClassDefinition(component.name, null);
                 AttributeDefinition[] ads = ocd.getAttributeDefinitions(ObjectClassDefinition.ALL);
+                AttributeDefinition[] required = ocd.getAttributeDefinitions(ObjectClassDefinition.REQUIRED);
                 if (ads != null) {
                     for (AttributeDefinition ad : ads) {
-                        settings.put(ad.getID(), SettingSpec.of(ad));
+                        settings.put(ad.getID(), SettingSpec.of(ad, contains(required, ad)));
                     }
                 }
             }
             catalog.put(task, settings);
         }
         return catalog;
+    }
+
+    private static boolean contains(AttributeDefinition[] ads, AttributeDefinition ad) {
+        if (ads != null) {
+            for (AttributeDefinition a : ads) {
+                if (a.getID().equals(ad.getID())) {
+                    return true;
+                }
+            }
+        }
+        return false;
     }
 
     private static boolean contains(String[] pids, String pid) {

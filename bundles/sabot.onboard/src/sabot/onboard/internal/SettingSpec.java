@@ -14,18 +14,29 @@ import org.osgi.service.metatype.AttributeDefinition;
  *             {@link AttributeDefinition#STRING}
  * @param min  inclusive lower bound for numbers, or null
  * @param max  inclusive upper bound for numbers, or null
+ * @param mandatory true when the file must set it: Metatype {@code required} and no default
  */
-public record SettingSpec(String id, int type, Double min, Double max) {
+public record SettingSpec(String id, int type, Double min, Double max, boolean mandatory) {
 
-    /** @return the spec of a Metatype attribute definition (bounds read through Equinox's extension) */
-    public static SettingSpec of(AttributeDefinition ad) {
+    /** A setting the file may leave out. */
+    public SettingSpec(String id, int type, Double min, Double max) {
+        this(id, type, min, max, false);
+    }
+
+    /**
+     * @param required whether the OCD lists the attribute among its required ones
+     * @return the spec of a Metatype attribute definition (bounds read through Equinox's extension)
+     */
+    public static SettingSpec of(AttributeDefinition ad, boolean required) {
         Double min = null;
         Double max = null;
         if (ad instanceof EquinoxAttributeDefinition eq) {
             min = parseBound(eq.getMin());
             max = parseBound(eq.getMax());
         }
-        return new SettingSpec(ad.getID(), ad.getType(), min, max);
+        String[] defaults = ad.getDefaultValue();
+        return new SettingSpec(ad.getID(), ad.getType(), min, max, required && (defaults == null
+                || defaults.length == 0));
     }
 
     private static Double parseBound(String bound) {

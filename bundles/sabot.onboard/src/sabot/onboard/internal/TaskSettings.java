@@ -1,9 +1,14 @@
 package sabot.onboard.internal;
 
+import java.util.Collections;
 import java.util.Hashtable;
 import java.util.LinkedHashMap;
+import java.util.List;
 import java.util.Map;
 import java.util.TreeSet;
+import java.util.function.Function;
+
+import sabot.onboard.task.TaskSettingsCheck;
 
 /**
  * Checks a configuration file against the tasks that are installed and the settings each declares, and turns the
@@ -61,6 +66,40 @@ public final class TaskSettings {
                 props.put(setting, value);
             }
         }
+        for (Map.Entry<String, Hashtable<String, Object>> task : enabled.entrySet()) {
+            for (SettingSpec spec : catalog.get(task.getKey()).values()) {
+                if (spec.mandatory() && !task.getValue().containsKey(spec.id())) {
+                    throw new ConfigError(config.file(), config.tasksEntry().line(), task.getKey() + "." + spec.id(),
+                            "task '" + task.getKey() + "' needs this setting (it has no default)");
+                }
+            }
+        }
         return enabled;
+    }
+
+    /**
+     * Runs the {@link TaskSettingsCheck}s of every enabled task on its settings; the first problem becomes the error.
+     *
+     * @param config  the parsed file (for the lines of the keys)
+     * @param enabled the result of {@link #resolve}
+     * @param checks  the checks of a task, by task name (none: an empty list)
+     * @throws ConfigError naming the key of the first problem, at its line (the {@code tasks} line when the file does
+     *                     not set the key)
+     */
+    public static void check(OnboardConfigFile config, Map<String, Hashtable<String, Object>> enabled,
+            Function<String, List<TaskSettingsCheck>> checks) throws ConfigError {
+        for (Map.Entry<String, Hashtable<String, Object>> task : enabled.entrySet()) {
+            Map<String, Object> settings = Collections.unmodifiableMap(new LinkedHashMap<>(task.getValue()));
+            for (TaskSettingsCheck check : checks.apply(task.getKey())) {
+                List<TaskSettingsCheck.Problem> problems = check.check(settings);
+                if (!problems.isEmpty()) {
+                    TaskSettingsCheck.Problem first = problems.get(0);
+                    String key = task.getKey() + "." + first.setting();
+                    OnboardConfigFile.Entry entry = config.entries().get(key);
+                    int line = entry != null ? entry.line() : config.tasksEntry().line();
+                    throw new ConfigError(config.file(), line, key, first.message());
+                }
+            }
+        }
     }
 }

@@ -30,7 +30,10 @@ public interface RobotSession {
      */
     void setPresence(PresenceLevel level, String reason);
 
-    /** Adds a listener told when the connection goes online or offline. */
+    /**
+     * Adds a listener told when the connection goes online or offline, on the session's notifier thread, in the
+     * order the changes happened. A listener added while the session is online is told {@code online()} at once.
+     */
     void addListener(SessionListener listener);
 
     /** Removes a listener added with {@link #addListener}. */

@@ -9,12 +9,19 @@ package sabot.onboard.task;
  * component's configuration (PID = component name) from the file's {@code <name>.<setting>} keys when the task is
  * listed in {@code tasks}, and deletes it otherwise, so DS activates exactly the configured tasks. The settings a
  * task accepts, with types and ranges, are declared in an OSGi Metatype description for that PID; the file is
- * checked against it before anything starts.
+ * checked against it before anything starts, and so are the checks a {@link TaskSettingsCheck} service adds.
+ * Besides its own settings, every task's configuration carries {@link #ROBOT_NAME} (the file's {@code robot.name}).
  */
 public interface OnboardTask {
 
     /** Prefix of every task's component name and configuration PID. */
     String PID_PREFIX = "sabot.task.";
+
+    /**
+     * Configuration property every task receives besides its own settings: the robot's name from the file's
+     * {@code robot.name} (in a component property type, the method {@code robot_name()}).
+     */
+    String ROBOT_NAME = "robot.name";
 
     /** @return the task's name as written in the configuration file, e.g. {@code heartbeat}; never null */
     String name();

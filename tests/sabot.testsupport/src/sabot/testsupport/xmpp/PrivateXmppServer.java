@@ -142,6 +142,34 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return this;
     }
 
+    /**
+     * Stops the server process but keeps its port and state directory (accounts, rosters, vCards), so that
+     * {@link #restart()} brings the same server back: for tests of clients that must survive a server restart.
+     * Clients see their connection closed as the server shuts down.
+     */
+    public synchronized void stopServer() {
+        stopProcess();
+    }
+
+    /** Starts the server stopped by {@link #stopServer()} again, on the same port with the same state. */
+    public synchronized PrivateXmppServer restart() throws IOException, InterruptedException {
+        if (process != null) {
+            return this;
+        }
+        if (runDir == null) {
+            return start();
+        }
+        Path root = repositoryRoot();
+        process = switch (kind) {
+            case PROSODY -> startProsody(root);
+            case EJABBERD -> startEjabberd(root);
+        };
+        awaitReady();
+        System.out.printf("[xmpp] private %s pid %d restarted on 127.0.0.1:%d%n", kind.debianPackage, process.pid(),
+                port);
+        return this;
+    }
+
     private Process startProsody(Path root) throws IOException {
         ProcessBuilder pb = new ProcessBuilder(kind.executable, "--config",
                 root.resolve("product/xmpp/prosody.cfg.lua").toString(), "-F");
@@ -168,7 +196,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
                 "ejabberdctl.cfg.in")).replace("@NODE@", suffix + "@localhost")
                 .replace("@DIST_PORT@", Integer.toString(distPort)).replace("@COOKIE@", "c" + UUID.randomUUID()
                         .toString().replace("-", "")));
-        Files.copy(Paths.get("/etc/ejabberd/inetrc"), runDir.resolve("inetrc"));
+        Files.copy(Paths.get("/etc/ejabberd/inetrc"), runDir.resolve("inetrc"),
+                java.nio.file.StandardCopyOption.REPLACE_EXISTING); // (again on a restart)
         // The packaged control script only runs as root or 'ejabberd' and then su's to 'ejabberd', which cannot
         // write our directories. A private copy with INSTALLUSER emptied runs as the current user.
         Path ctl = runDir.resolve("ejabberdctl");

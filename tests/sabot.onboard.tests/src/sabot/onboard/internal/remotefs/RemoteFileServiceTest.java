@@ -1,4 +1,4 @@
-package sabot.onboard.remotefs;
+package sabot.onboard.internal.remotefs;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;

@@ -1,4 +1,4 @@
-package sabot.onboard.remotefs;
+package sabot.onboard.internal.remotefs;
 
 import java.io.IOException;
 import java.io.UncheckedIOException;
@@ -38,8 +38,6 @@ import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileEntry;
 import sabot.controlml.payload.FileQuery;
 import sabot.controlml.swe.SweXml;
-import sabot.onboard.internal.remotefs.ConfinedRoot;
-import sabot.onboard.internal.remotefs.PathRefusal;
 
 /**
  * The robot's remote file system: serves {@code cm.fs.list}, {@code cm.fs.read}, {@code cm.fs.write} and

@@ -1,4 +1,4 @@
-package sabot.onboard.remotefs;
+package sabot.onboard.internal.remotefs;
 
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.extension.RegisterExtension;

@@ -1,4 +1,4 @@
-package sabot.onboard.remotefs;
+package sabot.onboard.internal.remotefs;
 
 import sabot.controlml.Resources;
 
