@@ -110,13 +110,14 @@ static void usage(FILE *f)
             "  --fault-crc P          probability that an answer's CRC is corrupted\n"
             "  --fault-drop P         probability that an answer is lost\n"
             "  --fault-latency MS     extra delay before each answer\n"
-            "  --gear-ratio R         gearhead ratio (default 43; the sizing chapter used 66)\n"
-            "  --track M              distance between the wheels (default 0.40)\n"
+            "  --gear-ratio R         gearhead ratio (default %g, docs/sabot-robot.properties)\n"
+            "  --track M              distance between the wheels in m (default %g, same file)\n"
             "  --truth FILE.csv       ground truth at 100 Hz\n"
             "  --link PREFIX          pty symlinks PREFIX1..N (default /tmp/sabot-robot)\n"
             "  --duration S           stop after S simulated seconds\n"
             "  --bench [S]            run one robot flat out for S simulated s (default 20), print JSON\n"
-            "  --map-file             print the path of the Modbus register map and exit\n");
+            "  --map-file             print the path of the Modbus register map and exit\n",
+            (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M);
 }
 
 /* Argument parsers: each refuses anything but the whole argument as the expected kind. */
@@ -421,8 +422,8 @@ static int run_bench(const options_t *o, const world_t *world, robot_config_t *c
 
 int main(int argc, char **argv)
 {
-    options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .control_port = -1, .robots = 1, .gear_ratio = 43.0,
-                    .track = 0.40, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
+    options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .control_port = -1, .robots = 1, .gear_ratio = SABOT_ROBOT_GEAR_RATIO,
+                    .track = SABOT_ROBOT_TRACK_WIDTH_M, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
     if (parse_options(argc, argv, &o))
         return 2;
 

@@ -23,6 +23,8 @@
 #include "check.h"
 
 #define DEADLINE_S 5.0
+/* encoder counts per metre of wheel rim, for the described robot */
+#define COUNTS_PER_M (4.0 * SABOT_ROBOT_ENCODER_LINES * SABOT_ROBOT_GEAR_RATIO / (2 * M_PI * SABOT_ROBOT_WHEEL_RADIUS_M))
 #define SILENCE_MS 150       /* an answer takes ~1 ms at 115200 baud; 150 ms of nothing is silence */
 
 static char sim_path[PATH_MAX], tmp_dir[PATH_MAX];
@@ -337,11 +339,11 @@ static void aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot(void)
     CHECK(!strcmp(a, "ok robot 1 sonar on"), "%s", a);
     CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent after being switched on");
 
-    /* Deadman 200 ms, then 0.2 m/s forward: 0.2 / (2 pi 0.075 / (2048 x 43)) counts/s in 8.8 per Ts. */
+    /* Deadman 200 ms, then 0.2 m/s forward: in 8.8 counts per Ts. */
     uint16_t timeout = 200;
     CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_TIMEOUT, &timeout, 1) == 0,
           "deadman");
-    double counts_per_m = 2048.0 * 43.0 / (2 * M_PI * 0.075);
+    double counts_per_m = COUNTS_PER_M;
     uint16_t speed = (uint16_t)lround(0.2 * counts_per_m * 50e-6 * 256.0), both[2] = { speed, speed };
     CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) == 0,
           "drive");
@@ -376,7 +378,7 @@ static void drivingIntoAnObstacleCountsContacts(void)
     start_lab_robot(&s, NULL);
     int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
     CHECK(!strncmp(command(ctl, "obstacle add post 6.7 6.5 0.2"), "ok", 2), "add");
-    double counts_per_m = 2048.0 * 43.0 / (2 * M_PI * 0.075);
+    double counts_per_m = COUNTS_PER_M;
     uint16_t speed = (uint16_t)lround(0.2 * counts_per_m * 50e-6 * 256.0), both[2] = { speed, speed };
     CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) == 0,
           "drive");
