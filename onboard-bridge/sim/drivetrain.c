@@ -1,5 +1,7 @@
 #include "drivetrain.h"
 
+#include "modbus_map.h"   /* SABOT_ROBOT_*, generated from docs/sabot-robot.properties */
+
 #include <math.h>
 #include <string.h>
 
@@ -9,16 +11,17 @@ void robot_params_default(robot_params_t *p)
     p->supply_v = 24.0;
     p->resistance = 7.9;
     p->inductance = 0.77e-3;
-    p->torque_constant = 29.6e-3;
+    /* Kt = Ke from the described no-load speed (Vs / Ke): 24 V / 7743 rpm = 29.6 mNm/A, the data sheet's. */
+    p->torque_constant = p->supply_v / (SABOT_ROBOT_MOTOR_NOLOADSPEED_RPM * 2.0 * M_PI / 60.0);
     p->rotor_inertia = 1.24e-6;
     /* ~60 mA no-load current x Kt */
     p->motor_friction = 1.8e-3;
-    p->gear_ratio = 43.0;            /* robot inventory; the sizing chapter said 66 */
+    p->gear_ratio = SABOT_ROBOT_GEAR_RATIO;
     p->gear_efficiency = 0.70;       /* Maxon GP 32 A, 3 stages */
     p->gear_inertia = 0.7e-7;        /* GP 32 A, 3 stages, at the input */
-    p->wheel_radius = 0.075;
-    p->wheel_inertia = 0.6 * 0.075 * 0.075 / 2.0;   /* 0.6 kg disc */
-    p->track = 0.40;
+    p->wheel_radius = SABOT_ROBOT_WHEEL_RADIUS_M;
+    p->wheel_inertia = 0.6 * p->wheel_radius * p->wheel_radius / 2.0;   /* 0.6 kg disc */
+    p->track = SABOT_ROBOT_TRACK_WIDTH_M;
     p->mass = 15.0;
     p->yaw_inertia = 15.0 * 0.25 * 0.25 / 2.0;      /* uniform disc of the footprint */
     p->drive_load = 0.8;
@@ -26,7 +29,7 @@ void robot_params_default(robot_params_t *p)
     p->tire_mu = 0.8;
     p->slip_damping = 3000.0;
     p->radius = 0.25;
-    p->encoder_lines = 512;
+    p->encoder_lines = SABOT_ROBOT_ENCODER_LINES;
 }
 
 void drivetrain_init(drivetrain_t *d, const robot_params_t *p, double dt)

@@ -22,6 +22,8 @@ static bool footprint_blocked(void *ctx, double x, double y)
     double radius = self->cfg.params.radius;
     if (a->world && world_clearance(a->world, x, y) < radius)
         return true;
+    if (a->scene && scene_blocks(a->scene, self->body.x, self->body.y, x, y, radius))
+        return true;
     for (int i = 0; i < a->n_robots; i++) {
         const robot_t *o = a->robots[i];
         if (o == self)
@@ -35,12 +37,14 @@ static bool footprint_blocked(void *ctx, double x, double y)
     return false;
 }
 
-/* Ray against the map and against the other robots' discs. */
+/* Ray against the map, the scene's obstacles and people, and the other robots' discs. */
 static double arena_raycast(void *ctx, double x, double y, double angle, double max_range)
 {
     const robot_t *self = ctx;
     const arena_t *a = self->arena;
     double best = a->world ? world_raycast(a->world, x, y, angle, max_range) : max_range;
+    if (a->scene)
+        best = scene_raycast(a->scene, x, y, angle, best);
     double ux = cos(angle), uy = sin(angle);
     for (int i = 0; i < a->n_robots; i++) {
         const robot_t *o = a->robots[i];
@@ -60,9 +64,9 @@ static double arena_raycast(void *ctx, double x, double y, double angle, double 
 
 static void sact_uart_to_bus(void *ctx, const uint8_t *frame, size_t len);
 
-static void queue_answer(robot_t *r, const uint8_t *frame, size_t len)
+static void queue_answer(robot_t *r, robot_board_t board, const uint8_t *frame, size_t len)
 {
-    if (len == 0)
+    if (len == 0 || r->link_cut[board])
         return;
     if (rng_uniform(&r->fault_rng) < r->cfg.faults.drop_rate) {
         r->answers_dropped++;
@@ -83,7 +87,7 @@ static void queue_answer(robot_t *r, const uint8_t *frame, size_t len)
 
 static void sact_uart_to_bus(void *ctx, const uint8_t *frame, size_t len)
 {
-    queue_answer(ctx, frame, len);
+    queue_answer(ctx, BOARD_SACT, frame, len);
 }
 
 void robot_init(robot_t *r, const robot_config_t *cfg, const arena_t *arena)
@@ -139,9 +143,12 @@ void robot_step(robot_t *r)
         uint32_t t = (uint32_t)r->rx_time[r->rx_tail];
         r->rx_tail = (r->rx_tail + 1u) % BUS_RX_QUEUE;
         r->hal.time_us = t;
-        sact_uart_rx_isr(&r->sact, byte);
-        mb_slave_on_byte(&r->ins.modbus, byte, t);
-        mb_slave_on_byte(&r->sonar.modbus, byte, t);
+        if (!r->link_cut[BOARD_SACT])
+            sact_uart_rx_isr(&r->sact, byte);
+        if (!r->link_cut[BOARD_INS])
+            mb_slave_on_byte(&r->ins.modbus, byte, t);
+        if (!r->link_cut[BOARD_SONAR])
+            mb_slave_on_byte(&r->sonar.modbus, byte, t);
     }
 
     /* Sample the hardware, run the control interrupt, apply its outputs. */
@@ -156,6 +163,12 @@ void robot_step(robot_t *r)
         { r->hal.pwm[1], r->hal.pin[HAL_PIN_BRAKE_M2] },
     };
     drivetrain_step(&r->drivetrain, &r->body, in, footprint_blocked, r);
+    /* A person walking into a standing robot presses on it too. */
+    if (!r->body.in_contact && r->arena->scene &&
+        scene_overlaps(r->arena->scene, r->body.x, r->body.y, r->cfg.params.radius)) {
+        r->body.in_contact = true;
+        r->body.collisions++;
+    }
     r->now_us += SACT_TS_US;
 
     ins_update(&r->ins, &r->body, r->now_us);
@@ -164,8 +177,8 @@ void robot_step(robot_t *r)
     /* Main loops of the three boards. */
     r->hal.time_us = (uint32_t)r->now_us;
     sact_poll(&r->sact);
-    queue_answer(r, r->ins.modbus.tx, mb_slave_poll(&r->ins.modbus, (uint32_t)r->now_us));
-    queue_answer(r, r->sonar.modbus.tx, mb_slave_poll(&r->sonar.modbus, (uint32_t)r->now_us));
+    queue_answer(r, BOARD_INS, r->ins.modbus.tx, mb_slave_poll(&r->ins.modbus, (uint32_t)r->now_us));
+    queue_answer(r, BOARD_SONAR, r->sonar.modbus.tx, mb_slave_poll(&r->sonar.modbus, (uint32_t)r->now_us));
 }
 
 size_t robot_bus_write(robot_t *r, int port, const uint8_t *bytes, size_t len)

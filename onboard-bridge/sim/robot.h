@@ -8,7 +8,8 @@
  * injected latency, and go back to the transport (pty or TCP connection) that sent
  * the request; like a real line, the bus serves one master at a time.
  * Fault injection acts on answers: a dropped answer never leaves, a corrupted one
- * has a flipped CRC bit.
+ * has a flipped CRC bit. A board's link can be cut (robot_t.link_cut) while the
+ * board runs on.
  */
 #ifndef SIM_ROBOT_H
 #define SIM_ROBOT_H
@@ -18,6 +19,7 @@
 #include "ins_board.h"
 #include "rng.h"
 #include "sact.h"
+#include "scene.h"
 #include "sonar_board.h"
 #include "world.h"
 
@@ -55,7 +57,11 @@ typedef struct {
     const world_t *world;    /* may be NULL: an empty, unbounded floor */
     robot_t **robots;        /* everyone sharing the floor, for collisions and echoes */
     int n_robots;
+    const scene_t *scene;    /* may be NULL: no obstacles or people beyond the map */
 } arena_t;
+
+/* The three boards on a robot's bus. */
+typedef enum { BOARD_SACT, BOARD_INS, BOARD_SONAR, BOARD_COUNT } robot_board_t;
 
 struct robot {
     robot_config_t cfg;
@@ -79,6 +85,9 @@ struct robot {
     bus_frame_t tx[BUS_TX_QUEUE];
     unsigned tx_count;
     uint64_t answers_dropped, answers_corrupted, rx_overflows;
+    /* A board whose RS-485 link is cut: it neither hears the line nor answers, but
+     * its firmware keeps running (the SACT deadman still acts). */
+    bool link_cut[BOARD_COUNT];
 };
 
 void robot_init(robot_t *r, const robot_config_t *cfg, const arena_t *arena);

@@ -7,6 +7,7 @@
  * wall clock times a speed factor (1 = real time, for live use), or free-running
  * in --bench. Everything random derives from --seed.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <getopt.h>
@@ -23,6 +24,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "control.h"
 #include "robot.h"
 
 #define MAX_ROBOTS 16
@@ -44,6 +46,7 @@ typedef struct {
     uint64_t seed;
     double speed;
     int tcp_port;               /* -1: no TCP */
+    int control_port;           /* -1: no control channel */
     int robots;
     bus_faults_t faults;
     double gear_ratio, track;
@@ -101,27 +104,83 @@ static void usage(FILE *f)
             "  --speed F              simulated seconds per wall second (default 1)\n"
             "  --realtime             same as --speed 1\n"
             "  --tcp PORT             Modbus RTU over TCP on 127.0.0.1:PORT+i (0 = any free port)\n"
+            "  --control PORT         control channel (obstacles, people, boards, truth) on 127.0.0.1:PORT\n"
+            "                         (0 = any free port; see README.md)\n"
             "  --robots N             robots in this process, each with its own bus (default 1)\n"
             "  --fault-crc P          probability that an answer's CRC is corrupted\n"
             "  --fault-drop P         probability that an answer is lost\n"
             "  --fault-latency MS     extra delay before each answer\n"
-            "  --gear-ratio R         gearhead ratio (default 43; the sizing chapter used 66)\n"
-            "  --track M              distance between the wheels (default 0.40)\n"
+            "  --gear-ratio R         gearhead ratio (default %g, docs/sabot-robot.properties)\n"
+            "  --track M              distance between the wheels in m (default %g, same file)\n"
             "  --truth FILE.csv       ground truth at 100 Hz\n"
             "  --link PREFIX          pty symlinks PREFIX1..N (default /tmp/sabot-robot)\n"
             "  --duration S           stop after S simulated seconds\n"
             "  --bench [S]            run one robot flat out for S simulated s (default 20), print JSON\n"
-            "  --map-file             print the path of the Modbus register map and exit\n");
+            "  --map-file             print the path of the Modbus register map and exit\n",
+            (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M);
+}
+
+/* Argument parsers: each refuses anything but the whole argument as the expected kind. */
+static bool arg_double(const char *option, const char *text, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end == text || *end || errno || !isfinite(v)) {
+        fprintf(stderr, "sabot-sim: %s wants a number, got '%s'\n", option, text);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+static bool arg_range(const char *option, const char *text, double lo, double hi, bool lo_open, double *out)
+{
+    if (!arg_double(option, text, out))
+        return false;
+    if (*out < lo || (lo_open && *out == lo) || *out > hi) {
+        if (lo_open && hi == INFINITY)
+            fprintf(stderr, "sabot-sim: %s wants a number > %g, got '%s'\n", option, lo, text);
+        else if (hi == INFINITY)
+            fprintf(stderr, "sabot-sim: %s wants a number >= %g, got '%s'\n", option, lo, text);
+        else
+            fprintf(stderr, "sabot-sim: %s wants a number in %g..%g, got '%s'\n", option, lo, hi, text);
+        return false;
+    }
+    return true;
+}
+
+static bool arg_integer(const char *option, const char *text, long long lo, long long hi, long long *out)
+{
+    char *end;
+    errno = 0;
+    long long v = strtoll(text, &end, 10);
+    if (end == text || *end || errno || v < lo || v > hi) {
+        fprintf(stderr, "sabot-sim: %s wants an integer in %lld..%lld, got '%s'\n", option, lo, hi, text);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+static bool arg_port(const char *option, const char *text, int *port)
+{
+    long long v;
+    if (!arg_integer(option, text, 0, 65535, &v))
+        return false;
+    *port = (int)v;
+    return true;
 }
 
 static int parse_options(int argc, char **argv, options_t *o)
 {
-    enum { O_MAP = 256, O_START, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
+    enum { O_MAP = 256, O_START, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_CONTROL, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
            O_GEAR, O_TRACK, O_TRUTH, O_LINK, O_DURATION, O_BENCH, O_MAPFILE, O_HELP };
     static const struct option longopts[] = {
         { "map", required_argument, 0, O_MAP },        { "start", required_argument, 0, O_START },
         { "seed", required_argument, 0, O_SEED },      { "speed", required_argument, 0, O_SPEED },
         { "realtime", no_argument, 0, O_REALTIME },    { "tcp", required_argument, 0, O_TCP },
+        { "control", required_argument, 0, O_CONTROL },
         { "robots", required_argument, 0, O_ROBOTS },  { "fault-crc", required_argument, 0, O_CRC },
         { "fault-drop", required_argument, 0, O_DROP }, { "fault-latency", required_argument, 0, O_LATENCY },
         { "gear-ratio", required_argument, 0, O_GEAR }, { "track", required_argument, 0, O_TRACK },
@@ -131,48 +190,93 @@ static int parse_options(int argc, char **argv, options_t *o)
         { 0, 0, 0, 0 },
     };
     int c;
-    char *end;
-    while ((c = getopt_long(argc, argv, "", longopts, NULL)) != -1) {
+    long long n;
+    double v;
+    opterr = 0;   /* getopt's own messages do not name the option well enough; ours below do */
+    while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
         switch (c) {
         case O_MAP: o->map_path = optarg; break;
-        case O_START:
-            if (sscanf(optarg, "%lf,%lf,%lf", &o->start_x, &o->start_y, &o->start_theta) != 3) {
-                fprintf(stderr, "sabot-sim: --start wants X,Y,THETA\n");
+        case O_START: {
+            char extra;
+            if (sscanf(optarg, "%lf,%lf,%lf%c", &o->start_x, &o->start_y, &o->start_theta, &extra) != 3 ||
+                !isfinite(o->start_x) || !isfinite(o->start_y) || !isfinite(o->start_theta)) {
+                fprintf(stderr, "sabot-sim: --start wants X,Y,THETA (three numbers), got '%s'\n", optarg);
                 return -1;
             }
             o->start_given = true;
             break;
-        case O_SEED: o->seed = strtoull(optarg, &end, 10); break;
-        case O_SPEED:
-            o->speed = strtod(optarg, &end);
-            if (*end || !(o->speed > 0)) {
-                fprintf(stderr, "sabot-sim: --speed wants a positive number\n");
+        }
+        case O_SEED: {
+            char *end;
+            errno = 0;
+            unsigned long long seed = strtoull(optarg, &end, 10);
+            if (!isdigit((unsigned char)optarg[0]) || *end || errno) {
+                fprintf(stderr, "sabot-sim: --seed wants an integer in 0..%llu, got '%s'\n", ULLONG_MAX, optarg);
                 return -1;
             }
+            o->seed = seed;
+            break;
+        }
+        case O_SPEED:
+            if (!arg_range("--speed", optarg, 0, INFINITY, true, &o->speed))
+                return -1;
             break;
         case O_REALTIME: o->speed = 1.0; break;
-        case O_TCP: o->tcp_port = atoi(optarg); break;
+        case O_TCP:
+            if (!arg_port("--tcp", optarg, &o->tcp_port))
+                return -1;
+            break;
+        case O_CONTROL:
+            if (!arg_port("--control", optarg, &o->control_port))
+                return -1;
+            break;
         case O_ROBOTS:
-            o->robots = atoi(optarg);
-            if (o->robots < 1 || o->robots > MAX_ROBOTS) {
-                fprintf(stderr, "sabot-sim: --robots wants 1..%d\n", MAX_ROBOTS);
+            if (!arg_integer("--robots", optarg, 1, MAX_ROBOTS, &n))
+                return -1;
+            o->robots = (int)n;
+            break;
+        case O_CRC:
+            if (!arg_range("--fault-crc", optarg, 0, 1, false, &o->faults.crc_error_rate))
+                return -1;
+            break;
+        case O_DROP:
+            if (!arg_range("--fault-drop", optarg, 0, 1, false, &o->faults.drop_rate))
+                return -1;
+            break;
+        case O_LATENCY:
+            if (!arg_range("--fault-latency", optarg, 0, 60000, false, &v))
+                return -1;
+            o->faults.latency_us = (uint32_t)lround(v * 1000.0);
+            break;
+        case O_GEAR:
+            if (!arg_range("--gear-ratio", optarg, 0, INFINITY, true, &o->gear_ratio))
+                return -1;
+            break;
+        case O_TRACK:
+            if (!arg_range("--track", optarg, 0, INFINITY, true, &o->track))
+                return -1;
+            break;
+        case O_TRUTH: o->truth_path = optarg; break;
+        case O_LINK:
+            if (!optarg[0]) {
+                fprintf(stderr, "sabot-sim: --link wants a path prefix\n");
                 return -1;
             }
+            o->link_prefix = optarg;
             break;
-        case O_CRC: o->faults.crc_error_rate = atof(optarg); break;
-        case O_DROP: o->faults.drop_rate = atof(optarg); break;
-        case O_LATENCY: o->faults.latency_us = (uint32_t)(atof(optarg) * 1000.0); break;
-        case O_GEAR: o->gear_ratio = atof(optarg); break;
-        case O_TRACK: o->track = atof(optarg); break;
-        case O_TRUTH: o->truth_path = optarg; break;
-        case O_LINK: o->link_prefix = optarg; break;
-        case O_DURATION: o->duration = atof(optarg); break;
+        case O_DURATION:
+            if (!arg_range("--duration", optarg, 0, INFINITY, true, &o->duration))
+                return -1;
+            break;
         case O_BENCH:
             o->bench = true;
-            if (optarg)
-                o->bench_seconds = atof(optarg);
-            else if (optind < argc && strtod(argv[optind], &end) > 0 && *end == '\0')
-                o->bench_seconds = strtod(argv[optind++], &end);
+            if (optarg) {
+                if (!arg_range("--bench", optarg, 0, INFINITY, true, &o->bench_seconds))
+                    return -1;
+            } else if (optind < argc && argv[optind][0] != '-') {
+                if (!arg_range("--bench", argv[optind++], 0, INFINITY, true, &o->bench_seconds))
+                    return -1;
+            }
             break;
         case O_MAPFILE: {
             char path[PATH_MAX];
@@ -181,11 +285,21 @@ static int parse_options(int argc, char **argv, options_t *o)
             exit(0);
         }
         case O_HELP: usage(stdout); exit(0);
-        default: usage(stderr); return -1;
+        case ':':
+            fprintf(stderr, "sabot-sim: %s wants an argument\n", argv[optind - 1]);
+            return -1;
+        default:
+            fprintf(stderr, "sabot-sim: unknown option '%s' (--help lists them)\n", argv[optind - 1]);
+            return -1;
         }
     }
     if (optind < argc) {
-        usage(stderr);
+        fprintf(stderr, "sabot-sim: unexpected argument '%s' (--help lists the options)\n", argv[optind]);
+        return -1;
+    }
+    if (o->tcp_port > 0 && o->tcp_port + o->robots - 1 > 65535) {
+        fprintf(stderr, "sabot-sim: --tcp %d with %d robots needs ports up to %d, beyond 65535\n", o->tcp_port,
+                o->robots, o->tcp_port + o->robots - 1);
         return -1;
     }
     return 0;
@@ -279,7 +393,7 @@ static int run_bench(const options_t *o, const world_t *world, robot_config_t *c
 {
     robot_t *r = calloc(1, sizeof *r);
     robot_t *list[1] = { r };
-    arena_t arena = { world, list, 1 };
+    arena_t arena = { world, list, 1, NULL };
     robot_init(r, cfg, &arena);
     /* A gentle arc (both wheels, different speeds) so every path of the step runs:
      * ramps, PID, both motors, sensors, collisions checks. */
@@ -308,8 +422,8 @@ static int run_bench(const options_t *o, const world_t *world, robot_config_t *c
 
 int main(int argc, char **argv)
 {
-    options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .robots = 1, .gear_ratio = 43.0,
-                    .track = 0.40, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
+    options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .control_port = -1, .robots = 1, .gear_ratio = SABOT_ROBOT_GEAR_RATIO,
+                    .track = SABOT_ROBOT_TRACK_WIDTH_M, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
     if (parse_options(argc, argv, &o))
         return 2;
 
@@ -343,7 +457,8 @@ int main(int argc, char **argv)
     static robot_t robots[MAX_ROBOTS];
     static robot_t *robot_list[MAX_ROBOTS];
     static transports_t tr[MAX_ROBOTS];
-    arena_t arena = { &world, robot_list, o.robots };
+    static scene_t scene;
+    arena_t arena = { &world, robot_list, o.robots, &scene };
     for (int i = 0; i < o.robots; i++) {
         robot_config_t cfg = base;
         cfg.id = i + 1;
@@ -365,6 +480,14 @@ int main(int argc, char **argv)
             fprintf(stderr, "sabot-sim: tcp port %d: %s\n", o.tcp_port + i, strerror(errno));
             return 1;
         }
+    }
+
+    uint64_t sim_us = 0, next_truth_us = 0;
+    control_server_t control = { .listen_fd = -1 };
+    control_target_t target = { &scene, robots, o.robots, &sim_us };
+    if (o.control_port >= 0 && control_open(&control, o.control_port)) {
+        fprintf(stderr, "sabot-sim: control port %d: %s\n", o.control_port, strerror(errno));
+        return 1;
     }
 
     FILE *truth = NULL;
@@ -390,13 +513,15 @@ int main(int argc, char **argv)
                i ? ", " : "", i + 1, tr[i].pty_path, tr[i].link_path, o.tcp_port >= 0 ? tr[i].tcp_port : -1,
                MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS);
     }
-    printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d}\n",
+    printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d",
            (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD);
+    if (control.listen_fd >= 0)
+        printf(", \"control\": %d", control.port);
+    printf("}\n");
     fflush(stdout);
 
 
     double start = wall_seconds();
-    uint64_t sim_us = 0, next_truth_us = 0;
     uint64_t end_us = o.duration > 0 ? (uint64_t)(o.duration * 1e6) : UINT64_MAX;
     while (!stop_requested && sim_us < end_us) {
         uint64_t target_us = (uint64_t)((wall_seconds() - start) * o.speed * 1e6);
@@ -405,6 +530,7 @@ int main(int argc, char **argv)
             for (int s = 0; s < SLICE_STEPS; s++) {
                 for (int i = 0; i < o.robots; i++)
                     robot_step(&robots[i]);
+                scene_step(&scene, SACT_TS_US * 1e-6);
                 sim_us += SACT_TS_US;
                 if (truth && sim_us >= next_truth_us) {
                     next_truth_us += TRUTH_PERIOD_US;
@@ -426,7 +552,7 @@ int main(int argc, char **argv)
 
         /* Wait for bytes, at most until the next slice is due in wall time. */
         struct pollfd pfd[MAX_ROBOTS][2 + MAX_CLIENTS];
-        struct pollfd flat[MAX_ROBOTS * (2 + MAX_CLIENTS)];
+        struct pollfd flat[MAX_ROBOTS * (2 + MAX_CLIENTS) + CONTROL_POLLFDS];
         int nfds = 0;
         for (int i = 0; i < o.robots; i++) {
             pfd[i][0] = (struct pollfd){ tr[i].pty_master, POLLIN, 0 };
@@ -436,6 +562,9 @@ int main(int argc, char **argv)
             for (int k = 0; k < 2 + MAX_CLIENTS; k++)
                 flat[nfds++] = pfd[i][k];
         }
+        struct pollfd *control_pfd = &flat[nfds];
+        control_pollfds(&control, control_pfd);
+        nfds += CONTROL_POLLFDS;
         double next_slice_wall = start + (double)(sim_us + SLICE_STEPS * SACT_TS_US) * 1e-6 / o.speed;
         int timeout_ms = (int)ceil((next_slice_wall - wall_seconds()) * 1000.0);
         if (timeout_ms < 0)
@@ -446,8 +575,11 @@ int main(int argc, char **argv)
                     pfd[i][k].revents = flat[i * (2 + MAX_CLIENTS) + k].revents;
                 read_requests(&robots[i], &tr[i], pfd[i]);
             }
+            control_serve(&control, control_pfd, &target);
         }
     }
+
+    control_close(&control);
 
     for (int i = 0; i < o.robots; i++) {
         if (tr[i].link_path[0])

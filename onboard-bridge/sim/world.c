@@ -1,6 +1,7 @@
 #include "world.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -48,7 +49,7 @@ static int load_pgm(const char *path, int *width, int *height, uint8_t **pixels,
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
-        snprintf(err, (size_t)err_len, "cannot open %s", path);
+        snprintf(err, (size_t)err_len, "map image %s: %s", path, strerror(errno));
         return -1;
     }
     char tok[32];
@@ -155,7 +156,7 @@ int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
     memset(w, 0, sizeof *w);
     FILE *f = fopen(yaml_path, "r");
     if (!f) {
-        snprintf(err, (size_t)err_len, "cannot open %s", yaml_path);
+        snprintf(err, (size_t)err_len, "map %s: %s", yaml_path, strerror(errno));
         return -1;
     }
     char line[1024], image[900] = "";

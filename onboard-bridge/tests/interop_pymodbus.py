@@ -24,6 +24,32 @@ from pymodbus.pdu.file_message import FileRecord
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MAP = json.load(open(os.path.join(HERE, "..", "..", "docs", "sact-modbus-map.json"), encoding="utf-8"))
+
+
+def robot_description(path):
+    """docs/sabot-robot.properties: key = value lines, # comments."""
+    with open(path, encoding="utf-8") as f:
+        pairs = (line.split("=", 1) for line in f if "=" in line and not line.lstrip().startswith("#"))
+        return {k.strip(): v.strip() for k, v in pairs}
+
+
+ROBOT = robot_description(os.path.join(HERE, "..", "..", "docs", "sabot-robot.properties"))
+
+
+def resolve_defaults(node):
+    """Records whose default is a robot constant name it ("default_from"); fill in the number."""
+    if isinstance(node, dict):
+        ref = node.get("default_from")
+        if ref is not None:
+            node["default"] = round(float(ROBOT[ref["robot"]]) * ref["factor"])
+        for v in node.values():
+            resolve_defaults(v)
+    elif isinstance(node, list):
+        for v in node:
+            resolve_defaults(v)
+
+
+resolve_defaults(MAP)
 SIM = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "build", "sabot-sim")
 TMP = os.path.join(HERE, "..", "build", "tmp")
 

@@ -1,7 +1,8 @@
 /*
  * The register map file is the contract: this suite reads docs/sact-modbus-map.json
  * itself and checks that the boards serve exactly what it says: every record, its
- * access, bounds and default, and the limits derived from the configuration.
+ * access, bounds and default, and the limits derived from the configuration. Defaults
+ * given as "default_from" are read from docs/sabot-robot.properties here too.
  */
 #include <math.h>
 
@@ -12,6 +13,7 @@
 #ifndef MAP_JSON
 #define MAP_JSON "../docs/sact-modbus-map.json"
 #endif
+#define ROBOT_PROPERTIES "../docs/sabot-robot.properties"
 
 static json_t *doc;
 static arena_t arena;
@@ -59,6 +61,63 @@ static void each_record(record_fn fn)
     }
 }
 
+/* A key's number in the robot description (key = value lines, # comments); NAN if absent. */
+static double robot_value(const char *key)
+{
+    FILE *f = fopen(ROBOT_PROPERTIES, "r");
+    char line[512];
+    double value = NAN;
+    while (f && fgets(line, sizeof line, f)) {
+        char k[128];
+        double v;
+        if (line[0] != '#' && sscanf(line, " %127[A-Za-z0-9_.] = %lf", k, &v) == 2 && !strcmp(k, key))
+            value = v;
+    }
+    if (f)
+        fclose(f);
+    return value;
+}
+
+/* A record's power-on value: "default", or the robot description's value x factor. */
+static long default_of(const json_t *rec)
+{
+    const json_t *from = json_get(rec, "default_from");
+    if (!from)
+        return (long)json_num(rec, "default", 0);
+    return lround(robot_value(json_str(from, "robot")) * json_num(from, "factor", NAN));
+}
+
+static int robot_records;
+
+static void check_robot_record(const json_t *board, const json_t *file, const json_t *rec)
+{
+    static const char *const robot_constants[] = { "encoder_lines", "gear_ratio", "no_load_speed",
+                                                   "wheel_radius",  "max_speed",  "max_accel" };
+    if (strcmp(json_str(board, "name"), "sact") || strcmp(json_str(file, "name"), "config"))
+        return;
+    for (size_t i = 0; i < sizeof robot_constants / sizeof robot_constants[0]; i++) {
+        if (strcmp(json_str(rec, "name"), robot_constants[i]))
+            continue;
+        robot_records++;
+        const json_t *from = json_get(rec, "default_from");
+        CHECK(from && !json_get(rec, "default"), "%s repeats a number instead of naming a robot key",
+              robot_constants[i]);
+        CHECK(from && !isnan(robot_value(json_str(from, "robot"))), "%s: key '%s' not in %s", robot_constants[i],
+              from ? json_str(from, "robot") : "", ROBOT_PROPERTIES);
+    }
+}
+
+static void robotConstantsComeFromTheRobotDescription(void)
+{
+    robot_records = 0;
+    each_record(check_robot_record);
+    CHECK(robot_records == 6, "%d of the 6 robot constants found in the config file", robot_records);
+    CHECK(MB_SACT_CONFIG_GEAR_RATIO_DEFAULT == lround(SABOT_ROBOT_GEAR_RATIO * 100), "gear ratio %d",
+          MB_SACT_CONFIG_GEAR_RATIO_DEFAULT);
+    CHECK(MB_SACT_CONFIG_NO_LOAD_SPEED_DEFAULT == lround(robot_value("motor.noLoadSpeed.rpm")), "no-load %d",
+          MB_SACT_CONFIG_NO_LOAD_SPEED_DEFAULT);
+}
+
 static int json_records;
 
 static void check_descriptor(const json_t *board, const json_t *file, const json_t *rec)
@@ -76,7 +135,7 @@ static void check_descriptor(const json_t *board, const json_t *file, const json
     CHECK(d->access == access, "%s access", json_str(rec, "name"));
     CHECK(d->min == (int32_t)json_num(rec, "min", 0) && d->max == (int32_t)json_num(rec, "max", 0), "%s bounds",
           json_str(rec, "name"));
-    CHECK(d->def == (int32_t)json_num(rec, "default", 0), "%s default", json_str(rec, "name"));
+    CHECK(d->def == (int32_t)default_of(rec), "%s default", json_str(rec, "name"));
     CHECK(bd->address == (uint8_t)json_num(board, "slave_address", 0), "%s address", json_str(board, "name"));
 }
 
@@ -101,7 +160,7 @@ static void check_default_over_bus(const json_t *board, const json_t *file, cons
     robot_t *r = slot;
     uint8_t addr = (uint8_t)json_num(board, "slave_address", 0);
     long v = bus_read(r, addr, (uint16_t)json_num(file, "file", 0), (uint16_t)json_num(rec, "record", 0));
-    long expect = (long)json_num(rec, "default", 0);
+    long expect = default_of(rec);
     if (!strcmp(json_str(rec, "type"), "int16") && v >= 0x8000)
         v -= 0x10000;
     CHECK(v == expect, "%s.%s.%s reads %ld, map default %ld", json_str(board, "name"), json_str(file, "name"),
@@ -124,7 +183,7 @@ static double dynamic_limit(const char *from)
             cfg = json_get(json_get(boards->items[0], "files")->items[f], "records");
     double val[16] = { 0 };
     for (int i = 0; i < cfg->count && i < 16; i++)
-        val[i] = json_num(cfg->items[i], "default", 0);
+        val[i] = (double)default_of(cfg->items[i]);
     double counts_per_m = 4 * val[0] * val[1] / 100.0 / (2 * M_PI * val[3] * 1e-4);
     double ts = json_num(json_get(doc, "control"), "period_us", 0) * 1e-6;
     if (!strcmp(from, "max_speed"))
@@ -187,6 +246,7 @@ int main(void)
         printf("test_map: 0 passed, 1 failed\n");
         return 1;
     }
+    RUN(robotConstantsComeFromTheRobotDescription);
     RUN(everyRecordOfTheMapIsServedAsDescribed);
     RUN(writableRecordsStartAtTheMapDefaults);
     RUN(writesAreBoundedExactlyByTheMap);

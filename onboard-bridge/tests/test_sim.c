@@ -48,10 +48,10 @@ static void run(robot_t **robots, int n, double seconds)
             robot_step(robots[k]);
 }
 
-/* 8.8 counts/Ts for a wheel surface speed in m/s (43:1, 512 lines, r = 7.5 cm). */
+/* 8.8 counts/Ts for a wheel surface speed in m/s, for the described robot. */
 static uint16_t wheel_speed(double m_s)
 {
-    double counts_per_m = 2048.0 * 43.0 / (2 * M_PI * 0.075);
+    double counts_per_m = 4.0 * SABOT_ROBOT_ENCODER_LINES * SABOT_ROBOT_GEAR_RATIO / (2 * M_PI * SABOT_ROBOT_WHEEL_RADIUS_M);
     return (uint16_t)(int16_t)lround(m_s * counts_per_m * 50e-6 * 256.0);
 }
 

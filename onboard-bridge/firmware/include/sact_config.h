@@ -2,7 +2,8 @@
  * Fixed hardware constants of the SACT board, in one place.
  *
  * Values a master can change (gains, robot geometry, limits) are registers whose
- * defaults come from docs/sact-modbus-map.json; the numbers here are properties
+ * defaults come from docs/sact-modbus-map.json (the robot's constants from docs/sabot-robot.properties,
+ * which the map names); the numbers here are properties
  * of the board itself (timer, PWM, ADC, shunt) and of the fixed-point formats.
  */
 #ifndef SACT_CONFIG_H

@@ -26,7 +26,7 @@ import java.util.TreeSet;
  * gear.ratio                      = 43
  * encoder.lines                   = 512
  * encoder.quadrature              = 4
- * motor.noLoadSpeed.rpm           = 7000
+ * motor.noLoadSpeed.rpm           = 7740
  * limit.linearSpeed.mps           = 0.5
  * limit.linearAcceleration.mps2   = 0.5
  * limit.angularSpeed.radps        = 2.0
@@ -34,13 +34,14 @@ import java.util.TreeSet;
  * control.period.s                = 0.02
  * </pre>
  *
- * Every key is required; unknown keys are an error (a typo must not silently fall back to a default). The file
- * shipped as {@code sabot-robot.properties} next to this class is the reference robot and documents each value's
- * source.
+ * Every key is required; unknown keys are an error (a typo must not silently fall back to a default). The reference
+ * robot's file is {@code docs/sabot-robot.properties} in the source tree, beside the Modbus map: the one description
+ * that Java, the SACT firmware's defaults and the simulator are built from. The build copies it next to this class
+ * as {@value #DEFAULT_RESOURCE} (bundles/sabot.model/pom.xml); it documents each value's source.
  */
 public final class RobotDescriptions {
 
-    /** Resource name of the reference robot's description, next to this class. */
+    /** Resource name of the reference robot's description, next to this class (copied from docs/ at build time). */
     public static final String DEFAULT_RESOURCE = "sabot-robot.properties";
 
     private static final Map<String, String> KEYS = Map.ofEntries(

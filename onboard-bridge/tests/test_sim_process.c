@@ -1,0 +1,576 @@
+/*
+ * A real sabot-sim process, driven as tests and demos drive it: its command line,
+ * its control channel (obstacles, people, board links, ground truth) and its bus over
+ * TCP. The simulator beside this binary is used (build/sabot-sim, or the sanitized
+ * build/san/sabot-sim for the sanitized suite). Every wait is on a condition with a
+ * deadline; the only fixed waits are the ones that prove silence on the bus.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bus_client.h"
+#include "check.h"
+
+#define DEADLINE_S 5.0
+/* encoder counts per metre of wheel rim, for the described robot */
+#define COUNTS_PER_M (4.0 * SABOT_ROBOT_ENCODER_LINES * SABOT_ROBOT_GEAR_RATIO / (2 * M_PI * SABOT_ROBOT_WHEEL_RADIUS_M))
+#define SILENCE_MS 150       /* an answer takes ~1 ms at 115200 baud; 150 ms of nothing is silence */
+
+static char sim_path[PATH_MAX], tmp_dir[PATH_MAX];
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+typedef struct {
+    pid_t pid;
+    int out_fd, err_fd;
+    char first_line[2048];
+    int control_port, tcp_port;
+} sim_t;
+
+/* Reads fd until a newline or EOF or the deadline; returns the bytes read. */
+static size_t read_until_newline(int fd, char *buf, size_t len, double deadline)
+{
+    size_t n = 0;
+    while (n + 1 < len && now_s() < deadline) {
+        struct pollfd p = { fd, POLLIN, 0 };
+        if (poll(&p, 1, (int)((deadline - now_s()) * 1000) + 1) <= 0)
+            continue;
+        ssize_t k = read(fd, buf + n, 1);
+        if (k <= 0)
+            break;
+        if (buf[n++] == '\n')
+            break;
+    }
+    buf[n] = '\0';
+    return n;
+}
+
+/* Starts sabot-sim with the given arguments (NULL-terminated) and reads its first line. */
+static bool sim_start(sim_t *s, const char *const *args)
+{
+    const char *argv[32];
+    int n = 0;
+    argv[n++] = sim_path;
+    for (int i = 0; args[i]; i++)
+        argv[n++] = args[i];
+    argv[n] = NULL;
+    int out[2], err[2];
+    if (pipe(out) || pipe(err))
+        return false;
+    s->pid = fork();
+    if (s->pid == 0) {
+        dup2(out[1], 1);
+        dup2(err[1], 2);
+        close(out[0]);
+        close(err[0]);
+        execv(sim_path, (char *const *)argv);
+        _exit(127);
+    }
+    close(out[1]);
+    close(err[1]);
+    s->out_fd = out[0];
+    s->err_fd = err[0];
+    read_until_newline(s->out_fd, s->first_line, sizeof s->first_line, now_s() + DEADLINE_S);
+    const char *c = strstr(s->first_line, "\"control\": ");
+    s->control_port = c ? atoi(c + 11) : -1;
+    const char *t = strstr(s->first_line, "\"tcp\": ");
+    s->tcp_port = t ? atoi(t + 7) : -1;
+    return s->first_line[0] == '{';
+}
+
+/* Exit status after SIGTERM (or of an exited process), -1 if it did not end in time. */
+static int sim_stop(sim_t *s)
+{
+    kill(s->pid, SIGTERM);
+    int status = 0;
+    double deadline = now_s() + DEADLINE_S;
+    pid_t done = 0;
+    while ((done = waitpid(s->pid, &status, WNOHANG)) == 0 && now_s() < deadline) {
+        struct pollfd p = { s->err_fd, POLLIN, 0 };   /* wakes on the pipe closing at exit */
+        if (poll(&p, 1, 20) > 0) {
+            char sink[256];
+            if (read(s->err_fd, sink, sizeof sink) <= 0)
+                p.fd = -1;
+        }
+    }
+    close(s->out_fd);
+    close(s->err_fd);
+    if (done != s->pid) {
+        kill(s->pid, SIGKILL);
+        waitpid(s->pid, &status, 0);
+        return -1;
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+static bool sim_alive(const sim_t *s)
+{
+    int status;
+    return waitpid(s->pid, &status, WNOHANG) == 0;
+}
+
+static int connect_to(int port)
+{
+    int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    struct sockaddr_in a = { .sin_family = AF_INET, .sin_port = htons((uint16_t)port),
+                             .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
+    if (connect(fd, (struct sockaddr *)&a, sizeof a)) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+/* Sends one control command and returns its answer line (without the newline). */
+static const char *command(int fd, const char *fmt, ...)
+{
+    static char answer[8192];
+    char line[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line - 1, fmt, ap);
+    va_end(ap);
+    strcat(line, "\n");
+    if (write(fd, line, strlen(line)) != (ssize_t)strlen(line))
+        return "(write failed)";
+    size_t n = read_until_newline(fd, answer, sizeof answer, now_s() + DEADLINE_S);
+    if (n == 0 || answer[n - 1] != '\n')
+        return "(no answer)";
+    answer[n - 1] = '\0';
+    return answer;
+}
+
+typedef struct {
+    double t, x, y, theta, v, omega;
+    unsigned long long contacts;
+} truth_t;
+
+static bool truth(int fd, int robot, truth_t *out)
+{
+    const char *a = command(fd, "truth %d", robot);
+    return sscanf(a, "ok t=%lf x=%lf y=%lf theta=%lf v=%lf omega=%lf contacts=%llu", &out->t, &out->x, &out->y,
+                  &out->theta, &out->v, &out->omega, &out->contacts) == 7;
+}
+
+/* One Modbus RTU exchange over TCP; returns the answer length, 0 on silence. */
+static size_t modbus(int fd, const frame_t *req, frame_t *ans, int silence_ms)
+{
+    if (write(fd, req->data, req->len) != (ssize_t)req->len)
+        return 0;
+    ans->len = 0;
+    size_t want = 3;
+    double deadline = now_s() + silence_ms / 1000.0;
+    while (ans->len < want && now_s() < deadline) {
+        struct pollfd p = { fd, POLLIN, 0 };
+        if (poll(&p, 1, (int)((deadline - now_s()) * 1000) + 1) <= 0)
+            continue;
+        ssize_t k = read(fd, ans->data + ans->len, want - ans->len);
+        if (k <= 0)
+            return 0;
+        ans->len += (size_t)k;
+        if (ans->len >= 3)
+            want = (ans->data[1] & 0x80) ? 5 : 3 + ans->data[2] + 2u;
+    }
+    return ans->len == want ? ans->len : 0;
+}
+
+static long tcp_read(int fd, uint8_t address, uint16_t file, uint16_t record)
+{
+    frame_t req = read_request(address, file, record, 1), ans;
+    if (modbus(fd, &req, &ans, 1000) != 9 || answer_exception(&ans) != 0)
+        return -1;
+    return (ans.data[5] << 8) | ans.data[6];
+}
+
+static int tcp_write(int fd, uint8_t address, uint16_t file, uint16_t record, const uint16_t *values, uint16_t n)
+{
+    frame_t req = write_request(address, file, record, values, n), ans;
+    if (modbus(fd, &req, &ans, 1000) == 0)
+        return -1;
+    return answer_exception(&ans);
+}
+
+/* The board at `address` answers nothing within SILENCE_MS. */
+static bool silent(int fd, uint8_t address)
+{
+    frame_t req = read_request(address, 2, 0, 1), ans;
+    return modbus(fd, &req, &ans, SILENCE_MS) == 0;
+}
+
+/* Sonar centre sensor (1): range in mm, 0 when no echo. */
+static long centre_range(int bus)
+{
+    return tcp_read(bus, MB_SONAR_ADDRESS, MB_SONAR_FILE_LATEST, 6 + 2);
+}
+
+/* Waits (polling the bus) until the centre sensor has pinged twice more and its
+ * range satisfies lo <= range <= hi; returns the last range read. */
+static long await_centre_range(int bus, long lo, long hi)
+{
+    double deadline = now_s() + DEADLINE_S;
+    long seq0 = tcp_read(bus, MB_SONAR_ADDRESS, MB_SONAR_FILE_LATEST, 6), range = -1;
+    while (now_s() < deadline) {
+        long seq = tcp_read(bus, MB_SONAR_ADDRESS, MB_SONAR_FILE_LATEST, 6);
+        range = centre_range(bus);
+        if (seq >= 0 && ((seq - seq0) & 0xFFFF) >= 2 && range >= lo && range <= hi)
+            return range;
+    }
+    return range;
+}
+
+#define SIM_ARGS(...) ((const char *const[]){ __VA_ARGS__, NULL })
+
+static void start_lab_robot(sim_t *s, const char *truth_csv)
+{
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/ctl-robot", tmp_dir);
+    bool ok = truth_csv ? sim_start(s, SIM_ARGS("--control", "0", "--tcp", "0", "--start", "6,6.5,0", "--link", link,
+                                                "--truth", truth_csv))
+                        : sim_start(s, SIM_ARGS("--control", "0", "--tcp", "0", "--start", "6,6.5,0", "--link", link));
+    CHECK(ok && s->control_port > 0 && s->tcp_port > 0, "first line: %s", s->first_line);
+}
+
+static void badArgumentsAreRefusedWithStatusTwoAndAMessage(void)
+{
+    static const struct {
+        const char *args[5];
+        const char *message;
+    } cases[] = {
+        { { "--tcp", "99999" }, "--tcp wants an integer in 0..65535" },
+        { { "--tcp", "-1" }, "--tcp wants an integer in 0..65535" },
+        { { "--control", "http" }, "--control wants an integer in 0..65535" },
+        { { "--fault-crc", "1.5" }, "--fault-crc wants a number in 0..1" },
+        { { "--fault-drop", "-0.1" }, "--fault-drop wants a number in 0..1" },
+        { { "--speed", "0" }, "--speed wants a number > 0" },
+        { { "--gear-ratio", "-43" }, "--gear-ratio wants a number > 0" },
+        { { "--track", "wide" }, "--track wants a number" },
+        { { "--robots", "17" }, "--robots wants an integer in 1..16" },
+        { { "--seed", "1x" }, "--seed wants an integer" },
+        { { "--start", "1,2" }, "--start wants X,Y,THETA" },
+        { { "--tcp", "65535", "--robots", "2" }, "beyond 65535" },
+        { { "--frobnicate" }, "unknown option '--frobnicate'" },
+        { { "--tcp" }, "--tcp wants an argument" },
+        { { "stray" }, "unexpected argument 'stray'" },
+        { { "--map", "/nonexistent/lab.yaml" }, "map /nonexistent/lab.yaml: No such file or directory" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sim_t s;
+        /* should one be wrongly accepted, it still ends */
+        const char *args[8] = { "--duration", "0.01" };
+        int n = 2;
+        for (int k = 0; k < 5 && cases[i].args[k]; k++)
+            args[n++] = cases[i].args[k];
+        sim_start(&s, args);
+        char err[1024];
+        size_t len = read_until_newline(s.err_fd, err, sizeof err, now_s() + DEADLINE_S);
+        int status = sim_stop(&s);
+        CHECK(status == 2, "%s %s: exit status %d", cases[i].args[0], cases[i].args[1] ? cases[i].args[1] : "",
+              status);
+        CHECK(len > 0 && strstr(err, cases[i].message), "%s: message '%s', expected '%s'", cases[i].args[0],
+              strtok(err, "\n"), cases[i].message);
+        CHECK(s.first_line[0] == '\0', "started anyway: %s", s.first_line);
+    }
+}
+
+static void anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved(void)
+{
+    sim_t s;
+    start_lab_robot(&s, NULL);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    uint16_t hold = 0;
+    CHECK(tcp_write(bus, MB_SONAR_ADDRESS, MB_SONAR_FILE_CONFIG, MB_SONAR_CONFIG_SWEEP_ENABLE, &hold, 1) == 0,
+          "sweep off");
+    /* nothing within the 4 m range of the centre sensor's cone from (6, 6.5) looking east */
+    long none = await_centre_range(bus, 0, 0);
+    CHECK(none == 0, "echo %ld mm before any obstacle", none);
+    const char *a = command(ctl, "obstacle add crate 7.5 6.5 0.3");
+    CHECK(!strcmp(a, "ok obstacle crate added"), "%s", a);
+    /* sensor 0.20 m ahead of the centre (x 6.20), crate face at 7.20: 1.000 m */
+    long range = await_centre_range(bus, 960, 1040);
+    CHECK(labs(range - 1000) <= 40, "crate echo at %ld mm, expected 1000", range);
+    long x = tcp_read(bus, MB_SONAR_ADDRESS, MB_SONAR_FILE_LATEST, 6 + 3);
+    CHECK(labs(x - 1200) <= 40, "crate at x %ld mm from the centre, expected 1200", x);
+    a = command(ctl, "obstacle move crate 7.0 6.5");
+    CHECK(!strcmp(a, "ok obstacle crate moved"), "%s", a);
+    range = await_centre_range(bus, 460, 540);
+    CHECK(labs(range - 500) <= 40, "moved crate echo at %ld mm, expected 500", range);
+    a = command(ctl, "obstacle remove crate");
+    CHECK(!strcmp(a, "ok obstacle crate removed"), "%s", a);
+    none = await_centre_range(bus, 0, 0);
+    CHECK(none == 0, "echo %ld mm after the crate was removed", none);
+    /* a person standing there echoes too (disc of 0.25 m: face at 7.20 m) */
+    a = command(ctl, "person add carol 7.45 6.5 0 0");
+    CHECK(!strcmp(a, "ok person carol added"), "%s", a);
+    range = await_centre_range(bus, 960, 1040);
+    CHECK(labs(range - 1000) <= 40, "person echo at %ld mm, expected 1000", range);
+    CHECK(!strcmp(command(ctl, "person remove carol"), "ok person carol removed"), "remove");
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot(void)
+{
+    sim_t s;
+    start_lab_robot(&s, NULL);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent before being switched off");
+    const char *a = command(ctl, "board 1 sonar off");
+    CHECK(!strcmp(a, "ok robot 1 sonar off"), "%s", a);
+    CHECK(silent(bus, MB_SONAR_ADDRESS), "sonar still answers");
+    CHECK(!silent(bus, MB_INS_ADDRESS), "the inertial board went silent with the sonar");
+    a = command(ctl, "board 1 sonar on");
+    CHECK(!strcmp(a, "ok robot 1 sonar on"), "%s", a);
+    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent after being switched on");
+
+    /* Deadman 200 ms, then 0.2 m/s forward: in 8.8 counts per Ts. */
+    uint16_t timeout = 200;
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_TIMEOUT, &timeout, 1) == 0,
+          "deadman");
+    double counts_per_m = COUNTS_PER_M;
+    uint16_t speed = (uint16_t)lround(0.2 * counts_per_m * 50e-6 * 256.0), both[2] = { speed, speed };
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) == 0,
+          "drive");
+    truth_t t = { 0 };
+    double deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && truth(ctl, 1, &t) && t.v < 0.15) {
+        /* keep the deadman fed until the robot is under way */
+        tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2);
+    }
+    CHECK(t.v >= 0.15, "robot did not start: v %.3f", t.v);
+    a = command(ctl, "board 1 sact off");
+    CHECK(!strcmp(a, "ok robot 1 sact off"), "%s", a);
+    CHECK(silent(bus, MB_SACT_ADDRESS), "SACT still answers");
+    truth_t cut = t;
+    deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && truth(ctl, 1, &t) && fabs(t.v) > 0.005)
+        continue;
+    CHECK(fabs(t.v) <= 0.005, "still moving at %.3f m/s with the link cut", t.v);
+    /* 200 ms at 0.2 m/s, then a 0.5 m/s^2 ramp down: about 0.08 m */
+    CHECK(t.x - cut.x < 0.2, "rolled %.3f m after the cut", t.x - cut.x);
+    a = command(ctl, "board 1 sact on");
+    CHECK(!strcmp(a, "ok robot 1 sact on"), "%s", a);
+    CHECK(!silent(bus, MB_SACT_ADDRESS), "SACT silent after being switched on");
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void drivingIntoAnObstacleCountsContacts(void)
+{
+    sim_t s;
+    start_lab_robot(&s, NULL);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    CHECK(!strncmp(command(ctl, "obstacle add post 6.7 6.5 0.2"), "ok", 2), "add");
+    double counts_per_m = COUNTS_PER_M;
+    uint16_t speed = (uint16_t)lround(0.2 * counts_per_m * 50e-6 * 256.0), both[2] = { speed, speed };
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) == 0,
+          "drive");
+    truth_t t = { 0 };
+    double deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && truth(ctl, 1, &t) && t.contacts == 0)
+        continue;
+    CHECK(t.contacts > 0, "no contact; robot at x %.3f", t.x);
+    CHECK(t.x <= 6.7 - 0.45 + 1e-3, "drove into the post: x %.3f", t.x);
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+/* Rows of the truth CSV for robot 1 either side of time t. */
+static bool csv_bracket(const char *path, double t, truth_t *before, truth_t *after)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return false;
+    char line[512];
+    bool have_before = false, have_after = false;
+    if (!fgets(line, sizeof line, f)) {
+        fclose(f);
+        return false;
+    }
+    while (fgets(line, sizeof line, f) && !have_after) {
+        truth_t r;
+        int robot;
+        if (sscanf(line, "%lf,%d,%lf,%lf,%lf,%lf,%lf,%*f,%*f,%*f,%*f,%llu", &r.t, &robot, &r.x, &r.y, &r.theta, &r.v,
+                   &r.omega, &r.contacts) != 8 || robot != 1)
+            continue;
+        if (r.t <= t + 1e-9) {
+            *before = r;
+            have_before = true;
+        }
+        if (r.t >= t - 1e-9) {
+            *after = r;
+            have_after = true;
+        }
+    }
+    fclose(f);
+    return have_before && have_after;
+}
+
+static bool between(double v, double a, double b) { return v >= fmin(a, b) - 1e-5 && v <= fmax(a, b) + 1e-5; }
+
+static void aPersonWalkingIntoTheRobotIsAContactAndTruthAgreesWithTheCsv(void)
+{
+    char csv[PATH_MAX + 16];
+    snprintf(csv, sizeof csv, "%s/ctl-truth.csv", tmp_dir);
+    sim_t s;
+    start_lab_robot(&s, csv);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    truth_t t = { 0 };
+    CHECK(truth(ctl, 1, &t) && t.contacts == 0, "contacts at start: %llu", t.contacts);
+    /* discs touch at 0.50 m between centres: the person reaches the robot after 0.2 s */
+    const char *a = command(ctl, "person add alice 5.4 6.5 0.5 0");
+    CHECK(!strcmp(a, "ok person alice added"), "%s", a);
+    /* people walk: by the time of the contact she is past her start */
+    double deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && truth(ctl, 1, &t) && t.contacts == 0)
+        continue;
+    CHECK(t.contacts > 0, "the person walked through the robot without contact");
+    a = command(ctl, "list");
+    double px = 0;
+    CHECK(sscanf(a, "ok count=1; person alice x=%lf", &px) == 1 && px > 5.5, "%s", a);
+    CHECK(!strcmp(command(ctl, "person remove alice"), "ok person alice removed"), "remove");
+    truth_t last = { 0 };
+    CHECK(truth(ctl, 1, &last), "truth");
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+    truth_t lo = { 0 }, hi = { 0 };
+    CHECK(csv_bracket(csv, last.t, &lo, &hi), "no CSV rows around t = %.3f", last.t);
+    CHECK(between(last.x, lo.x, hi.x) && between(last.y, lo.y, hi.y) && between(last.theta, lo.theta, hi.theta),
+          "truth pose %.5f %.5f %.5f outside CSV rows %.3f..%.3f", last.x, last.y, last.theta, lo.t, hi.t);
+    CHECK(between(last.v, lo.v, hi.v) && between(last.omega, lo.omega, hi.omega), "truth speeds %.5f %.5f", last.v,
+          last.omega);
+    CHECK(last.contacts >= lo.contacts && last.contacts <= hi.contacts && hi.contacts > 0,
+          "truth contacts %llu, CSV %llu..%llu", last.contacts, lo.contacts, hi.contacts);
+}
+
+static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
+{
+    sim_t s;
+    start_lab_robot(&s, NULL);
+    int ctl = connect_to(s.control_port);
+    CHECK(!strcmp(command(ctl, "obstacle add box 1 1 0.3"), "ok obstacle box added"), "add");
+    CHECK(!strcmp(command(ctl, "person add bob 2 2 0 0"), "ok person bob added"), "add");
+    static const struct {
+        const char *command, *answer;
+    } bad[] = {
+        { "", "error empty command" },
+        { "fly 1", "error unknown command 'fly' (obstacle, person, board, truth, list)" },
+        { "obstacle", "error obstacle wants add, move or remove" },
+        { "obstacle add box 5 5 0.3", "error obstacle 'box' exists" },
+        { "obstacle add bob 5 5 0.3", "error person 'bob' exists" },
+        { "obstacle add b@d 5 5 0.3", "error bad ID 'b@d': 1 to 32 of A-Z a-z 0-9 _ -" },
+        { "obstacle add abcdefghijklmnopqrstuvwxyz0123456 5 5 0.3",
+          "error bad ID 'abcdefghijklmnopqrstuvwxyz0123456': 1 to 32 of A-Z a-z 0-9 _ -" },
+        { "obstacle add c 5 5 0", "error RADIUS must be > 0, was 0" },
+        { "obstacle add c 5 5 -1", "error RADIUS must be > 0, was -1" },
+        { "obstacle add c five 5 1", "error X is not a number: 'five'" },
+        { "obstacle add c 5 nan 1", "error Y is not a number: 'nan'" },
+        { "obstacle add c 5 5", "error obstacle add wants ID X Y RADIUS" },
+        { "obstacle add c 5 5 1 1", "error obstacle add wants ID X Y RADIUS" },
+        { "obstacle move ghost 1 1", "error no obstacle 'ghost'" },
+        { "obstacle move bob 1 1", "error 'bob' is a person, not an obstacle" },
+        { "obstacle move box 1", "error obstacle move wants ID X Y" },
+        { "obstacle remove ghost", "error no obstacle 'ghost'" },
+        { "person add p 1 1 0", "error person add wants ID X Y VX VY" },
+        { "person add p 1 1 0 fast", "error VY is not a number: 'fast'" },
+        { "person move box 1 1 0 0", "error 'box' is an obstacle, not a person" },
+        { "person remove box", "error 'box' is an obstacle, not a person" },
+        { "person jump bob", "error person wants add, move or remove" },
+        { "board 2 sact off", "error no robot '2' (robots are 1..1)" },
+        { "board 0 sact off", "error no robot '0' (robots are 1..1)" },
+        { "board 1 motor off", "error no board 'motor' (sact, ins or sonar)" },
+        { "board 1 sact dim", "error board state must be off or on, was 'dim'" },
+        { "board 1 sact", "error board wants ROBOT sact|ins|sonar off|on" },
+        { "truth", "error truth wants ROBOT" },
+        { "truth one", "error no robot 'one' (robots are 1..1)" },
+        { "list all", "error list takes no arguments" },
+        { "a b c d e f g h i", "error too many words (at most 8)" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *a = command(ctl, "%s", bad[i].command);
+        CHECK(!strcmp(a, bad[i].answer), "'%s' answered '%s', expected '%s'", bad[i].command, a, bad[i].answer);
+    }
+    char longline[600];
+    memset(longline, 'x', sizeof longline - 1);
+    longline[sizeof longline - 1] = '\0';
+    const char *a = command(ctl, "%s", longline);
+    CHECK(!strcmp(a, "error line too long (at most 255 characters)"), "%s", a);
+    a = command(ctl, "list");
+    CHECK(!strcmp(a, "ok count=2; obstacle box x=1.0000 y=1.0000 radius=0.3000; "
+                     "person bob x=2.0000 y=2.0000 vx=0.0000 vy=0.0000"),
+          "scene changed by refused commands: %s", a);
+    CHECK(!strncmp(command(ctl, "truth 1"), "ok t=", 5), "truth after errors");
+    CHECK(sim_alive(&s), "the simulator died");
+
+    /* Clients at once and one after another see the one scene. */
+    int other = connect_to(s.control_port);
+    CHECK(!strcmp(command(other, "obstacle remove box"), "ok obstacle box removed"), "second client");
+    CHECK(!strncmp(command(ctl, "list"), "ok count=1; person bob", 22), "first client does not see the removal");
+    close(other);
+    close(ctl);
+    int third = connect_to(s.control_port);
+    CHECK(!strcmp(command(third, "list"), "ok count=1; person bob x=2.0000 y=2.0000 vx=0.0000 vy=0.0000"),
+          "third client: %s", command(third, "list"));
+    close(third);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void theControlPortIsAnnouncedOnlyWhenAsked(void)
+{
+    sim_t s;
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/ctl-plain", tmp_dir);
+    CHECK(sim_start(&s, SIM_ARGS("--link", link)), "start: %s", s.first_line);
+    CHECK(!strstr(s.first_line, "\"control\""), "control announced without --control: %s", s.first_line);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    printf("test_sim_process\n");
+    char self[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n <= 0) {
+        printf("cannot locate myself\ntest_sim_process: 0 passed, 1 failed\n");
+        return 1;
+    }
+    self[n] = '\0';
+    *strrchr(self, '/') = '\0';
+    snprintf(sim_path, sizeof sim_path, "%.*s/sabot-sim", PATH_MAX - 16, self);
+    snprintf(tmp_dir, sizeof tmp_dir, "%.*s/tmp", PATH_MAX - 16, self);
+    if (access(sim_path, X_OK)) {
+        printf("%s: %s\ntest_sim_process: 0 passed, 1 failed\n", sim_path, strerror(errno));
+        return 1;
+    }
+    (void)argv;
+    mkdir(tmp_dir, 0755);
+    signal(SIGPIPE, SIG_IGN);
+    RUN(badArgumentsAreRefusedWithStatusTwoAndAMessage);
+    RUN(theControlPortIsAnnouncedOnlyWhenAsked);
+    RUN(anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved);
+    RUN(aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot);
+    RUN(drivingIntoAnObstacleCountsContacts);
+    RUN(aPersonWalkingIntoTheRobotIsAContactAndTruthAgreesWithTheCsv);
+    RUN(everyBadCommandAnswersAnErrorAndChangesNothing);
+    return REPORT("test_sim_process");
+}
