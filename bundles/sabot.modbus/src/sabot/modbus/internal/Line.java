@@ -110,6 +110,9 @@ final class Line implements AutoCloseable {
             ModbusResponse response = transport.readResponse();
             return new Attempt.Answer(response);
         } catch (ModbusIOException e) {
+            if (!channel.isOpen()) {
+                return new Attempt.Unanswered("the port " + settings.where() + " is closed: " + e.getMessage());
+            }
             return observed.unanswered() ? new Attempt.Unanswered(e.getMessage())
                     : new Attempt.Corrupt(e.getMessage());
         } finally {
