@@ -1,0 +1,11 @@
+package sabot.modbus;
+
+/**
+ * The counters of the three boards of one bus, taken together.
+ *
+ * @param sact  the SACT motor board
+ * @param ins   the inertial board
+ * @param sonar the sonar board
+ */
+public record BusStatistics(BoardCounters sact, BoardCounters ins, BoardCounters sonar) {
+}

@@ -1,0 +1,30 @@
+package sabot.modbus;
+
+/**
+ * One RS-485 bus and its three boards. One master, one line: every transaction on the bus is serialised, and the
+ * clients may be used from any thread. Closing the bus closes the port; the clients then fail.
+ */
+public interface ModbusBus extends AutoCloseable {
+
+    /** @return the SACT motor board's client */
+    SactClient sact();
+
+    /** @return the inertial board's client */
+    InsClient ins();
+
+    /** @return the sonar board's client */
+    SonarClient sonar();
+
+    /** @return the counters of the three boards now */
+    BusStatistics statistics();
+
+    /** @return the settings the bus was opened with */
+    BusSettings settings();
+
+    /** @return the wire timing of this bus's line */
+    BusTiming timing();
+
+    /** Closes the port or socket. Idempotent. */
+    @Override
+    void close();
+}

@@ -1,0 +1,80 @@
+package sabot.modbus;
+
+import java.io.IOException;
+import java.time.Duration;
+
+/**
+ * The SACT motor board (slave 1): two wheel motors. Wheel speeds are in rad/s at the wheel (positive drives the robot
+ * forward); conversions use the board's own configuration (encoder lines, gear ratio) read when the bus opened.
+ * Every method is one Modbus transaction unless it says otherwise, and throws {@link BoardException} when the board
+ * does not answer well, {@link IllegalArgumentException} (nothing sent) for a value outside the map's static bounds.
+ */
+public interface SactClient extends Board {
+
+    /**
+     * @return the configuration read when the bus opened (or now, if that failed)
+     * @throws IOException the board does not answer
+     */
+    SactConfig config() throws IOException;
+
+    /**
+     * Sets both wheels' velocity set-points in one write (file 4 records 0–1), so both change in the same control
+     * step. A speed above the board's {@code max_speed} is refused by the board: {@link BoardException} of kind
+     * {@link BoardException.Kind#EXCEPTION} with code 3.
+     *
+     * @param leftRadPerS  left wheel, rad/s
+     * @param rightRadPerS right wheel, rad/s
+     */
+    void setWheelSpeeds(double leftRadPerS, double rightRadPerS) throws IOException;
+
+    /** @return wheel positions, speeds, currents and status flags of both motors, in one 0x14 transaction */
+    Wheels readWheels() throws IOException;
+
+    /**
+     * @param on true: zero both set-points and short both motors (one write); false: release both brakes
+     */
+    void brake(boolean on) throws IOException;
+
+    /** @return one motor's PID gains */
+    MotorGains readGains(Motor motor) throws IOException;
+
+    /**
+     * Writes one motor's PID gains. Every gain is checked against the register map's bounds first; if one is out of
+     * bounds nothing is written.
+     *
+     * @throws IllegalArgumentException a gain outside its bounds, naming it
+     */
+    void writeGains(Motor motor, MotorGains gains) throws IOException;
+
+    /**
+     * Writes the board's wheel surface limits (file 3 records 4–5); a limit that tightens also clamps what is
+     * commanded. The cached {@link #config()} is read again.
+     *
+     * @param maxSpeed m/s
+     * @param maxAccel m/s²
+     */
+    void writeLimits(double maxSpeed, double maxAccel) throws IOException;
+
+    /**
+     * Sets the board's own deadman: with no velocity write for this long both set-points go to zero.
+     *
+     * @param timeout whole milliseconds, {@link Duration#ZERO} turns it off
+     */
+    void setCommandTimeout(Duration timeout) throws IOException;
+
+    /** Clears both motors' latched faults (writes 0 to both status records, one write). */
+    void acknowledgeFaults() throws IOException;
+
+    /**
+     * Adds {@code counts} to one motor's commanded position (step-response tuning).
+     *
+     * @param counts encoder counts, within the map's bounds (±2048)
+     */
+    void positionStep(Motor motor, int counts) throws IOException;
+
+    /** @return the wire time of {@link #readWheels()} */
+    Duration readWheelsWireTime();
+
+    /** @return the wire time of {@link #setWheelSpeeds(double, double)} */
+    Duration setWheelSpeedsWireTime();
+}
