@@ -31,6 +31,17 @@ public interface SactClient extends Board {
     Wheels readWheels() throws IOException;
 
     /**
+     * Reads both encoder positions only: one 0x14 transaction with two two-register sub-requests, the shortest read
+     * a control loop can do each period (see {@link #readPositionsWireTime}).
+     *
+     * @return both wheels' encoder counts (wrap modulo 2^32)
+     */
+    WheelCounts readPositions() throws IOException;
+
+    /** @return the computed wire time of {@link #readPositions} at the bus's baud rate */
+    Duration readPositionsWireTime();
+
+    /**
      * @param on true: zero both set-points and short both motors (one write); false: release both brakes
      */
     void brake(boolean on) throws IOException;

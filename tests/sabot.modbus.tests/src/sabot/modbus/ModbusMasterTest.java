@@ -6,12 +6,15 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.IOException;
+import java.io.Reader;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
+import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
+import java.util.Properties;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -41,9 +44,21 @@ class ModbusMasterTest {
                 : BusSettings.tcp("127.0.0.1", sim.tcpPort());
     }
 
-    private static double mapDefault(String board, String file, String record) {
+    /** The power-on value of a record: the map's literal default, or the robot description's value × factor. */
+    private static double mapDefault(String board, String file, String record) throws IOException {
         ModbusMap.Field f = MAP.field(board, file, record);
-        return f.si(f.defaultValue());
+        if (f.defaultFrom() == null) {
+            return f.si(f.defaultValue());
+        }
+        Properties robot = new Properties();
+        try (Reader r = Files.newBufferedReader(SimProcess.root().resolve("docs/sabot-robot.properties"))) {
+            robot.load(r);
+        }
+        String value = robot.getProperty(f.defaultFrom());
+        if (value == null) {
+            throw new IllegalStateException("docs/sabot-robot.properties has no " + f.defaultFrom());
+        }
+        return f.si(Math.round(Double.parseDouble(value.trim()) * f.defaultFactor()));
     }
 
     @ParameterizedTest

@@ -28,7 +28,8 @@ class NavigationTest {
     static final double[] START = { 1.5, 4.0, 0.0 };
     /** Behind the partition, 5.2 m away in a straight line; the path goes round the partition's end. */
     static final Pose2D GOAL = new Pose2D(6.5, 3.0, 0.0);
-    static final double TOLERANCE = 0.10;
+    /** Goal position tolerance, m (Nav2 default: 0.25): judged on the truth, so it bounds estimate and control error. */
+    static final double TOLERANCE = 0.15;
 
     private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
 
@@ -44,9 +45,10 @@ class NavigationTest {
 
     @Test
     void goalBehindThePartitionIsReachedWithoutContact(@TempDir Path dir) throws Exception {
-        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], System.getProperty("sabot.extra", "").replace(";", "\n"))) {
             assertTrue(Math.hypot(GOAL.x() - START[0], GOAL.y() - START[1]) >= 5.0);
-            assertEquals(MissionState.IDLE, rig.get(Resources.MISSION).state());
+            MissionStatus idle = rig.get(Resources.MISSION);
+            assertEquals(MissionState.IDLE, idle.state(), idle + "\n" + rig.onboard.output());
 
             Goal goal = new Goal(GOAL, TOLERANCE, 0.2);
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, goal).isSuccess(), rig.onboard.output());
@@ -58,6 +60,8 @@ class NavigationTest {
             assertEquals(MissionState.DONE, done.state(), done.toString());
 
             SimProcess.Truth truth = rig.sim.truth();
+            System.out.printf("[navigation] goal %s reached; truth %s, %.3f m from the goal; robot's estimate %s%n",
+                    GOAL, truth, truth.distanceTo(GOAL.x(), GOAL.y()), rig.get(Resources.POSITION).pose());
             assertTrue(truth.distanceTo(GOAL.x(), GOAL.y()) <= TOLERANCE, "truth " + truth + " not within "
                     + TOLERANCE + " m of " + GOAL + "\n" + rig.onboard.output());
             assertEquals(0, truth.contacts(), "contacts: " + truth);

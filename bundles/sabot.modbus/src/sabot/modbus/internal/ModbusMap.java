@@ -27,7 +27,7 @@ public final class ModbusMap {
 
     /** Where the build puts the map inside the bundle. */
     public static final String RESOURCE = "/sact-modbus-map.json";
-    private static final String FORMAT = "sabot-modbus-map/1";
+    private static final String FORMAT = "sabot-modbus-map/2";
 
     private static volatile ModbusMap standard;
 
@@ -36,10 +36,14 @@ public final class ModbusMap {
     private final JsonObject protocol;
     private final JsonObject control;
 
-    /** One record (or run of records, see {@link #count}) of one file of one board. */
+    /**
+     * One record (or run of records, see {@link #count}) of one file of one board. A robot constant has no literal
+     * {@code defaultValue}: {@code defaultFrom} names its key in docs/sabot-robot.properties and the power-on value is
+     * that value times {@code defaultFactor}; for other records {@code defaultFrom} is null.
+     */
     public record Field(String board, int slave, String fileName, int file, String name, int record, String type,
-            int count, boolean writable, long min, long max, String maxFrom, long defaultValue, double scale,
-            String siUnit, Map<String, Integer> bits) {
+            int count, boolean writable, long min, long max, String maxFrom, long defaultValue, String defaultFrom,
+            long defaultFactor, double scale, String siUnit, Map<String, Integer> bits) {
 
         /** @return registers one value takes: 2 for 32-bit types, else 1 */
         public int width() {
@@ -131,7 +135,12 @@ public final class ModbusMap {
                             rec.has("count") ? rec.get("count").getAsInt() : 1,
                             rec.get("access").getAsString().contains("w"), rec.get("min").getAsLong(),
                             rec.get("max").getAsLong(), rec.has("max_from") ? rec.get("max_from").getAsString() : null,
-                            rec.get("default").getAsLong(), rec.get("scale").getAsDouble(),
+                            rec.has("default") ? rec.get("default").getAsLong() : 0,
+                            rec.has("default_from") ? rec.getAsJsonObject("default_from").get("robot").getAsString()
+                                    : null,
+                            rec.has("default_from") ? rec.getAsJsonObject("default_from").get("factor").getAsLong()
+                                    : 1,
+                            rec.get("scale").getAsDouble(),
                             rec.get("si_unit").getAsString(), Map.copyOf(bits));
                     fields.put(key(boardName, fileName, field.name()), field);
                 }

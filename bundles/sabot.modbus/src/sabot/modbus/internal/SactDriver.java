@@ -10,6 +10,7 @@ import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
 import sabot.modbus.SactClient;
 import sabot.modbus.SactConfig;
+import sabot.modbus.WheelCounts;
 import sabot.modbus.WheelState;
 import sabot.modbus.Wheels;
 import sabot.modbus.internal.ModbusMap.Field;
@@ -29,6 +30,8 @@ final class SactDriver implements SactClient {
     private final Span configSpan;
     private final Span wheelSpanLeft;
     private final Span wheelSpanRight;
+    private final Span positionSpanLeft;
+    private final Span positionSpanRight;
     private final Span gainSpan;
     private volatile SactConfig config;
 
@@ -44,6 +47,8 @@ final class SactDriver implements SactClient {
         configSpan = Span.of(map.file(BOARD, CONFIG));
         wheelSpanLeft = wheelSpan(Motor.LEFT);
         wheelSpanRight = wheelSpan(Motor.RIGHT);
+        positionSpanLeft = Span.of(motor(Motor.LEFT, "position"));
+        positionSpanRight = Span.of(motor(Motor.RIGHT, "position"));
         gainSpan = Span.of(motor(Motor.LEFT, "kp"), motor(Motor.LEFT, "ki"), motor(Motor.LEFT, "kd"),
                 motor(Motor.LEFT, "integral_limit"));
     }
@@ -106,6 +111,18 @@ final class SactDriver implements SactClient {
         SactConfig c = config();
         short[][] r = bus.read(counters, wheelSpanLeft, wheelSpanRight);
         return new Wheels(wheel(Motor.LEFT, wheelSpanLeft, r[0], c), wheel(Motor.RIGHT, wheelSpanRight, r[1], c));
+    }
+
+    @Override
+    public WheelCounts readPositions() throws IOException {
+        short[][] r = bus.read(counters, positionSpanLeft, positionSpanRight);
+        return new WheelCounts((int) positionSpanLeft.raw(motor(Motor.LEFT, "position"), r[0]),
+                (int) positionSpanRight.raw(motor(Motor.RIGHT, "position"), r[1]));
+    }
+
+    @Override
+    public Duration readPositionsWireTime() {
+        return bus.timing().readTime(positionSpanLeft.count(), positionSpanRight.count());
     }
 
     private WheelState wheel(Motor m, Span span, short[] regs, SactConfig c) {

@@ -1,5 +1,6 @@
 package sabot.onboard.robot;
 
+import java.time.Instant;
 import java.util.Optional;
 
 
@@ -38,8 +39,11 @@ public interface RobotMotion {
      * A joystick twist (m/s, rad/s). Clamped to the limits; the robot stops by itself when no twist arrives for the
      * teleop timeout (deadman, default 0.5 s). Refused (INVALID_STATE) while a mission runs, or after a fault until
      * the fault is cleared by a new command.
+     *
+     * @param sent when the operator's client sent the twist (its ControlML {@code time}), for the command-to-wheel
+     *             latency figure; may be null
      */
-    void teleop(Twist2D twist) throws CommandRefused;
+    void teleop(Twist2D twist, Instant sent) throws CommandRefused;
 
     /** @return the goal of the current or last mission, if any */
     Optional<Goal> goal();
@@ -83,7 +87,8 @@ public interface RobotMotion {
 
     /**
      * Applies a {@code cm.mission} set: PAUSED pauses a running mission, RUNNING resumes a paused one, ABORTED aborts;
-     * {@code maintenance} switches maintenance mode (the robot stops and takes no motion command).
+     * {@code maintenance} switches maintenance mode (the state is then ignored; entering maintenance aborts a running or
+     * paused mission, and the robot takes no motion command until maintenance is switched off).
      */
     void command(MissionStatus command) throws CommandRefused;
 

@@ -56,6 +56,12 @@ final class ControlLoop {
     static final double WAYPOINT_SPACING = 0.3;
     /** Seconds between two attempts to plan around a blocked path. */
     static final double REPLAN_RETRY = 1.0;
+    /** The stabilizer hands over to the turn in place inside this fraction of the position tolerance. */
+    static final double SETTLE_POSITION_FRACTION = 0.5;
+    /** The turn in place aims inside this fraction of the heading tolerance. */
+    static final double SETTLE_HEADING_FRACTION = 0.5;
+    /** Half-angle of a sonar's beam (HC-SR04 figures, onboard-bridge/README.md): an echo lies within it. */
+    static final double SONAR_HALF_BEAM = Math.toRadians(15);
     /** Largest number of obstacle points kept (cm.obstacles allows 1024 rows). */
     static final int MAX_OBSTACLES = 1024;
     /** Reported radius of one sonar obstacle point, m (one echo: the sonar's resolution, not the object's size). */
@@ -101,7 +107,13 @@ final class ControlLoop {
     private boolean replanPending;
     private Twist2D teleopTwist = Twist2D.ZERO;
     private double teleopTime = Double.NEGATIVE_INFINITY;
+    /** When the operator sent the newest twist not yet written to the wheels (null once written). */
+    private Instant teleopSent;
+    private final MicrosHistogram teleopLatency = new MicrosHistogram();
     private boolean braked;
+    private boolean settlingReported;
+    /** Set once the settle phase reached the goal's position; the turn in place follows. */
+    private boolean positionSettled;
     private int optionalRound;
     private double lastStatus = Double.NEGATIVE_INFINITY;
     private Pose2D pose;
@@ -128,6 +140,11 @@ final class ControlLoop {
 
     LoopTiming timing() {
         return timing;
+    }
+
+    /** @return joystick twist sent → wheel set-point written, as measured so far */
+    MicrosHistogram teleopLatency() {
+        return teleopLatency;
     }
 
     // --------------------------------------------------------------------------------------------- one period
@@ -157,6 +174,11 @@ final class ControlLoop {
             WheelSpeeds w = drive.toWheelSpeeds(applied);
             try {
                 boards.writeWheelSpeeds(w.left(), w.right());
+                if (teleopSent != null && mode == Mode.TELEOP) {
+                    // same host, same wall clock: the operator's send time to the end of the set-point write
+                    teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
+                    teleopSent = null;
+                }
             } catch (IOException e) {
                 LOG.warn("wheel speed write failed: {}", e.getMessage());
             }
@@ -232,7 +254,9 @@ final class ControlLoop {
         double s = Math.sin(pose.theta());
         Point2D p = new Point2D(pose.x() + c * robotFrame.x() - s * robotFrame.y(),
                 pose.y() + s * robotFrame.x() + c * robotFrame.y());
-        if (plannerTask.planner().isStaticObstacle(p)) {
+        // the board puts an echo on the beam's axis; the reflector may be anywhere across the beam at that range
+        double across = Math.hypot(robotFrame.x(), robotFrame.y()) * Math.sin(SONAR_HALF_BEAM);
+        if (plannerTask.planner().isNearStaticObstacle(p, across)) {
             return;
         }
         echoes.addLast(new double[] { t, p.x(), p.y() });
@@ -258,6 +282,17 @@ final class ControlLoop {
     // -------------------------------------------------------------------------------------------------- modes
 
     private Twist2D command(double t) {
+        if (localizer.isSettling(t) && mode != Mode.IDLE && mode != Mode.FAULT) {
+            if (!settlingReported) {
+                settlingReported = true;
+                LOG.info("holding still for {} s after the start while the inertial biases settle",
+                        localizerTask.config().imuSettleTime());
+            }
+            if (mode == Mode.FOLLOW) {
+                trajectoryStart = t; // the trajectory starts when the robot may move
+            }
+            return Twist2D.ZERO;
+        }
         switch (mode) {
             case TELEOP -> {
                 TeleopTask teleop = owner.teleop();
@@ -304,6 +339,7 @@ final class ControlLoop {
         double tau = t - trajectoryStart;
         if (tau >= trajectory.duration()) {
             setMode(Mode.SETTLE, t);
+            positionSettled = false;
             stabilizer.reset();
             return settle(t);
         }
@@ -326,20 +362,36 @@ final class ControlLoop {
         return c.twist();
     }
 
+    /**
+     * Brings the robot onto the goal: the DFL point stabilizer while the position is outside its tolerance, then a turn
+     * in place onto the goal's heading (as Nav2's rotation shim does; a unicycle's point stabilizer converges slowly
+     * in heading once the position error is small).
+     */
     private Twist2D settle(double t) {
         Pose2D target = goal == null ? trajectory.endPose() : goal.pose();
-        if (goalChecker.isGoalReached(pose, target) && Math.abs(velocity[0]) < 0.05) {
+        double distance = Math.hypot(target.x() - pose.x(), target.y() - pose.y());
+        double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
+        double positionTolerance = goal == null ? config.goalTolerance() : goal.positionTolerance();
+        double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
+        if (goalChecker.isGoalReached(pose, target) && Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1) {
             brake();
             complete(t);
             return Twist2D.ZERO;
         }
         if (t - modeSince > trackerTask.config().settleTimeout()) {
-            fail(String.format(Locale.ROOT, "did not settle on the goal within %.0f s (%.2f m away)",
-                    trackerTask.config().settleTimeout(), Math.hypot(target.x() - pose.x(), target.y() - pose.y())));
+            fail(String.format(Locale.ROOT, "did not settle on the goal within %.0f s (%.2f m, %.2f rad away)",
+                    trackerTask.config().settleTimeout(), distance, headingError));
             return Twist2D.ZERO;
         }
-        ControlCommand c = stabilizer.update(t, pose, TrajectorySample.stationary(t, target));
-        return c.twist();
+        if (distance > positionTolerance * SETTLE_POSITION_FRACTION && !positionSettled) {
+            ControlCommand c = stabilizer.update(t, pose, TrajectorySample.stationary(t, target));
+            return c.twist();
+        }
+        positionSettled = true;
+        if (Math.abs(headingError) <= headingTolerance * SETTLE_HEADING_FRACTION) {
+            return Twist2D.ZERO;
+        }
+        return new Twist2D(0, MotionTask.clamp(ALIGN_GAIN * headingError, limits.maxAngularSpeed() * 0.8));
     }
 
     /** The controllers run on the loop clock: a reference sample at trajectory time tau is re-stamped at t. */
@@ -448,6 +500,7 @@ final class ControlLoop {
             trajectory = null;
             trajectoryPayload = new Trajectory(Instant.now(), List.of());
             stabilizer.reset();
+            positionSettled = false;
             setMode(Mode.SETTLE, t);
             return;
         }
@@ -484,8 +537,9 @@ final class ControlLoop {
         setMode(Mode.FOLLOW, t);
     }
 
-    void teleop(Twist2D twist, long receivedNanos) {
+    void teleop(Twist2D twist, long receivedNanos, Instant sent) {
         double t = (receivedNanos - t0) * 1e-9;
+        teleopSent = sent;
         clearFault();
         if (mode != Mode.TELEOP && mode != Mode.IDLE) {
             return;
@@ -551,9 +605,14 @@ final class ControlLoop {
 
     void maintenance(boolean on, String detail) {
         brake();
-        setMode(on ? Mode.IDLE : mode, now());
-        mission = new MissionStatus(on ? MissionState.IDLE : mission.state(), on, mission.progress(),
-                on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "idle");
+        MissionState state = mission.state();
+        if (on && (state == MissionState.RUNNING || state == MissionState.PAUSED)) {
+            state = MissionState.ABORTED;
+            LOG.info("mission aborted for maintenance");
+        }
+        setMode(Mode.IDLE, now());
+        mission = new MissionStatus(state, on, mission.progress(),
+                on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended");
         owner.missionChanged(mission);
         LOG.info("maintenance {}", on ? "on" : "off");
     }

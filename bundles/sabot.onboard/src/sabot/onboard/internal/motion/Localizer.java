@@ -18,6 +18,9 @@ final class Localizer {
     private EncoderOdometry odometry;
     private PoseEkf ekf;
     private double lastOdometryTime = Double.NaN;
+    private double firstReadingTime = Double.NaN;
+    /** Where the next first encoder reading starts odometry (the start pose, or a re-localisation). */
+    private Pose2D pendingPose;
 
     Localizer(RobotDescription robot, LocalizerTask.Config config) {
         this.robot = robot;
@@ -33,11 +36,9 @@ final class Localizer {
         if (Double.isFinite(time)) {
             ekf.start(time);
         }
-        lastOdometryTime = time;
+        lastOdometryTime = Double.NaN;
         this.pendingPose = pose;
     }
-
-    private Pose2D pendingPose;
 
     /** Feeds one encoder reading taken at {@code time} (seconds, loop clock). */
     void encoders(double time, int left, int right) {
@@ -47,7 +48,9 @@ final class Localizer {
             if (Double.isNaN(ekf.time())) {
                 ekf.start(time);
             }
-            ekf.updateOdometry(time, 0, 0, 0);
+            if (Double.isNaN(firstReadingTime)) {
+                firstReadingTime = time;
+            }
             lastOdometryTime = time;
             return;
         }
@@ -63,7 +66,9 @@ final class Localizer {
             return;
         }
         ekf.updateGyro(time, yawRate);
-        ekf.updateAccelerometer(time, forwardAcceleration);
+        if (config.useAccelerometer()) {
+            ekf.updateAccelerometer(time, forwardAcceleration);
+        }
     }
 
     /** @return the estimate predicted to {@code time} */
@@ -72,6 +77,14 @@ final class Localizer {
             ekf.predict(time);
         }
         return ekf.pose();
+    }
+
+    /**
+     * @return true while the robot must stay still so that the estimator learns the inertial board's biases: from the
+     *         first encoder reading for the configured settle time (never when the inertial board is not used)
+     */
+    boolean isSettling(double time) {
+        return config.useImu() && (Double.isNaN(firstReadingTime) || time - firstReadingTime < config.imuSettleTime());
     }
 
     /** @return x, y, θ covariance (3 × 3) */
@@ -88,9 +101,12 @@ final class Localizer {
         return Math.sqrt(Math.max(0, mean + radius));
     }
 
-    /** @return true when odometry has been missing for longer than the configured timeout */
+    /**
+     * @return true when encoder readings have been missing for longer than the configured timeout (before the first
+     *         reading a board that never answers is the bus's fault, not a stale estimate)
+     */
     boolean isStale(double time) {
-        return ekf.isStale(time);
+        return !Double.isNaN(lastOdometryTime) && time - lastOdometryTime > config.odometryTimeout();
     }
 
     /** @return measured forward speed and yaw rate (EKF state), m/s and rad/s */

@@ -33,8 +33,17 @@ public final class LocalizerTask implements OnboardTask {
         /** @return initial standard deviation of the heading, rad */
         double initialSigmaTheta() default 0.02;
 
-        /** @return fuse the inertial board's gyro and accelerometer */
+        /** @return fuse the inertial board's gyro (yaw rate) */
         boolean useImu() default true;
+
+        /** @return also fuse the inertial board's longitudinal accelerometer */
+        boolean useAccelerometer() default true;
+
+        /**
+         * @return seconds the robot stays still after the start while the estimator learns the inertial board's biases
+         *         (a MEMS gyro's turn-on offset is up to ±5 °/s; at rest odometry says the true rate is zero)
+         */
+        double imuSettleTime() default 3;
 
         /** @return seconds without odometry after which the estimate is stale (the robot stops) */
         double odometryTimeout() default 0.2;

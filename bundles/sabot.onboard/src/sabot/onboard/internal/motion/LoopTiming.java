@@ -5,16 +5,13 @@ import java.util.Locale;
 /**
  * Measures the control loop: the jitter of each period's start against its schedule (|actual − expected|), the time
  * the period's work took, and how many optional reads were skipped for lack of bus time. Histograms in microseconds
- * (1 µs bins up to 100 ms), so percentiles over hours cost no memory growth. Written by the loop's thread; summaries
- * may be read from any thread (slightly stale).
+ * ({@link MicrosHistogram}). Written by the loop's thread; summaries may be read from any thread (slightly stale).
  */
 final class LoopTiming {
 
-    private static final int BINS = 100_000;
-
     private final long periodNanos;
-    private final long[] jitter = new long[BINS];
-    private final long[] busy = new long[BINS];
+    private final MicrosHistogram jitter = new MicrosHistogram();
+    private final MicrosHistogram busy = new MicrosHistogram();
     private long expected = Long.MIN_VALUE;
     private long started;
     private long periods;
@@ -48,7 +45,7 @@ final class LoopTiming {
             expected = now;
         }
         long late = Math.abs(now - expected);
-        jitter[(int) Math.min(BINS - 1, late / 1000)]++;
+        jitter.add(late);
         // a fixed-rate schedule catches up after a long period: the next start is expected one period later
         expected += periodNanos;
         while (now - expected > periodNanos) {
@@ -59,7 +56,7 @@ final class LoopTiming {
 
     void ended(long now) {
         long work = now - started;
-        busy[(int) Math.min(BINS - 1, work / 1000)]++;
+        busy.add(work);
         if (work > periodNanos) {
             overruns++;
         }
@@ -77,28 +74,7 @@ final class LoopTiming {
     }
 
     private Summary compute() {
-        return new Summary(periods, percentile(jitter, 0.50), percentile(jitter, 0.99), max(jitter),
-                percentile(busy, 0.50), percentile(busy, 0.99), overruns, skipped);
-    }
-
-    private double percentile(long[] h, double q) {
-        long target = (long) Math.ceil(q * periods);
-        long seen = 0;
-        for (int i = 0; i < BINS; i++) {
-            seen += h[i];
-            if (seen >= target && seen > 0) {
-                return i;
-            }
-        }
-        return BINS;
-    }
-
-    private static double max(long[] h) {
-        for (int i = BINS - 1; i >= 0; i--) {
-            if (h[i] > 0) {
-                return i;
-            }
-        }
-        return 0;
+        return new Summary(periods, jitter.percentile(0.50), jitter.percentile(0.99), jitter.max(),
+                busy.percentile(0.50), busy.percentile(0.99), overruns, skipped);
     }
 }

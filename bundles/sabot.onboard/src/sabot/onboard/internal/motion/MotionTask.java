@@ -175,7 +175,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
         plannerThread.shutdownNow();
         notifier.shutdown();
-        LOG.info("motion task stopped, robot braked; control loop {}", loop.timing().summary());
+        LOG.info("motion task stopped, robot braked; control loop {}; joystick twist to wheel set-point {}",
+                loop.timing().summary(), loop.teleopLatency().describe());
     }
 
     @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
@@ -194,8 +195,17 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private void tick() {
         try {
             Consumer<ControlLoop> command;
+            boolean applied = false;
             while ((command = commands.poll()) != null) {
                 command.accept(loop);
+                applied = true;
+            }
+            if (applied) {
+                // a caller waiting in apply() reads the new state as soon as its command has been taken
+                snapshot = loop.snapshot(Instant.now());
+                synchronized (commands) {
+                    commands.notifyAll();
+                }
             }
             snapshot = loop.tick();
         } catch (RuntimeException e) {
@@ -205,8 +215,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
-    /** Called by the loop (its thread) when the mission's status changed. */
+    /**
+     * Called by the loop (its thread) when the mission's status changed: the new state is published at once, before
+     * the loop logs it or listeners hear of it, so that whoever reacts reads it.
+     */
     void missionChanged(MissionStatus status) {
+        snapshot = loop.snapshot(Instant.now());
         for (MotionListener l : listeners) {
             notifier.execute(() -> l.missionChanged(status));
         }
@@ -221,6 +235,37 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     void enqueue(Consumer<ControlLoop> command) {
         commands.add(command);
     }
+
+    /**
+     * Queues a command and waits until the loop has applied it (at most a period, bounded by {@link #APPLY_TIMEOUT_MS}),
+     * so that the caller's next read ({@code mission()}, {@code goal()}) sees its effect.
+     */
+    private void apply(Consumer<ControlLoop> command) throws CommandRefused {
+        boolean[] done = new boolean[1];
+        commands.add(loop -> {
+            command.accept(loop);
+            done[0] = true;
+        });
+        long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(APPLY_TIMEOUT_MS);
+        synchronized (commands) {
+            while (!done[0]) {
+                long left = deadline - System.nanoTime();
+                if (left <= 0) {
+                    throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "the control loop did not take the "
+                            + "command within " + APPLY_TIMEOUT_MS + " ms");
+                }
+                try {
+                    TimeUnit.NANOSECONDS.timedWait(commands, left);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                    throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "interrupted");
+                }
+            }
+        }
+    }
+
+    /** Longest wait for the control loop to take a command, ms (it takes them at the start of every period). */
+    private static final long APPLY_TIMEOUT_MS = 1000;
 
     MotionLimits currentLimits() {
         return limits;
@@ -249,11 +294,11 @@ public final class MotionTask implements OnboardTask, RobotMotion {
             throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the robot is moving: stop it before re-localising");
         }
         requireOnMap(pose.position(), "pose");
-        enqueue(l -> l.relocalise(pose));
+        apply(l -> l.relocalise(pose));
     }
 
     @Override
-    public void teleop(Twist2D twist) throws CommandRefused {
+    public void teleop(Twist2D twist, Instant sent) throws CommandRefused {
         TeleopTask t = teleopTask;
         if (t == null) {
             throw new CommandRefused(ControlMlCondition.UNSUPPORTED_OPERATION, "the teleop task is not running");
@@ -274,7 +319,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         double w = clamp(twist.angular(), Math.min(t.config().maxAngular(), limits.maxAngularSpeed()));
         Twist2D bounded = new Twist2D(v, w);
         long received = System.nanoTime();
-        enqueue(l -> l.teleop(bounded, received));
+        enqueue(l -> l.teleop(bounded, received, sent));
     }
 
     @Override
@@ -299,7 +344,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         if (plan.refusal() != null) {
             throw new CommandRefused(ControlMlCondition.INVALID_VALUE, plan.refusal());
         }
-        enqueue(l -> l.startMission(goal, plan));
+        apply(l -> l.startMission(goal, plan));
         LOG.info("new goal ({}, {}, {}): path {} m", fmt(goal.pose().x()), fmt(goal.pose().y()),
                 fmt(goal.pose().theta()), fmt(plan.length()));
     }
@@ -327,7 +372,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                         + limits.maxAngularSpeed() + " rad/s)");
             }
         }
-        enqueue(l -> l.followImposed(trajectory));
+        apply(l -> l.followImposed(trajectory));
     }
 
     @Override
@@ -414,11 +459,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         Snapshot s = snapshot;
         MissionState current = s.mission().state();
         if (command.maintenance() != s.mission().maintenance()) {
-            if (command.maintenance() && (current == MissionState.RUNNING || current == MissionState.PAUSED)) {
-                throw new CommandRefused(ControlMlCondition.INVALID_STATE,
-                        "a mission is " + current.name().toLowerCase() + ": abort it before maintenance");
-            }
-            enqueue(l -> l.maintenance(command.maintenance(), command.detail()));
+            // a maintenance switch ignores the state; entering maintenance aborts a running or paused mission
+            apply(l -> l.maintenance(command.maintenance(), command.detail()));
             return;
         }
         switch (command.state()) {
@@ -426,19 +468,19 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 if (current != MissionState.RUNNING) {
                     throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no running mission to pause");
                 }
-                enqueue(ControlLoop::pause);
+                apply(ControlLoop::pause);
             }
             case RUNNING -> {
                 if (current != MissionState.PAUSED) {
                     throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no paused mission to resume");
                 }
-                enqueue(ControlLoop::resume);
+                apply(ControlLoop::resume);
             }
             case ABORTED -> {
                 if (current != MissionState.RUNNING && current != MissionState.PAUSED) {
                     throw new CommandRefused(ControlMlCondition.INVALID_STATE, "no mission to abort");
                 }
-                enqueue(l -> l.abort("aborted by " + (command.detail().isBlank() ? "the operator" : command.detail())));
+                apply(l -> l.abort("aborted by " + (command.detail().isBlank() ? "the operator" : command.detail())));
             }
             default -> throw new CommandRefused(ControlMlCondition.INVALID_VALUE,
                     "a mission command is paused, running (resume) or aborted, not " + command.state().name()

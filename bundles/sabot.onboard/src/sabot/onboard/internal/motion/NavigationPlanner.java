@@ -23,6 +23,9 @@ import sabot.planner.costmap.MovingObstacleModel;
  */
 final class NavigationPlanner implements AutoCloseable {
 
+    /** Occupancy (0..100) from which a map cell is a known obstacle (ROS map_server: occupied_thresh 0.65). */
+    private static final int OCCUPIED_THRESHOLD = 65;
+
     private final Planner planner;
     private final InflationParameters inflation;
     private volatile OccupancyGrid map;
@@ -65,21 +68,24 @@ final class NavigationPlanner implements AutoCloseable {
     }
 
     /**
-     * @return true when {@code p} lies on or next to (8-neighbourhood) an occupied cell of the static map: a sonar
-     *         echo of a wall the planner already knows
+     * @return true when an occupied cell of the static map lies within {@code radius} (m, plus one cell) of {@code p}:
+     *         a sonar echo that may come from a wall the planner already knows
      */
-    boolean isStaticObstacle(Point2D p) {
+    boolean isNearStaticObstacle(Point2D p, double radius) {
         OccupancyGrid grid = map;
         GridGeometry g = grid.geometry();
         Optional<Cell> cell = g.cellAt(p);
         if (cell.isEmpty()) {
             return true;
         }
-        for (int dr = -1; dr <= 1; dr++) {
-            for (int dc = -1; dc <= 1; dc++) {
+        int reach = 1 + (int) Math.ceil(radius / g.resolution());
+        double limit = radius + g.resolution();
+        for (int dr = -reach; dr <= reach; dr++) {
+            for (int dc = -reach; dc <= reach; dc++) {
                 int c = cell.get().column() + dc;
                 int r = cell.get().row() + dr;
-                if (g.contains(c, r) && grid.get(c, r) >= OccupancyGrid.OCCUPIED / 2) {
+                if (g.contains(c, r) && grid.get(c, r) >= OCCUPIED_THRESHOLD
+                        && Math.hypot(dc, dr) * g.resolution() <= limit) {
                     return true;
                 }
             }

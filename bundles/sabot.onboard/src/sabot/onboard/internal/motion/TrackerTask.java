@@ -37,6 +37,12 @@ public final class TrackerTask implements OnboardTask {
         /** @return pseudoinverse controller gain on the heading error, 1/s */
         double kTheta() default 2.0;
 
+        /**
+         * @return rate c (1/s) of the DFL point stabilizer: x eigenvalues −c, −2c, y eigenvalues −2.5c, −3.5c
+         *         ({@code DflGains.stabilizing}, the one-parameter family that meets its stability condition)
+         */
+        double stabilizerRate() default 0.5;
+
         /** @return fraction of the limits the trajectory is planned with (the rest is the feedback's authority) */
         double headroom() default 0.8;
 
@@ -70,7 +76,7 @@ public final class TrackerTask implements OnboardTask {
 
     /** @return a new point stabilizer (DFL) for these limits */
     TrackingController newStabilizer(MotionLimits limits) {
-        return Controllers.dflPointStabilization(DflGains.of(config.omegaN(), config.zeta()), limits);
+        return Controllers.dflPointStabilization(DflGains.stabilizing(config.stabilizerRate()), limits);
     }
 
     /** @return the configured settings */
@@ -85,7 +91,7 @@ public final class TrackerTask implements OnboardTask {
 
     @Override
     public String status() {
-        return config.controller() + " tracking, DFL point stabilization (omegaN " + config.omegaN() + ", zeta "
-                + config.zeta() + ")";
+        return config.controller() + " tracking (omegaN " + config.omegaN() + ", zeta " + config.zeta()
+                + "), DFL point stabilization (rate " + config.stabilizerRate() + ")";
     }
 }
