@@ -156,6 +156,21 @@ final class OnboardProcess implements AutoCloseable {
         }
     }
 
+    /** Waits until {@code count} console lines match {@code p} (e.g. the second login after a reconnection). */
+    void awaitCount(Predicate<String> p, int count, String what) throws InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        synchronized (lines) {
+            while (lines.stream().filter(p).count() < count) {
+                long left = deadline - System.nanoTime();
+                if (left <= 0 || !process.isAlive()) {
+                    throw new AssertionError("onboard product: fewer than " + count + " lines " + what + "; console:\n"
+                            + output());
+                }
+                TimeUnit.NANOSECONDS.timedWait(lines, left);
+            }
+        }
+    }
+
     /** @return the console so far */
     String output() {
         synchronized (lines) {

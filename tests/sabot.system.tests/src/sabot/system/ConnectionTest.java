@@ -1,0 +1,150 @@
+package sabot.system;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.Arrays;
+import java.util.Random;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.RosterEntry;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.impl.JidCreate;
+
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.Resources;
+import sabot.controlml.payload.FileChunk;
+import sabot.controlml.payload.FileQuery;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * Proofs 4 and 7: the XMPP side of a running robot. The server stopped mid-drive stops the robot, which reconnects
+ * when the server is back and stays still until a new command; the remote FS works through the running product while
+ * a second workbench watches the robot's telemetry.
+ */
+class ConnectionTest {
+
+    static final double[] START = { 4.5, 1.0, 0.0 };
+    static final double A_MAX = 0.5;
+
+    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
+
+    @BeforeEach
+    void startServer() throws Exception {
+        xmpp.start();
+    }
+
+    @AfterEach
+    void stopServer() {
+        xmpp.close();
+    }
+
+    @Test
+    void robotStopsWhenTheServerGoesAwayAndReconnectsWithoutMoving(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "controlml.reconnectMin = 0.2\n"
+                + "controlml.reconnectMax = 1\n")) {
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            SimProcess.Truth moving = SafetyTest.awaitSpeed(rig.sim, 0.2, 20);
+
+            xmpp.stopServer();
+            SimProcess.Truth stopped = SafetyTest.awaitStandstill(rig.sim, moving.t() + 5);
+            assertTrue(stopped.t() - moving.t() < 1.0 + moving.v() / A_MAX, "stopped after "
+                    + (stopped.t() - moving.t()) + " s");
+            rig.onboard.await(l -> l.contains("XMPP connection lost while moving"), "reporting why it stopped");
+
+            xmpp.restart();
+            rig.onboard.awaitCount(l -> l.contains("XMPP session online"), 2, "saying the session is back");
+            XMPPTCPConnection operator = xmpp.connect(xmpp.configuration(RobotRig.OPERATOR, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).build());
+            ControlMlManager cm = ControlMlManager.getInstanceFor(operator);
+            MissionStatus mission = cm.get(rig.robot, Resources.MISSION).orElseThrow();
+            assertEquals(MissionState.FAILED, mission.state(), mission.toString());
+            assertTrue(mission.detail().contains("connection lost"), mission.toString());
+
+            SimProcess.Truth later = SafetyTest.awaitSimTime(rig.sim, rig.sim.truth().t() + 1.5);
+            assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved without a new command: " + later);
+
+            assertTrue(cm.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(6.0, 1.0, 0), 0.15, 0.3)).isSuccess());
+            SafetyTest.awaitSpeed(rig.sim, 0.1, 20);
+        }
+    }
+
+    @Test
+    void remoteFileSystemWorksWhileASecondWorkbenchWatchesTelemetry(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            EntityBareJid robotBare = JidCreate.entityBareFrom(RobotRig.ROBOT + "@" + PrivateXmppServer.DOMAIN);
+            // the same operator at a second workbench (its own resource and connection)
+            XMPPTCPConnection second = xmpp.connect(xmpp.configuration(RobotRig.OPERATOR, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).setResource("workbench-2").build());
+            Roster roster = Roster.getInstanceFor(second);
+            CountDownLatch subscribed = new CountDownLatch(1);
+            roster.addRosterListener(new org.jivesoftware.smack.roster.AbstractRosterListener() {
+                @Override
+                public void entriesUpdated(java.util.Collection<org.jxmpp.jid.Jid> addresses) {
+                    RosterEntry e = roster.getEntry(robotBare);
+                    if (e != null && e.canSeeHisPresence()) {
+                        subscribed.countDown();
+                    }
+                }
+            });
+            roster.createItemAndRequestSubscription(robotBare, "robot", null);
+            assertTrue(subscribed.await(10, TimeUnit.SECONDS), "the robot did not accept the watcher's subscription");
+            ControlMlManager watcher = ControlMlManager.getInstanceFor(second);
+            AtomicInteger poses = new AtomicInteger();
+            CountDownLatch tenPoses = new CountDownLatch(10);
+            watcher.addTelemetryListener(Resources.POSITION, (device, pose) -> {
+                poses.incrementAndGet();
+                tenPoses.countDown();
+            });
+            Outcome<Void> follow = watcher.followTelemetry(robotBare, Resources.POSITION);
+            assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
+
+            byte[] content = new byte[70_000];
+            new Random(13).nextBytes(content);
+            int chunk = 32 * 1024;
+            for (int offset = 0; offset < content.length; offset += chunk) {
+                byte[] data = Arrays.copyOfRange(content, offset, Math.min(content.length, offset + chunk));
+                Outcome<FileChunk> o = rig.operator.set(rig.robot, Resources.FS_WRITE, new FileChunk("maps/copy.bin",
+                        offset, data, Resources.sha256Hex(data), offset + data.length == content.length));
+                assertTrue(o.isSuccess(), String.valueOf(o.errorOrNull()));
+            }
+            assertArrayEquals(content, Files.readAllBytes(dir.resolve("fs/maps/copy.bin")), "the file on the robot");
+            byte[] back = new byte[0];
+            for (long offset = 0; ; ) {
+                FileChunk c = rig.operator.get(rig.robot, Resources.FS_READ, new FileQuery("maps/copy.bin", offset, 0))
+                        .orElseThrow();
+                back = concat(back, c.data());
+                offset += c.data().length;
+                if (c.last()) {
+                    break;
+                }
+            }
+            assertArrayEquals(content, back, "read back through the robot");
+
+            assertTrue(tenPoses.await(10, TimeUnit.SECONDS), "the watcher got " + poses.get() + " poses");
+        }
+    }
+
+    private static byte[] concat(byte[] a, byte[] b) {
+        byte[] c = Arrays.copyOf(a, a.length + b.length);
+        System.arraycopy(b, 0, c, a.length, b.length);
+        return c;
+    }
+}
