@@ -17,7 +17,7 @@ import org.junit.jupiter.api.io.TempDir;
  */
 class ConfigurationTest {
 
-    static final double[] START = { 1.5, 4.0, 0.0 };
+    static final double[] START = RigTest.WEST_OF_PARTITION;
 
     @Test
     void unknownSerialPortIsAConfigurationError(@TempDir Path dir) throws Exception {

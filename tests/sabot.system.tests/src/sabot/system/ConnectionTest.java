@@ -15,8 +15,6 @@ import java.util.concurrent.atomic.AtomicInteger;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
-import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 import org.jxmpp.jid.EntityBareJid;
@@ -38,22 +36,9 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * when the server is back and stays still until a new command; the remote FS works through the running product while
  * a second workbench watches the robot's telemetry.
  */
-class ConnectionTest {
+class ConnectionTest extends RigTest {
 
-    static final double[] START = { 4.5, 1.0, 0.0 };
-    static final double A_MAX = 0.5;
-
-    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
-
-    @BeforeEach
-    void startServer() throws Exception {
-        xmpp.start();
-    }
-
-    @AfterEach
-    void stopServer() {
-        xmpp.close();
-    }
+    static final double[] START = CORRIDOR_MIDDLE;
 
     @Test
     void robotStopsWhenTheServerGoesAwayAndReconnectsWithoutMoving(@TempDir Path dir) throws Exception {
@@ -61,10 +46,10 @@ class ConnectionTest {
                 + "controlml.reconnectMax = 1\n")) {
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3))
                     .isSuccess(), rig.onboard.output());
-            SimProcess.Truth moving = SafetyTest.awaitSpeed(rig.sim, 0.2, 20);
+            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
 
             xmpp.stopServer();
-            SimProcess.Truth stopped = SafetyTest.awaitStandstill(rig.sim, moving.t() + 5);
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
             assertTrue(stopped.t() - moving.t() < 1.0 + moving.v() / A_MAX, "stopped after "
                     + (stopped.t() - moving.t()) + " s");
             rig.onboard.await(l -> l.contains("XMPP connection lost while moving"), "reporting why it stopped");
@@ -78,11 +63,11 @@ class ConnectionTest {
             assertEquals(MissionState.FAILED, mission.state(), mission.toString());
             assertTrue(mission.detail().contains("connection lost"), mission.toString());
 
-            SimProcess.Truth later = SafetyTest.awaitSimTime(rig.sim, rig.sim.truth().t() + 1.5);
+            SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
             assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved without a new command: " + later);
 
             assertTrue(cm.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(6.0, 1.0, 0), 0.15, 0.3)).isSuccess());
-            SafetyTest.awaitSpeed(rig.sim, 0.1, 20);
+            awaitSpeed(rig.sim, 0.1, 20);
         }
     }
 

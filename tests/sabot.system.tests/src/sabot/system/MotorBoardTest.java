@@ -7,8 +7,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.nio.file.Path;
 import java.util.List;
 
-import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -17,24 +15,11 @@ import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
-import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /** Proof 6: {@code cm.pid} writes the SACT board's gain registers and reads them back; bad gains change nothing. */
-class MotorBoardTest {
+class MotorBoardTest extends RigTest {
 
-    static final double[] START = { 4.5, 1.0, 0.0 };
-
-    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
-
-    @BeforeEach
-    void startServer() throws Exception {
-        xmpp.start();
-    }
-
-    @AfterEach
-    void stopServer() {
-        xmpp.close();
-    }
+    static final double[] START = CORRIDOR_MIDDLE;
 
     @Test
     void gainsAreWrittenToTheBoardAndReadBack(@TempDir Path dir) throws Exception {

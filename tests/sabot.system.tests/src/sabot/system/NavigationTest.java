@@ -5,8 +5,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
 
-import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -15,37 +13,23 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.model.geometry.Pose2D;
-import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * Proof 1 of the onboard issue: a goal sent over XMPP moves the simulated robot. Real processes: a private Prosody,
  * sabot-sim on the lab map, the onboard product on the simulator's pty; the operator is a Smack client. Success is
  * judged on the simulator's ground truth, not on what the robot believes.
  */
-class NavigationTest {
+class NavigationTest extends RigTest {
 
-    /** Left of the lab's partition (x 3.0–3.6 m, y 2.2–6.0 m), facing +x. */
-    static final double[] START = { 1.5, 4.0, 0.0 };
+    static final double[] START = WEST_OF_PARTITION;
     /** Behind the partition, 5.2 m away in a straight line; the path goes round the partition's end. */
     static final Pose2D GOAL = new Pose2D(6.5, 3.0, 0.0);
     /** Goal position tolerance, m (Nav2 default: 0.25): judged on the truth, so it bounds estimate and control error. */
     static final double TOLERANCE = 0.15;
 
-    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
-
-    @BeforeEach
-    void startServer() throws Exception {
-        xmpp.start();
-    }
-
-    @AfterEach
-    void stopServer() {
-        xmpp.close();
-    }
-
     @Test
     void goalBehindThePartitionIsReachedWithoutContact(@TempDir Path dir) throws Exception {
-        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], System.getProperty("sabot.extra", "").replace(";", "\n"))) {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
             assertTrue(Math.hypot(GOAL.x() - START[0], GOAL.y() - START[1]) >= 5.0);
             MissionStatus idle = rig.get(Resources.MISSION);
             assertEquals(MissionState.IDLE, idle.state(), idle + "\n" + rig.onboard.output());

@@ -4,10 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
-import java.util.concurrent.TimeUnit;
 
-import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -15,38 +12,24 @@ import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.model.geometry.Pose2D;
-import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * Proof 2: an obstacle placed on the path while the robot drives. The sonar sees it, the robot replans around it and
  * still arrives without contact (simulator truth).
  */
-class ObstacleTest {
+class ObstacleTest extends RigTest {
 
-    /** The lab's lower corridor (y 0.15–2.2 m below the partition), facing +x. */
-    static final double[] START = { 1.5, 1.0, 0.0 };
+    static final double[] START = CORRIDOR_WEST;
     static final Pose2D GOAL = new Pose2D(7.5, 1.0, 0.0);
     /** A crate dropped on the straight path, 3.5 m ahead of the start. */
     static final double[] CRATE = { 5.0, 1.0, 0.2 };
-
-    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
-
-    @BeforeEach
-    void startServer() throws Exception {
-        xmpp.start();
-    }
-
-    @AfterEach
-    void stopServer() {
-        xmpp.close();
-    }
 
     @Test
     void obstacleOnThePathIsSeenAndDrivenAround(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(GOAL, 0.15, 0.3)).isSuccess(),
                     rig.onboard.output());
-            SimProcess.Truth driving = awaitX(rig.sim, 2.2, 30);
+            SimProcess.Truth driving = awaitTruth(rig.sim, t -> t.x() >= 2.2, 30, "past x = 2.2 m");
             rig.sim.command(String.format(java.util.Locale.ROOT, "obstacle add crate %.2f %.2f %.2f", CRATE[0],
                     CRATE[1], CRATE[2]));
             System.out.println("[obstacle] crate placed while driving at " + driving);
@@ -61,21 +44,6 @@ class ObstacleTest {
             assertTrue(truth.distanceTo(GOAL.x(), GOAL.y()) <= 0.15, truth + "\n" + rig.onboard.output());
             assertEquals(0, truth.contacts(), "touched something: " + truth);
             assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
-        }
-    }
-
-    /** Polls the simulator's truth (an external process: no event to wait on) until the robot passes {@code x}. */
-    static SimProcess.Truth awaitX(SimProcess sim, double x, double withinSeconds) throws Exception {
-        double deadline = sim.truth().t() + withinSeconds;
-        while (true) {
-            SimProcess.Truth t = sim.truth();
-            if (t.x() >= x) {
-                return t;
-            }
-            if (t.t() > deadline) {
-                throw new AssertionError("robot did not pass x = " + x + ": " + t);
-            }
-            TimeUnit.MILLISECONDS.sleep(20);
         }
     }
 }

@@ -7,8 +7,6 @@ import java.nio.file.Path;
 import java.time.Instant;
 import java.util.concurrent.TimeUnit;
 
-import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -19,34 +17,18 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
-import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * The robot stops by itself, proven on the simulator's ground truth: joystick silence (deadman), a motor board that
  * stops answering, and a noisy bus that must not stop it.
  */
-class SafetyTest {
+class SafetyTest extends RigTest {
 
-    /** Open floor in the lab's lower half, facing +x: 4 m free ahead. */
-    static final double[] START = { 4.5, 1.0, 0.0 };
+    static final double[] START = CORRIDOR_MIDDLE;
     /** The joystick's rate, Hz, as the workbench's joystick sends it. */
     static final int JOYSTICK_HZ = 10;
     static final double SPEED = 0.3;
-    /** The robot's linear acceleration limit, m/s² (reference robot description). */
-    static final double A_MAX = 0.5;
     static final double DEADMAN = 0.5;
-
-    private final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
-
-    @BeforeEach
-    void startServer() throws Exception {
-        xmpp.start();
-    }
-
-    @AfterEach
-    void stopServer() {
-        xmpp.close();
-    }
 
     @Test
     void robotStopsWhenJoystickGoesSilent(@TempDir Path dir) throws Exception {
@@ -60,7 +42,7 @@ class SafetyTest {
             assertTrue(atSilence.v() > 0.8 * SPEED, "not driving at the joystick's speed: " + atSilence);
 
             double bound = DEADMAN + atSilence.v() / A_MAX + 0.25;
-            SimProcess.Truth stopped = awaitStandstill(rig.sim, atSilence.t() + bound + 2);
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, bound + 2);
             double stopTime = stopped.t() - atSilence.t();
             double travelled = stopped.distanceTo(atSilence.x(), atSilence.y());
             double brakingDistance = atSilence.v() * DEADMAN + atSilence.v() * atSilence.v() / (2 * A_MAX);
@@ -78,7 +60,7 @@ class SafetyTest {
                     .isSuccess(), rig.onboard.output());
             SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
             rig.sim.command("board 1 sact off");
-            SimProcess.Truth stopped = awaitStandstill(rig.sim, moving.t() + 5);
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
             // the board's own deadman (0.3 s) and the deceleration bound the stop
             assertTrue(stopped.t() - moving.t() < 0.3 + 0.5 + moving.v() / A_MAX + 0.5, "stopped after "
                     + (stopped.t() - moving.t()) + " s");
@@ -88,7 +70,7 @@ class SafetyTest {
             assertTrue(failed.detail().contains("sact"), failed.toString());
 
             rig.sim.command("board 1 sact on");
-            SimProcess.Truth later = awaitSimTime(rig.sim, rig.sim.truth().t() + 1.5);
+            SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
             assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved again without a command: " + later);
         }
     }
@@ -104,50 +86,6 @@ class SafetyTest {
             SimProcess.Truth truth = rig.sim.truth();
             assertTrue(truth.distanceTo(goal.x(), goal.y()) <= 0.1, truth.toString());
             assertEquals(0, truth.contacts());
-        }
-    }
-
-    /**
-     * Reads the simulator's truth until the robot stands still (|v| < 5 mm/s, |ω| < 0.01 rad/s). The robot is an
-     * external process: there is no event to wait on, so this polls the simulator every 20 ms up to a deadline on
-     * the simulator's own clock.
-     */
-    static SimProcess.Truth awaitStandstill(SimProcess sim, double deadline) throws Exception {
-        while (true) {
-            SimProcess.Truth t = sim.truth();
-            if (Math.abs(t.v()) < 0.005 && Math.abs(t.omega()) < 0.01) {
-                return t;
-            }
-            if (t.t() > deadline) {
-                throw new AssertionError("robot still moving at the deadline: " + t);
-            }
-            TimeUnit.MILLISECONDS.sleep(20);
-        }
-    }
-
-    /** Polls the truth (see {@link #awaitStandstill}) until the simulator's clock reaches {@code time}. */
-    static SimProcess.Truth awaitSimTime(SimProcess sim, double time) throws Exception {
-        while (true) {
-            SimProcess.Truth t = sim.truth();
-            if (t.t() >= time) {
-                return t;
-            }
-            TimeUnit.MILLISECONDS.sleep(20);
-        }
-    }
-
-    /** Polls the truth (see {@link #awaitStandstill}) until the robot drives at least {@code speed} m/s. */
-    static SimProcess.Truth awaitSpeed(SimProcess sim, double speed, double withinSeconds) throws Exception {
-        double deadline = sim.truth().t() + withinSeconds;
-        while (true) {
-            SimProcess.Truth t = sim.truth();
-            if (t.v() >= speed) {
-                return t;
-            }
-            if (t.t() > deadline) {
-                throw new AssertionError("robot not driving at " + speed + " m/s: " + t);
-            }
-            TimeUnit.MILLISECONDS.sleep(20);
         }
     }
 }

@@ -3,27 +3,23 @@ package sabot.modbus.internal;
 import java.io.IOException;
 import java.time.Duration;
 
-import sabot.modbus.BoardCounters;
 import sabot.modbus.InsClient;
 import sabot.modbus.InsMotion;
 import sabot.modbus.InsSample;
 import sabot.modbus.internal.ModbusMap.Field;
 
 /** The inertial board's client. */
-final class InsDriver implements InsClient {
+final class InsDriver extends BoardDriver implements InsClient {
 
     private static final String BOARD = "ins";
     private static final String SAMPLE = "sample";
 
-    private final Bus bus;
-    private final Bus.Counters counters;
     private final ModbusMap map;
     private final Span full;
     private final Span motion;
 
     InsDriver(Bus bus, Bus.Counters counters) {
-        this.bus = bus;
-        this.counters = counters;
+        super(bus, counters);
         this.map = bus.map();
         full = Span.of(map.file(BOARD, SAMPLE));
         motion = Span.of(f("gyro_z"), f("accel_x"));
@@ -61,16 +57,6 @@ final class InsDriver implements InsClient {
     @Override
     public Duration readMotionWireTime() {
         return bus.timing().readTime(motion.count());
-    }
-
-    @Override
-    public BoardCounters counters() {
-        return counters.snapshot();
-    }
-
-    @Override
-    public boolean faulted() {
-        return counters.faulted();
     }
 
     @Override

@@ -4,7 +4,6 @@ import java.io.IOException;
 import java.time.Duration;
 import java.util.List;
 
-import sabot.modbus.BoardCounters;
 import sabot.modbus.BoardException;
 import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
@@ -16,14 +15,12 @@ import sabot.modbus.Wheels;
 import sabot.modbus.internal.ModbusMap.Field;
 
 /** The SACT board's client: every record looked up by name in the register map. */
-final class SactDriver implements SactClient {
+final class SactDriver extends BoardDriver implements SactClient {
 
     private static final String BOARD = "sact";
     private static final String CONFIG = "config";
     private static final String DRIVE = "drive";
 
-    private final Bus bus;
-    private final Bus.Counters counters;
     private final ModbusMap map;
     private final Field driveLeft;
     private final Field driveRight;
@@ -36,8 +33,7 @@ final class SactDriver implements SactClient {
     private volatile SactConfig config;
 
     SactDriver(Bus bus, Bus.Counters counters) {
-        this.bus = bus;
-        this.counters = counters;
+        super(bus, counters);
         this.map = bus.map();
         driveLeft = map.field(BOARD, DRIVE, "velocity_setpoint_left");
         driveRight = map.field(BOARD, DRIVE, "velocity_setpoint_right");
@@ -234,16 +230,6 @@ final class SactDriver implements SactClient {
     @Override
     public Duration setWheelSpeedsWireTime() {
         return bus.timing().writeTime(2);
-    }
-
-    @Override
-    public BoardCounters counters() {
-        return counters.snapshot();
-    }
-
-    @Override
-    public boolean faulted() {
-        return counters.faulted();
     }
 
     @Override

@@ -6,13 +6,12 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.OptionalDouble;
 
-import sabot.modbus.BoardCounters;
 import sabot.modbus.SonarClient;
 import sabot.modbus.SonarReading;
 import sabot.modbus.internal.ModbusMap.Field;
 
 /** The sonar board's client: sensor n's records are the map's {@code s<n>_...} records of file {@code latest}. */
-final class SonarDriver implements SonarClient {
+final class SonarDriver extends BoardDriver implements SonarClient {
 
     private static final String BOARD = "sonar";
     private static final String LATEST = "latest";
@@ -23,15 +22,12 @@ final class SonarDriver implements SonarClient {
      */
     private static final int ECHO_VALID_BIT_IF_UNNAMED = 0;
 
-    private final Bus bus;
-    private final Bus.Counters counters;
     private final ModbusMap map;
     private final int sensors;
     private final Span all;
 
     SonarDriver(Bus bus, Bus.Counters counters) {
-        this.bus = bus;
-        this.counters = counters;
+        super(bus, counters);
         this.map = bus.map();
         int n = 0;
         while (map.has(BOARD, LATEST, "s" + n + "_sequence")) {
@@ -95,16 +91,6 @@ final class SonarDriver implements SonarClient {
     @Override
     public Duration readSensorWireTime() {
         return bus.timing().readTime(span(0).count());
-    }
-
-    @Override
-    public BoardCounters counters() {
-        return counters.snapshot();
-    }
-
-    @Override
-    public boolean faulted() {
-        return counters.faulted();
     }
 
     @Override
