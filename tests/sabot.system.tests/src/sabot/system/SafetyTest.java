@@ -1,6 +1,7 @@
 package sabot.system;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
@@ -14,6 +15,7 @@ import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MotionLimits;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
@@ -86,6 +88,59 @@ class SafetyTest extends RigTest {
             SimProcess.Truth truth = rig.sim.truth();
             assertTrue(truth.distanceTo(goal.x(), goal.y()) <= 0.1, truth.toString());
             assertEquals(0, truth.contacts());
+        }
+    }
+
+    @Test
+    void robotBrakesWhenItsEstimateBecomesTooUncertain(@TempDir Path dir) throws Exception {
+        // 3 cm: odometry's uncertainty passes it after a few metres of driving
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "localizer.maxPositionSigma = 0.03\n")) {
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.1, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            rig.onboard.await(l -> l.contains("fault: position uncertainty"), "reporting the uncertain estimate", 60);
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
+            MissionStatus failed = rig.get(Resources.MISSION);
+            assertEquals(MissionState.FAILED, failed.state(), failed.toString());
+            assertTrue(failed.detail().contains("uncertainty"), failed.toString());
+            SimProcess.Truth later = awaitSimTime(rig.sim, 1.0);
+            assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved again: " + later);
+        }
+    }
+
+    @Test
+    void robotBrakesWhenTheProductIsStopped(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.1, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.3, 20);
+            assertEquals(0, rig.onboard.stop(), rig.onboard.output());
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
+            assertTrue(stopped.t() - moving.t() < 1.0 + moving.v() / A_MAX, "stopped after " + (stopped.t()
+                    - moving.t()) + " s");
+            assertTrue(rig.onboard.output().contains("motion task stopped, robot braked"), rig.onboard.output());
+        }
+    }
+
+    @Test
+    void limitsSetOverControlMlAreEnforcedOnTheRobot(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            double slow = 0.2;
+            assertTrue(rig.operator.set(rig.robot, Resources.LIMITS, new MotionLimits(slow, 1.0, 0.5, 2.5))
+                    .isSuccess(), rig.onboard.output());
+            assertEquals(slow, rig.get(Resources.LIMITS).maxLinearSpeed(), 1e-9);
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(7.5, 1.0, 0), 0.15, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            double[] fastest = { 0 };
+            awaitTruth(rig.sim, t -> {
+                fastest[0] = Math.max(fastest[0], Math.abs(t.v()));
+                return t.x() > 6.5;
+            }, 40, "past x = 6.5 m");
+            assertTrue(fastest[0] <= slow * 1.05, "drove at " + fastest[0] + " m/s with a limit of " + slow);
+            assertTrue(fastest[0] >= slow * 0.7, "barely moved: " + fastest[0] + " m/s");
+
+            assertFalse(rig.operator.set(rig.robot, Resources.LIMITS, new MotionLimits(5.0, 1.0, 0.5, 2.5))
+                    .isSuccess(), "a limit above the robot's physical one was accepted");
+            assertEquals(slow, rig.get(Resources.LIMITS).maxLinearSpeed(), 1e-9, "a refused set changed the limits");
         }
     }
 }

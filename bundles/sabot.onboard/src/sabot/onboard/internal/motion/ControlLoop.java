@@ -562,8 +562,9 @@ final class ControlLoop {
         tracker = trackerTask.newTracker(l);
         stabilizer = trackerTask.newStabilizer(l);
         try {
-            boards.writeLimits(l.maxWheelRimSpeed() > l.maxLinearSpeed() * 2 ? l.maxLinearSpeed() * 2
-                    : l.maxWheelRimSpeed(), l.maxLinearAcceleration());
+            // the fastest wheel under these limits: full speed while turning at the full yaw rate
+            double wheel = Math.min(l.maxWheelRimSpeed(), l.maxLinearSpeed() + l.maxAngularSpeed() * l.trackWidth() / 2);
+            boards.writeLimits(wheel, l.maxLinearAcceleration());
         } catch (IOException | RuntimeException e) {
             LOG.debug("board limits not written: {}", e.getMessage());
         }

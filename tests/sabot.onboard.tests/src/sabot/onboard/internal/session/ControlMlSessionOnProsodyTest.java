@@ -258,8 +258,16 @@ class ControlMlSessionOnProsodyTest {
 
     List<String> taskNames() {
         try {
-            return context.getServiceReferences(OnboardTask.class, null).stream().map(r -> context.getService(r)
-                    .name()).toList();
+            List<String> names = new java.util.ArrayList<>();
+            for (org.osgi.framework.ServiceReference<OnboardTask> r : context.getServiceReferences(OnboardTask.class,
+                    null)) {
+                OnboardTask task = context.getService(r);
+                if (task != null) { // null: unregistered since the references were listed
+                    names.add(task.name());
+                    context.ungetService(r);
+                }
+            }
+            return names;
         } catch (org.osgi.framework.InvalidSyntaxException e) {
             throw new AssertionError(e);
         }
@@ -282,7 +290,8 @@ class ControlMlSessionOnProsodyTest {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(WAIT_S);
         while (!condition.getAsBoolean()) {
             assertTrue(System.nanoTime() < deadline, what + " within " + WAIT_S + " s");
-            Thread.onSpinWait();
+            // polls the service registry; parking instead of spinning leaves the CPU to SCR's thread
+            java.util.concurrent.locks.LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(1));
         }
     }
 }
