@@ -115,6 +115,7 @@ final class ControlLoop {
     /** Set once the settle phase reached the goal's position; the turn in place follows. */
     private boolean positionSettled;
     private int optionalRound;
+    private int sonarRound;
     private double lastStatus = Double.NEGATIVE_INFINITY;
     private Pose2D pose;
     private double[] velocity = { 0, 0 };
@@ -153,11 +154,11 @@ final class ControlLoop {
         long start = System.nanoTime();
         timing.started(start);
         double t = (start - t0) * 1e-9;
-        boolean encodersOk = readEncoders(t);
+        readEncoders(t);
         pose = localizer.pose(t);
         velocity = localizer.velocity();
         if (mode != Mode.FAULT) {
-            String unsafe = safetyCheck(t, encodersOk);
+            String unsafe = safetyCheck(t);
             if (unsafe != null) {
                 fault(unsafe);
             }
@@ -195,19 +196,18 @@ final class ControlLoop {
         return snapshot(Instant.now());
     }
 
-    private boolean readEncoders(double t) {
+    /** A failed read is not an error by itself: the localizer's odometry timeout and the bus's fault time judge. */
+    private void readEncoders(double t) {
         try {
             RobotBoards.WheelCounts c = boards.readEncoders();
             localizer.encoders(t, c.left(), c.right());
-            return true;
         } catch (IOException e) {
             LOG.debug("encoder read failed: {}", e.getMessage());
-            return false;
         }
     }
 
     /** @return why the robot must stop now, or null */
-    private String safetyCheck(double t, boolean encodersOk) {
+    private String safetyCheck(double t) {
         String board = boards.faultedBoard();
         if (board != null) {
             return "the " + board + " board does not answer";
@@ -232,13 +232,13 @@ final class ControlLoop {
             return;
         }
         int sonars = boards.sonarSensors();
-        int slot = optionalRound++ % (2 + 2 * sonars);
         try {
-            if (slot % 2 == 0 || sonars == 0) {
+            // every other spare slot goes to the gyro; the others to the sonar sensors in turn
+            if (optionalRound++ % 2 == 0 || sonars == 0) {
                 RobotBoards.ImuSample s = boards.readImu();
                 localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
             } else {
-                int sensor = (slot / 2) % sonars;
+                int sensor = sonarRound++ % sonars;
                 for (Point2D p : boards.readSonar(sensor)) {
                     addEcho(t, p);
                 }

@@ -241,7 +241,9 @@ class ControlMlSessionOnProsodyTest {
 
         remotefs.delete();
         remotefs = null;
-        awaitNoTask("remotefs");
+        // SCR unregisters the task's service before it calls deactivate: wait until no configuration of the
+        // component is left, which is after deactivate returned
+        awaitNoComponent("sabot.task.remotefs");
         assertFalse(wb.get(robotFull, Resources.FS_READ, new FileQuery("maps/lab.bin", 0, 0)).isSuccess(),
                 "no cm.fs.* once the task stopped");
     }
@@ -277,8 +279,11 @@ class ControlMlSessionOnProsodyTest {
         awaitCondition(() -> taskNames().contains(name), "task " + name + " started");
     }
 
-    void awaitNoTask(String name) {
-        awaitCondition(() -> !taskNames().contains(name), "task " + name + " stopped");
+    void awaitNoComponent(String name) throws InterruptedException {
+        org.osgi.service.component.runtime.ServiceComponentRuntime scr = service(
+                org.osgi.service.component.runtime.ServiceComponentRuntime.class);
+        awaitCondition(() -> scr.getComponentDescriptionDTOs().stream().filter(d -> d.name.equals(name))
+                .allMatch(d -> scr.getComponentConfigurationDTOs(d).isEmpty()), name + " deactivated");
     }
 
     <S> void awaitNoService(Class<S> type) {
