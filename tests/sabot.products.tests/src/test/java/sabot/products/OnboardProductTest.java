@@ -71,7 +71,8 @@ class OnboardProductTest {
     void unknownTaskIsRefusedNamingTheAvailableOnes() throws Exception {
         try (ProductProcess p = start("tasks = heartbeat, teleport\n")) {
             assertEquals(2, p.waitFor(), p.output());
-            assertTrue(p.output().contains(":1: key 'tasks': unknown task 'teleport' (available: heartbeat"),
+            assertTrue(p.output().contains(":1: key 'tasks': unknown task 'teleport' (available: bus, controlml, "
+                    + "heartbeat, localizer, motion, planner, remotefs, teleop, tracker)"),
                     p.output());
         }
     }
