@@ -12,8 +12,6 @@ import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 
-import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -78,19 +76,7 @@ class ConnectionTest extends RigTest {
             // the same operator at a second workbench (its own resource and connection)
             XMPPTCPConnection second = xmpp.connect(xmpp.configuration(RobotRig.OPERATOR, PrivateXmppServer.DOMAIN,
                     PrivateXmppServer.DEFAULT_PASSWORD).setResource("workbench-2").build());
-            Roster roster = Roster.getInstanceFor(second);
-            CountDownLatch subscribed = new CountDownLatch(1);
-            roster.addRosterListener(new org.jivesoftware.smack.roster.AbstractRosterListener() {
-                @Override
-                public void entriesUpdated(java.util.Collection<org.jxmpp.jid.Jid> addresses) {
-                    RosterEntry e = roster.getEntry(robotBare);
-                    if (e != null && e.canSeeHisPresence()) {
-                        subscribed.countDown();
-                    }
-                }
-            });
-            roster.createItemAndRequestSubscription(robotBare, "robot", null);
-            assertTrue(subscribed.await(10, TimeUnit.SECONDS), "the robot did not accept the watcher's subscription");
+            PresenceWatch.subscribe(second, robotBare); // telemetry goes to presence subscribers
             ControlMlManager watcher = ControlMlManager.getInstanceFor(second);
             AtomicInteger poses = new AtomicInteger();
             CountDownLatch tenPoses = new CountDownLatch(10);

@@ -8,6 +8,8 @@ import java.nio.file.Path;
 import java.time.Instant;
 import java.util.concurrent.TimeUnit;
 
+import org.jivesoftware.smack.packet.Presence;
+
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -58,9 +60,11 @@ class SafetyTest extends RigTest {
     @Test
     void robotBrakesAndReportsWhenTheMotorBoardStopsAnswering(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            PresenceWatch presence = PresenceWatch.subscribe(rig.operatorConnection, rig.robot.asBareJid());
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
                     .isSuccess(), rig.onboard.output());
             SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
+            presence.await(p -> p.getMode() == Presence.Mode.dnd, "busy while driving");
             rig.sim.command("board 1 sact off");
             SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
             // the board's own deadman (0.3 s) and the deceleration bound the stop
@@ -70,6 +74,8 @@ class SafetyTest extends RigTest {
             MissionStatus failed = rig.get(Resources.MISSION);
             assertEquals(MissionState.FAILED, failed.state(), failed.toString());
             assertTrue(failed.detail().contains("sact"), failed.toString());
+            presence.await(p -> p.getMode() == Presence.Mode.away && String.valueOf(p.getStatus()).contains("sact"),
+                    "away, naming the board");
 
             rig.sim.command("board 1 sact on");
             SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);

@@ -42,6 +42,19 @@ public final class SplineTrajectory implements Trajectory {
         return new SplineTrajectory(spline, new TrapezoidalTimeLaw(spline.length(), v, limits.maxLinearAcceleration()));
     }
 
+    /**
+     * Plans a rest-to-rest trajectory through waypoints that slows down only where the path bends
+     * ({@link CurvatureTimeLaw}), at most at {@code cruiseSpeed}.
+     *
+     * @throws InvalidPathException when the waypoints do not define a path
+     */
+    public static SplineTrajectory planCurvatureLimited(List<Point2D> waypoints, double cruiseSpeed,
+            MotionLimits limits) {
+        ArcLengthSpline spline = new ArcLengthSpline(waypoints, false);
+        return new SplineTrajectory(spline, new CurvatureTimeLaw(spline, cruiseSpeed, limits,
+                CurvatureTimeLaw.DEFAULT_STEP));
+    }
+
     @Override
     public double duration() {
         return law.duration();

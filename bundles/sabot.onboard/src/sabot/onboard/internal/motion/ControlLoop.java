@@ -463,7 +463,7 @@ final class ControlLoop {
         }
         try {
             MotionLimits planning = owner.currentLimits().withHeadroom(trackerTask.config().headroom());
-            SplineTrajectory t = SplineTrajectory.plan(waypoints, false, planning.maxLinearSpeed(), planning);
+            SplineTrajectory t = SplineTrajectory.planCurvatureLimited(waypoints, planning.maxLinearSpeed(), planning);
             return new Plan(t, t.length(), null);
         } catch (InvalidPathException e) {
             return new Plan(null, 0, "no trajectory through the path: " + e.getMessage());
