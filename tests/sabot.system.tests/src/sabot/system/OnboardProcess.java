@@ -2,7 +2,6 @@ package sabot.system;
 
 import java.io.BufferedReader;
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -29,11 +28,15 @@ final class OnboardProcess implements AutoCloseable {
     private final Process process;
     private final List<String> lines = new ArrayList<>();
     private final Path config;
+    private final Thread reader;
 
-    private OnboardProcess(Process process, Path config) {
+    private final Path log;
+
+    private OnboardProcess(Process process, Path config, Path log) {
         this.process = process;
         this.config = config;
-        Thread reader = new Thread(this::pump, "onboard-console");
+        this.log = log;
+        this.reader = new Thread(this::pump, "onboard-console");
         reader.setDaemon(true);
         reader.start();
     }
@@ -87,8 +90,11 @@ final class OnboardProcess implements AutoCloseable {
         cmd.add("-consoleLog");
         cmd.add("-config");
         cmd.add(config.toString());
-        ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true);
-        return new OnboardProcess(pb.start(), config);
+        // the console goes to a file beside the configuration (kept for a failed test) and is tailed from there
+        Path log = config.resolveSibling("onboard.log");
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true)
+                .redirectOutput(log.toFile());
+        return new OnboardProcess(pb.start(), config, log);
     }
 
     static Path product() {
@@ -107,18 +113,34 @@ final class OnboardProcess implements AutoCloseable {
         }
     }
 
+    /**
+     * Tails the console file: a line is taken once its newline is written; at the end of the file the tail waits
+     * 10 ms while the process runs (a file has no event to wait on), and reads what is left once it has ended.
+     */
     private void pump() {
-        try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(),
-                StandardCharsets.UTF_8))) {
-            String line;
-            while ((line = r.readLine()) != null) {
-                synchronized (lines) {
-                    lines.add(line);
-                    lines.notifyAll();
+        try (BufferedReader r = java.nio.file.Files.newBufferedReader(log, StandardCharsets.UTF_8)) {
+            StringBuilder partial = new StringBuilder();
+            while (true) {
+                boolean ended = !process.isAlive();
+                int c;
+                while ((c = r.read()) >= 0) {
+                    if (c == '\n') {
+                        synchronized (lines) {
+                            lines.add(partial.toString());
+                            lines.notifyAll();
+                        }
+                        partial.setLength(0);
+                    } else {
+                        partial.append((char) c);
+                    }
                 }
+                if (ended) {
+                    break;
+                }
+                TimeUnit.MILLISECONDS.sleep(10);
             }
-        } catch (IOException ended) {
-            // process gone
+        } catch (IOException | InterruptedException ended) {
+            // file gone or test over
         } finally {
             synchronized (lines) {
                 lines.notifyAll();
@@ -190,6 +212,7 @@ final class OnboardProcess implements AutoCloseable {
             process.destroyForcibly();
             throw new AssertionError("onboard product did not stop within " + TIMEOUT_S + " s:\n" + output());
         }
+        reader.join(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, still in the pipe
         return process.exitValue();
     }
 
@@ -198,6 +221,7 @@ final class OnboardProcess implements AutoCloseable {
         if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
             throw new AssertionError("onboard product still running after " + TIMEOUT_S + " s:\n" + output());
         }
+        reader.join(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, still in the pipe
         return process.exitValue();
     }
 

@@ -58,6 +58,7 @@ final class RobotRig implements AutoCloseable {
                     OPERATOR + "@" + PrivateXmppServer.DOMAIN), "robot-pw", extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
+            onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
             XMPPTCPConnection c = xmpp.login(OPERATOR);
             return new RobotRig(sim, onboard, c, JidCreate.from(ROBOT + "@" + PrivateXmppServer.DOMAIN + "/onboard"));
         } catch (Exception | AssertionError e) {

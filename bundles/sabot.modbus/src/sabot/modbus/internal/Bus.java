@@ -51,15 +51,32 @@ public final class Bus implements ModbusBus {
         volatile long lastGoodNanos;
         volatile Instant lastGood;
         volatile boolean lastFailed;
+        /** When the current run of failed transactions began and when its latest one ended (System.nanoTime). */
+        volatile long firstFailureNanos;
+        volatile long lastFailureNanos;
 
         Counters(String board) {
             this.board = board;
             this.slave = map.slave(board);
         }
 
+        /**
+         * A board is faulted when its transactions have kept failing for longer than {@code faultAfter}, measured from
+         * the first failure of the run to the latest one: a board polled rarely (the inertial board in a control
+         * loop's spare time) is not faulted by one lost answer, and a board that is polled keeps a bounded detection
+         * time (faultAfter plus one polling interval).
+         */
         boolean faulted() {
-            long since = lastGood == null ? openedNanos : lastGoodNanos;
-            return lastFailed && System.nanoTime() - since > settings.faultAfter().toNanos();
+            return lastFailed && lastFailureNanos - firstFailureNanos > settings.faultAfter().toNanos();
+        }
+
+        void failed() {
+            long now = System.nanoTime();
+            if (!lastFailed) {
+                firstFailureNanos = now;
+            }
+            lastFailureNanos = now;
+            lastFailed = true;
         }
 
         BoardCounters snapshot() {
@@ -73,7 +90,6 @@ public final class Bus implements ModbusBus {
     private final Line line;
     private final BusTiming timing;
     private final ReentrantLock lock = new ReentrantLock(true);
-    private final long openedNanos = System.nanoTime();
     private final SactDriver sact;
     private final InsDriver ins;
     private final SonarDriver sonar;
@@ -205,7 +221,7 @@ public final class Bus implements ModbusBus {
                     detail = d;
                 }
             }
-            board.lastFailed = true;
+            board.failed();
             boolean faulted = board.faulted();
             throw new BoardException(board.board, faulted ? BoardException.Kind.FAULTED : failure, 0,
                     (faulted ? "faulted (no good answer for more than " + settings.faultAfter().toMillis()

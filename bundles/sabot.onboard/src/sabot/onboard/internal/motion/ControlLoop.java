@@ -112,6 +112,7 @@ final class ControlLoop {
     private final MicrosHistogram teleopLatency = new MicrosHistogram();
     private boolean braked;
     private boolean settlingReported;
+    private boolean readyReported;
     /** Set once the settle phase reached the goal's position; the turn in place follows. */
     private boolean positionSettled;
     private int optionalRound;
@@ -163,6 +164,11 @@ final class ControlLoop {
                 fault(unsafe);
             }
         }
+        if (!readyReported && !localizer.isSettling(t)) {
+            readyReported = true;
+            LOG.info("ready to move ({})", localizerTask.config().useImu() ? "inertial biases settled after "
+                    + localizerTask.config().imuSettleTime() + " s at rest" : "odometry only");
+        }
         Twist2D command = command(t);
         Twist2D applied = smoother.smooth(t, command);
         if (!applied.isFinite()) {
@@ -200,7 +206,9 @@ final class ControlLoop {
     private void readEncoders(double t) {
         try {
             RobotBoards.WheelCounts c = boards.readEncoders();
-            localizer.encoders(t, c.left(), c.right());
+            // stamped when the answer arrived, not when the period began: a retried read is tens of ms late, and
+            // odometry's speed is distance over the time between two readings
+            localizer.encoders(now(), c.left(), c.right());
         } catch (IOException e) {
             LOG.debug("encoder read failed: {}", e.getMessage());
         }

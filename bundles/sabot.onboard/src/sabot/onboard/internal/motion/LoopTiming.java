@@ -46,11 +46,9 @@ final class LoopTiming {
         }
         long late = Math.abs(now - expected);
         jitter.add(late);
-        // a fixed-rate schedule catches up after a long period: the next start is expected one period later
+        // a fixed-rate schedule runs a missed period late rather than skipping it: each start is due one period after
+        // the previous start was due
         expected += periodNanos;
-        while (now - expected > periodNanos) {
-            expected += periodNanos;
-        }
         started = now;
     }
 
