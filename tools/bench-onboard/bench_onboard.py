@@ -311,7 +311,7 @@ def goal_runs(lines: list[LogLine], limits: dict) -> list[dict]:
             if GOAL_REACHED.search(later.text):
                 run.update(reached=True, time_s=later.t - line.t, ratio=(later.t - line.t) / run["ideal_s"])
                 break
-            if MISSION_ENDED.search(later.text) and later.logger in ("ControlLoop", "MotionTask"):
+            if MISSION_ENDED.search(later.text) and later.logger == "motion":
                 run["ended_by"] = later.text
                 break
         runs.append(run)
