@@ -94,11 +94,11 @@ class LogTest(unittest.TestCase):
 
 
 class ReportTest(unittest.TestCase):
-    def report(self, jitter_p50: float, teleop_p99: float) -> tuple[int, dict, str]:
+    def report(self, jitter_p50: float, teleop_p99: float, jitter_p99: float = 900.0) -> tuple[int, dict, str]:
         with tempfile.TemporaryDirectory() as d:
             lines = (log(0.0, "motion", "new goal (6.500, 3.000, 0.000): path 6.968 m")
                      + log(18.0, "motion", "goal reached at (6.5, 3.0, 0.0)")
-                     + log(30.0, "motion", stop_line((3000, jitter_p50, 900.0, 1500.0, 9.1, 14.0, 0, 1),
+                     + log(30.0, "motion", stop_line((3000, jitter_p50, jitter_p99, max(jitter_p99, 1500.0), 9.1, 14.0, 0, 1),
                                                      (5.0, teleop_p99, 30.0, 200))))
             samples = [[float(i), 100.0 + i, 0.05 * i] for i in range(30)]  # 5 % of a core, 100..129 MB
             drive = {"limits": LIMITS, "samples": samples, "goals": [], "drive_start": 0.0, "drive_end": 60.0,
@@ -142,6 +142,13 @@ class ReportTest(unittest.TestCase):
         self.assertEqual((True, None), (jitter["saturated"], jitter["met"]))
         self.assertIn("INVALID", text)
         self.assertTrue(any("saturated" in p for p in r["problems"]))
+
+    def test_jitter_beyond_two_periods_without_such_work_is_flagged(self):
+        status, r, text = self.report(jitter_p50=6388.0, teleop_p99=20.0, jitter_p99=86391.0)
+        self.assertEqual(0, status, text)
+        jitter = r["figures"][0]
+        self.assertEqual((False, True, False), (jitter["saturated"], jitter["suspect"], jitter["met"]))
+        self.assertIn("skip offset", jitter["shown"])
 
 
 if __name__ == "__main__":
