@@ -5,6 +5,7 @@
   controlml.py ... set-goal sabot-01@sabot.local 1.5 4.0 3.14 [--tol 0.1] [--heading-tol 0.2] [--xml-form]
   controlml.py ... mission sabot-01@sabot.local pause|resume|abort
   controlml.py ... watch sabot-01@sabot.local [--count N]
+  controlml.py ... joystick sabot-01@sabot.local 0.2 0.5 [--rate 10] [--duration 5]
 
 A robot given as a bare JID is reached at the full JID of its presence (resource 'onboard' preferred): the client
 subscribes to the robot's presence and waits for it. Exit status: 0 done, 1 the robot refused (its condition,
@@ -16,12 +17,14 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
+import math
 import os
 import signal
 import ssl
 import sys
 import time
 import xml.etree.ElementTree as ET
+from typing import Awaitable, Callable, NamedTuple
 
 import slixmpp
 from slixmpp.exceptions import IqError, IqTimeout
@@ -143,6 +146,62 @@ def measure(record: dict, name: str) -> float:
     return value.value if isinstance(value, cm.Measure) else float("nan")
 
 
+MAX_JOYSTICK_RATE = 100.0  # Hz: the onboard's control loop runs at 50 Hz; more than twice that only loads the server
+
+
+class JoystickReport(NamedTuple):
+    """What a joystick session sent: the twists at the rate (the stop not counted), the ticks skipped because an
+    answer came later than the next tick, and each answer's round trip in ms (the stop's included)."""
+
+    twists: int
+    skipped: int
+    round_trips_ms: list[float]
+
+
+async def joystick(send: Callable[[ET.Element], Awaitable[object]], linear: float, angular: float, rate: float,
+                   duration: float, clock: Callable[[], float] = time.monotonic) -> JoystickReport:
+    """Sends the twist (``linear`` m/s, ``angular`` rad/s) as cm.velocity sets ``rate`` times a second for ``duration``
+    seconds, then one zero twist so that the robot stops at once rather than at its deadman timeout. Each set carries
+    the time it is sent (the robot measures twist sent -> wheel set-point with it) and its answer is awaited before the
+    next; a tick whose time has passed while waiting is skipped, not sent late in a burst. A refusal (Failure) ends
+    the session where it happened."""
+    period = 1.0 / rate
+    trips: list[float] = []
+
+    async def one(v: float, w: float) -> None:
+        payload = cm.encode_record("cm.velocity", cm.velocity(v, w, cm.utc_time()))
+        t0 = clock()
+        await send(payload)
+        trips.append((clock() - t0) * 1000.0)
+
+    start = clock()
+    ticks = max(1, round(rate * duration))
+    sent = skipped = 0
+    for k in range(ticks):
+        due = start + k * period
+        now = clock()
+        if now - due >= period:  # the previous answer took longer than a period: this tick's twist would be stale
+            skipped += 1
+            continue
+        if due > now:
+            await asyncio.sleep(due - now)
+        await one(linear, angular)
+        sent += 1
+    end = start + ticks * period
+    if end > clock():
+        await asyncio.sleep(end - clock())
+    await one(0.0, 0.0)
+    return JoystickReport(sent, skipped, trips)
+
+
+def percentile(values: list[float], q: float) -> float:
+    """The ``q`` quantile (nearest rank) of ``values``; NaN when empty."""
+    if not values:
+        return float("nan")
+    ordered = sorted(values)
+    return ordered[max(0, math.ceil(q * len(ordered)) - 1)]
+
+
 def status_line(pose: cm.Element | Failure, mission: cm.Element | Failure, presence) -> str:
     """One line of 'watch', in the onboard product's status format: pose | mission | presence."""
     if isinstance(pose, Failure):
@@ -187,6 +246,16 @@ async def run(args: argparse.Namespace) -> int:
                                                       "detail": f"operator {args.action}"})
             await client.request(robot, "set", "cm.mission", payload, args.timeout)
             print(f"mission {args.action} accepted by {robot}")
+        elif args.command == "joystick":
+            report = await joystick(lambda payload: client.request(robot, "set", "cm.velocity", payload,
+                                                                   args.timeout),
+                                    args.linear, args.angular, args.rate, args.duration)
+            trips = report.round_trips_ms
+            print(f"joystick: {report.twists} twists ({args.linear:g} m/s, {args.angular:g} rad/s) at {args.rate:g} Hz "
+                  f"for {args.duration:g} s, then a stop, accepted by {robot}"
+                  + (f" ({report.skipped} ticks skipped: answers slower than a period)" if report.skipped else "")
+                  + f"; answer round trip p50 {percentile(trips, 0.5):.1f} ms p99 {percentile(trips, 0.99):.1f} ms"
+                  f" max {max(trips):.1f} ms")
         elif args.command == "watch":
             n = 0
             next_tick = time.monotonic()
@@ -249,6 +318,13 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     w = sub.add_parser("watch", help="print pose, mission and presence once a second")
     w.add_argument("robot")
     w.add_argument("--count", type=int, default=0, help="lines to print (default: until interrupted)")
+    j = sub.add_parser("joystick", help="drive by joystick: a twist (m/s, rad/s) at a rate for a duration, then stop")
+    j.add_argument("robot")
+    j.add_argument("linear", type=float, help="linear speed, m/s (|v| <= 10; the robot clamps to its limits)")
+    j.add_argument("angular", type=float, help="angular speed, rad/s (|w| <= 20)")
+    j.add_argument("--rate", type=float, default=10.0, help=f"twists per second, 0 < rate <= {MAX_JOYSTICK_RATE:g} "
+                   "(default 10; keep it above 1 / the robot's deadman timeout, 2 Hz for 0.5 s)")
+    j.add_argument("--duration", type=float, default=5.0, help="seconds of driving, > 0 (default 5)")
     args = p.parse_args(argv)
     if args.password_file:
         try:
@@ -267,6 +343,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
             cm.encode_record("cm.goal", cm.goal(args.x, args.y, args.theta, args.tol, args.heading_tol))
         except cm.PayloadError as e:
             p.error(f"set-goal: {e}")
+    if args.command == "joystick":
+        try:
+            cm.velocity(args.linear, args.angular, cm.utc_time())
+        except cm.PayloadError as e:
+            p.error(f"joystick: {e}")
+        if not 0 < args.rate <= MAX_JOYSTICK_RATE:
+            p.error(f"joystick: --rate {args.rate:g} must be in (0, {MAX_JOYSTICK_RATE:g}] Hz")
+        if not (math.isfinite(args.duration) and args.duration > 0):
+            p.error(f"joystick: --duration {args.duration:g} must be a finite number of seconds > 0")
     if args.command == "watch" and args.count < 0:
         p.error("--count must be >= 0")
     return args

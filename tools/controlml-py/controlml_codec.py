@@ -252,6 +252,25 @@ def goal(x: float, y: float, theta: float, position_tolerance: float = 0.1, head
             "headingTolerance": heading_tolerance}
 
 
+MAX_LINEAR_SPEED, MAX_ANGULAR_SPEED = 10.0, 20.0  # cm.velocity's ranges, m/s and rad/s (section 4)
+
+
+def utc_time(when: datetime | None = None) -> str:
+    """An ISO 8601 UTC Time token to the microsecond, e.g. '2026-11-21T10:15:30.123456Z' (now when ``when`` is None)."""
+    when = (when or datetime.now(timezone.utc)).astimezone(timezone.utc)
+    return when.strftime("%Y-%m-%dT%H:%M:%S.%fZ")
+
+
+def velocity(linear: float, angular: float, time: str) -> dict:
+    """A cm.velocity record (joystick twist: m/s, rad/s, the ISO 8601 UTC time it is sent); refuses what every robot
+    would refuse (a non-finite number, |linear| > 10 m/s, |angular| > 20 rad/s)."""
+    for name, value, bound, unit in (("linear", linear, MAX_LINEAR_SPEED, "m/s"),
+                                     ("angular", angular, MAX_ANGULAR_SPEED, "rad/s")):
+        if not math.isfinite(value) or abs(value) > bound:
+            raise PayloadError(f"{name} {value} {unit} must be finite and within +-{bound:g} {unit}")
+    return {"time": time, "linear": float(linear), "angular": float(angular)}
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # Reading
 # ---------------------------------------------------------------------------------------------------------------
