@@ -56,3 +56,11 @@ sabot_planner_jar() {
     [ -f "$jar" ] || sabot_die "the build did not produce $jar"
     echo "$jar"
 }
+
+# Prints the JVM options of an onboard product folder (its etc/jvm.options, comments and blank lines left out), one per
+# line; nothing when the file is absent.
+sabot_onboard_jvm_options() {
+    local file="$1/etc/jvm.options"
+    [ -f "$file" ] || return 0
+    sed -e 's/#.*//' -e 's/^[[:space:]]*//' -e 's/[[:space:]]*$//' "$file" | grep -v '^$' || true
+}

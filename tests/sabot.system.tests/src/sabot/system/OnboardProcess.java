@@ -84,6 +84,7 @@ final class OnboardProcess implements AutoCloseable {
         Path product = product();
         List<String> cmd = new ArrayList<>();
         cmd.add(Paths.get(System.getProperty("java.home"), "bin", "java").toString());
+        cmd.addAll(jvmOptions(product));
         cmd.add("-Dlogback.configurationFile=" + product.resolve("etc/logback.xml"));
         cmd.add("-jar");
         cmd.add(launcherJar(product).toString());
@@ -95,6 +96,16 @@ final class OnboardProcess implements AutoCloseable {
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true)
                 .redirectOutput(log.toFile());
         return new OnboardProcess(pb.start(), config, log);
+    }
+
+    /** @return the product's etc/jvm.options (as ./sabot onboard reads them): one option a line, # comments */
+    static List<String> jvmOptions(Path product) throws IOException {
+        Path file = product.resolve("etc/jvm.options");
+        if (!Files.isRegularFile(file)) {
+            return List.of();
+        }
+        return Files.readAllLines(file).stream().map(l -> l.replaceFirst("#.*", "").strip()).filter(l -> !l
+                .isEmpty()).toList();
     }
 
     static Path product() {

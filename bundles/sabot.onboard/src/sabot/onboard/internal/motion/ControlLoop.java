@@ -559,6 +559,31 @@ final class ControlLoop {
         }
     }
 
+    /**
+     * Writes the newest joystick twist at once when the bus is free long enough before the next period (a twist would
+     * otherwise wait up to a period for its write); the period's own work is never delayed by it.
+     */
+    void teleopWrite() {
+        if (mode != Mode.TELEOP || teleopSent == null) {
+            return;
+        }
+        long now = System.nanoTime();
+        double left = (timing.nextStartNanos() - now) * 1e-9;
+        if (left < boards.wheelWriteWireTime() * 1.2 + 0.001) {
+            return; // the next period writes it
+        }
+        double t = (now - t0) * 1e-9;
+        Twist2D applied = smoother.smooth(t, teleopTwist);
+        WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
+        try {
+            boards.writeWheelSpeeds(w.left(), w.right());
+            teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
+            teleopSent = null;
+        } catch (IOException e) {
+            LOG.debug("early joystick write failed: {}", e.getMessage());
+        }
+    }
+
     void relocalise(Pose2D p) {
         localizer.reset(p, now());
         LOG.info("re-localised at {}", p);

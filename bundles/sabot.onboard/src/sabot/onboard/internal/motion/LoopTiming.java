@@ -40,6 +40,11 @@ final class LoopTiming {
         return periodNanos;
     }
 
+    /** @return when the next period is due (System.nanoTime); meaningful once a period has started */
+    long nextStartNanos() {
+        return expected;
+    }
+
     void started(long now) {
         if (expected == Long.MIN_VALUE) {
             expected = now;

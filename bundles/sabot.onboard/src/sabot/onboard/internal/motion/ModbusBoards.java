@@ -132,6 +132,11 @@ final class ModbusBoards implements RobotBoards {
     }
 
     @Override
+    public double wheelWriteWireTime() {
+        return bus.sact().setWheelSpeedsWireTime().toNanos() * 1e-9;
+    }
+
+    @Override
     public double optionalReadWireTime() {
         return Math.max(bus.ins().readMotionWireTime().toNanos(), bus.sonar().readSensorWireTime().toNanos()) * 1e-9;
     }

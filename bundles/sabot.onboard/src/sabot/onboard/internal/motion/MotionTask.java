@@ -192,21 +192,36 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
+    /** Applies queued commands between two periods and writes a new joystick twist at once when there is time. */
+    private void drainCommands() {
+        try {
+            applyCommands();
+            loop.teleopWrite();
+        } catch (RuntimeException e) {
+            LOG.error("control loop error, braking", e);
+            loop.fault("internal error: " + e);
+        }
+    }
+
+    private void applyCommands() {
+        Consumer<ControlLoop> command;
+        boolean applied = false;
+        while ((command = commands.poll()) != null) {
+            command.accept(loop);
+            applied = true;
+        }
+        if (applied) {
+            // a caller waiting in apply() reads the new state as soon as its command has been taken
+            snapshot = loop.snapshot(Instant.now());
+            synchronized (commands) {
+                commands.notifyAll();
+            }
+        }
+    }
+
     private void tick() {
         try {
-            Consumer<ControlLoop> command;
-            boolean applied = false;
-            while ((command = commands.poll()) != null) {
-                command.accept(loop);
-                applied = true;
-            }
-            if (applied) {
-                // a caller waiting in apply() reads the new state as soon as its command has been taken
-                snapshot = loop.snapshot(Instant.now());
-                synchronized (commands) {
-                    commands.notifyAll();
-                }
-            }
+            applyCommands();
             snapshot = loop.tick();
         } catch (RuntimeException e) {
             // A bug must not stop the loop's thread (scheduleAtFixedRate would end silently): brake and say why.
@@ -320,6 +335,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         Twist2D bounded = new Twist2D(v, w);
         long received = System.nanoTime();
         enqueue(l -> l.teleop(bounded, received, sent));
+        // on the loop's own thread, between two periods: takes the twist and writes it if the bus has the time
+        try {
+            loopThread.execute(this::drainCommands);
+        } catch (java.util.concurrent.RejectedExecutionException stopping) {
+            // the task is stopping: the robot brakes anyway
+        }
     }
 
     @Override

@@ -61,6 +61,9 @@ public interface RobotBoards {
     /** @return the name of the first board that has not answered for longer than the bus's fault time, or null */
     String faultedBoard();
 
+    /** @return computed wire time of {@link #writeWheelSpeeds}, seconds */
+    double wheelWriteWireTime();
+
     /** @return computed wire time of the loop's optional reads (IMU, one sonar sensor), seconds */
     double optionalReadWireTime();
 }
