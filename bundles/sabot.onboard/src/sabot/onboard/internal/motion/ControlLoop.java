@@ -155,6 +155,9 @@ final class ControlLoop {
         long start = System.nanoTime();
         timing.started(start);
         double t = (start - t0) * 1e-9;
+        // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
+        // that read's wire time to its latency
+        boolean wroteTwist = mode == Mode.TELEOP && teleopSent != null && writeTwist(t);
         readEncoders(t);
         pose = localizer.pose(t);
         velocity = localizer.velocity();
@@ -170,22 +173,17 @@ final class ControlLoop {
                     + localizerTask.config().imuSettleTime() + " s at rest" : "odometry only");
         }
         Twist2D command = command(t);
-        Twist2D applied = smoother.smooth(t, command);
+        Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
         if (!applied.isFinite()) {
             applied = Twist2D.ZERO;
         }
         if (tracker != null) {
             tracker.commandApplied(applied);
         }
-        if (mode != Mode.FAULT) {
+        if (mode != Mode.FAULT && !wroteTwist) {
             WheelSpeeds w = drive.toWheelSpeeds(applied);
             try {
                 boards.writeWheelSpeeds(w.left(), w.right());
-                if (teleopSent != null && mode == Mode.TELEOP) {
-                    // same host, same wall clock: the operator's send time to the end of the set-point write
-                    teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
-                    teleopSent = null;
-                }
             } catch (IOException e) {
                 LOG.warn("wheel speed write failed: {}", e.getMessage());
             }
@@ -569,18 +567,23 @@ final class ControlLoop {
         }
         long now = System.nanoTime();
         double left = (timing.nextStartNanos() - now) * 1e-9;
-        if (left < boards.wheelWriteWireTime() * 1.2 + 0.001) {
-            return; // the next period writes it
+        if (left >= boards.wheelWriteWireTime() * 1.2 + 0.001) {
+            writeTwist((now - t0) * 1e-9);
         }
-        double t = (now - t0) * 1e-9;
+    }
+
+    /** Writes the joystick's twist through the smoother; records its latency. @return true when written */
+    private boolean writeTwist(double t) {
         Twist2D applied = smoother.smooth(t, teleopTwist);
         WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
         try {
             boards.writeWheelSpeeds(w.left(), w.right());
             teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
             teleopSent = null;
+            return true;
         } catch (IOException e) {
-            LOG.debug("early joystick write failed: {}", e.getMessage());
+            LOG.debug("joystick write failed: {}", e.getMessage());
+            return false;
         }
     }
 

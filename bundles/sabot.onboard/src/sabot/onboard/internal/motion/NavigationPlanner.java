@@ -28,12 +28,14 @@ final class NavigationPlanner implements AutoCloseable {
 
     private final Planner planner;
     private final InflationParameters inflation;
+    private final double robotRadius;
     private volatile OccupancyGrid map;
 
     NavigationPlanner(OccupancyGrid map, String algorithm, int threads, double robotRadius, double inflationRadius) {
         this.map = map;
         this.planner = Planners.byName(algorithm, CostModel.standard(), threads).orElseThrow(
                 () -> new IllegalArgumentException("unknown planner '" + algorithm + "', one of " + Planners.NAMES));
+        this.robotRadius = robotRadius;
         this.inflation = InflationParameters.forRobot(robotRadius).withDecay(Math.max(inflationRadius, robotRadius),
                 InflationParameters.DEFAULT_COST_SCALING_FACTOR);
     }
@@ -63,8 +65,34 @@ final class NavigationPlanner implements AutoCloseable {
         for (Point2D p : obstacles) {
             grid.geometry().cellAt(p).ifPresent(c -> withObstacles.set(c.column(), c.row(), OccupancyGrid.OCCUPIED));
         }
+        clearFootprint(withObstacles, start);
         CostmapLayers layers = CostmapLayers.fromOccupancy(withObstacles, inflation, MovingObstacleModel.defaults());
         return planner.plan(layers.costmap(), start, List.of(goal));
+    }
+
+    /**
+     * The robot stands where it stands: unknown cells and sonar echoes under its footprint are free (as Nav2 clears
+     * the footprint), so that a robot that drove onto the edge of an unmapped area, or whose sonar saw its own
+     * surroundings, can plan away. Walls of the static map stay.
+     */
+    private void clearFootprint(OccupancyGrid grid, Point2D start) {
+        GridGeometry g = grid.geometry();
+        Optional<Cell> centre = g.cellAt(start);
+        if (centre.isEmpty()) {
+            return;
+        }
+        int reach = (int) Math.ceil(robotRadius / g.resolution());
+        OccupancyGrid staticMap = map;
+        for (int dr = -reach; dr <= reach; dr++) {
+            for (int dc = -reach; dc <= reach; dc++) {
+                int c = centre.get().column() + dc;
+                int r = centre.get().row() + dr;
+                if (g.contains(c, r) && Math.hypot(dc, dr) * g.resolution() <= robotRadius
+                        && staticMap.get(c, r) < OCCUPIED_THRESHOLD) {
+                    grid.set(c, r, OccupancyGrid.FREE);
+                }
+            }
+        }
     }
 
     /**
