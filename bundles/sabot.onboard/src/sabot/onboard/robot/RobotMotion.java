@@ -18,9 +18,11 @@ import sabot.model.geometry.Twist2D;
 
 /**
  * The robot's motion: one fixed-rate control loop (read encoders and inertial sample, update the estimate, run the
- * tracker, write wheel speeds) behind a thread-safe facade. Every command returns at once (planning runs off the
- * caller's thread); a refused command throws {@link CommandRefused} and changes nothing. Reads never block on the
- * bus or the network: they return the loop's last published state.
+ * tracker, write wheel speeds) behind a thread-safe facade. A command returns once the loop has taken it (within a
+ * period), so that the next read shows its effect; {@link #navigateTo} plans on the caller's thread first (under a
+ * millisecond on a lab-sized map) so that an unreachable goal is refused with its reason. A refused command throws
+ * {@link CommandRefused} and changes nothing. Reads never block on the bus or the network: they return the loop's
+ * last published state; only {@link #gains} and {@link #setGains} talk to the motor board (a few transactions).
  */
 public interface RobotMotion {
 
