@@ -229,8 +229,15 @@ final class ControlLoop {
         return null;
     }
 
-    /** Reads the inertial board or one sonar sensor when the rest of the period leaves the time for it. */
+    /**
+     * Reads the inertial board or one sonar sensor when the rest of the period leaves the time for it. Not while a
+     * joystick drives: the spare bus time is kept for writing its twists as they arrive (odometry alone estimates the
+     * pose meanwhile, and the sonar guards missions, not teleop).
+     */
     private void optionalReads(double t, long periodStart) {
+        if (mode == Mode.TELEOP) {
+            return;
+        }
         double left = (timing.periodNanos() - (System.nanoTime() - periodStart)) * 1e-9;
         // margin: wake-up jitter and the next period's first request must not collide
         if (left < boards.optionalReadWireTime() * 1.2 + 0.001) {
