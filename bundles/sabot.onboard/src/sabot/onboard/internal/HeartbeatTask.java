@@ -43,11 +43,7 @@ public final class HeartbeatTask implements OnboardTask {
     @Activate
     void activate(Config config) {
         this.config = config;
-        timer = Executors.newSingleThreadScheduledExecutor(r -> {
-            Thread t = new Thread(r, "sabot-heartbeat");
-            t.setDaemon(true);
-            return t;
-        });
+        timer = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-heartbeat"));
         timer.scheduleAtFixedRate(this::beat, 0, config.period(), TimeUnit.SECONDS);
         LOG.info("heartbeat task started: period {} s", config.period());
     }

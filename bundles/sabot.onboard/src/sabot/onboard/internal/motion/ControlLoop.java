@@ -158,7 +158,7 @@ final class ControlLoop {
         // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
         // that read's wire time to its latency
         boolean wroteTwist = mode == Mode.TELEOP && teleopSent != null && writeTwist(t);
-        readEncoders(t);
+        readEncoders();
         pose = localizer.pose(t);
         velocity = localizer.velocity();
         if (mode != Mode.FAULT) {
@@ -201,7 +201,7 @@ final class ControlLoop {
     }
 
     /** A failed read is not an error by itself: the localizer's odometry timeout and the bus's fault time judge. */
-    private void readEncoders(double t) {
+    private void readEncoders() {
         try {
             RobotBoards.WheelCounts c = boards.readEncoders();
             // stamped when the answer arrived, not when the period began: a retried read is tens of ms late, and
@@ -749,7 +749,7 @@ final class ControlLoop {
         boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
         return new MotionTask.Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
-                new Obstacles(now, obstacles), moving, mode == Mode.FAULT, timing.summary());
+                new Obstacles(now, obstacles), moving, timing.summary());
     }
 
     private static String f3(double v) {

@@ -62,12 +62,6 @@ final class ModbusBoards implements RobotBoards {
     }
 
     @Override
-    public boolean motorFault() throws IOException {
-        sabot.modbus.Wheels w = bus.sact().readWheels();
-        return w.left().faultLatched() || w.right().faultLatched();
-    }
-
-    @Override
     public void acknowledgeFaults() throws IOException {
         bus.sact().acknowledgeFaults();
     }

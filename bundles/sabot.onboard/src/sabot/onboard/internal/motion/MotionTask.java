@@ -45,6 +45,7 @@ import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.internal.NamedThreads;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;
@@ -134,7 +135,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     /** What other threads read: the loop's state at the end of its last period. Immutable. */
     record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
-            Trajectory trajectory, Obstacles obstacles, boolean moving, boolean faulted, LoopTiming.Summary timing) {
+            Trajectory trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing) {
     }
 
     @Activate
@@ -147,16 +148,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         boards.acknowledgeFaults();
         boards.brake(false);
         boards.writeWheelSpeeds(0, 0);
-        notifier = Executors.newSingleThreadExecutor(named("sabot-motion-events"));
-        plannerThread = Executors.newSingleThreadExecutor(named("sabot-planner"));
+        notifier = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-motion-events"));
+        plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
         loop = new ControlLoop(this, c, boards, robot, localizerTask, plannerTask, trackerTask);
         snapshot = loop.snapshot(Instant.now());
-        loopThread = Executors.newSingleThreadScheduledExecutor(r -> {
-            Thread t = new Thread(r, "sabot-control-loop");
-            t.setPriority(Thread.MAX_PRIORITY);
-            t.setDaemon(true);
-            return t;
-        });
+        loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
+                Thread.MAX_PRIORITY));
         long periodNanos = Math.round(1e9 / c.rate());
         loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
         LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}", c.rate(),
@@ -543,11 +540,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         return "mission " + s.mission().state().name().toLowerCase() + ", control loop " + s.timing();
     }
 
-    /** @return the loop's last published state */
-    Snapshot snapshot() {
-        return snapshot;
-    }
-
     private void requireBoardsAnswer() throws CommandRefused {
         String faulted = boards.faultedBoard();
         if (faulted != null) {
@@ -589,14 +581,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     static String fmt(double v) {
         return String.format(java.util.Locale.ROOT, "%.3f", v);
-    }
-
-    static java.util.concurrent.ThreadFactory named(String name) {
-        return r -> {
-            Thread t = new Thread(r, name);
-            t.setDaemon(true);
-            return t;
-        };
     }
 
     static PoseCovariance covariance(double[][] c) {

@@ -40,9 +40,6 @@ public interface RobotBoards {
     /** Brakes both motors (set-points zeroed) or releases the brake. */
     void brake(boolean on) throws IOException;
 
-    /** @return true when the motor board latched a fault (over-current, following error); one transaction */
-    boolean motorFault() throws IOException;
-
     /** Clears latched motor faults. */
     void acknowledgeFaults() throws IOException;
 

@@ -9,7 +9,6 @@ import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
-import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
@@ -41,6 +40,7 @@ import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
 import sabot.identity.InventorySource;
 import sabot.identity.QrInventory;
+import sabot.onboard.internal.NamedThreads;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;
@@ -75,9 +75,10 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final String version;
     private final XMPPTCPConnection connection;
     private final ControlMlManager controlMl;
-    private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(named(
+    private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
             "sabot-session-connect"));
-    private final ExecutorService notifier = Executors.newSingleThreadExecutor(named("sabot-session-events"));
+    private final ExecutorService notifier = Executors.newSingleThreadExecutor(
+            NamedThreads.daemon("sabot-session-events"));
     private final List<SessionListener> listeners = new CopyOnWriteArrayList<>();
     private final ServiceTracker<OnboardTask, OnboardTask> tasks;
 
@@ -494,13 +495,5 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         synchronized (lock) {
             return online ? "online as " + connection.getUser() : "offline (" + lastLoss + "), reconnecting";
         }
-    }
-
-    private static ThreadFactory named(String name) {
-        return r -> {
-            Thread t = new Thread(r, name);
-            t.setDaemon(true);
-            return t;
-        };
     }
 }
