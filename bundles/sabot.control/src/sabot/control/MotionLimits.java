@@ -39,11 +39,25 @@ public record MotionLimits(double maxLinearSpeed, double maxLinearAcceleration, 
      * @param fraction in (0, 1]
      */
     public MotionLimits withHeadroom(double fraction) {
-        if (!(fraction > 0 && fraction <= 1)) {
-            throw new IllegalArgumentException("headroom fraction must be in (0, 1], was " + fraction);
+        return withHeadroom(fraction, fraction);
+    }
+
+    /**
+     * A planning envelope with separate fractions for the top speeds (linear, angular) and for the accelerations
+     * (linear, lateral, angular). The feedback needs authority mostly in acceleration: a lag while cruising is made up
+     * when the reference slows down, but a lag while it accelerates at the bound is not.
+     *
+     * @param speedFraction        in (0, 1]
+     * @param accelerationFraction in (0, 1]
+     */
+    public MotionLimits withHeadroom(double speedFraction, double accelerationFraction) {
+        if (!(speedFraction > 0 && speedFraction <= 1) || !(accelerationFraction > 0 && accelerationFraction <= 1)) {
+            throw new IllegalArgumentException("headroom fractions must be in (0, 1], were " + speedFraction + " and "
+                    + accelerationFraction);
         }
-        return new MotionLimits(maxLinearSpeed * fraction, maxLinearAcceleration * fraction,
-                maxAngularSpeed * fraction, maxLateralAcceleration * fraction, maxWheelRimSpeed, trackWidth);
+        return new MotionLimits(maxLinearSpeed * speedFraction, maxLinearAcceleration * accelerationFraction,
+                maxAngularSpeed * speedFraction, maxLateralAcceleration * accelerationFraction, maxWheelRimSpeed,
+                trackWidth);
     }
 
     /**

@@ -18,6 +18,7 @@ import sabot.control.GoalChecker;
 import sabot.control.MotionLimits;
 import sabot.control.ProgressChecker;
 import sabot.control.TrackingController;
+import sabot.control.TurnInPlace;
 import sabot.control.VelocitySmoother;
 import sabot.control.WheelSpeeds;
 import sabot.control.trajectory.InvalidPathException;
@@ -50,8 +51,12 @@ final class ControlLoop {
     static final double ALIGN_THRESHOLD = 0.35;
     /** Heading error (rad) at which the turn in place ends. */
     static final double ALIGNED = 0.08;
-    /** Proportional gain of the turn in place, 1/s. */
-    static final double ALIGN_GAIN = 2.0;
+    /** Yaw rate (rad/s) below which a turn in place counts as ended (the tracker takes the rest). */
+    static final double ALIGNED_RATE = 0.5;
+    /** Fraction of the yaw rate and acceleration limits a turn in place uses (the rest absorbs a late period). */
+    static final double TURN_FRACTION = 0.8;
+    /** Gain of the turn's proportional zone near the target, 1/s (the braking curve above it). */
+    static final double TURN_GAIN = 5.0;
     /** Spacing of the waypoints the spline is fitted through, m (planner paths come cell by cell). */
     static final double WAYPOINT_SPACING = 0.3;
     /** Seconds between two attempts to plan around a blocked path. */
@@ -92,6 +97,7 @@ final class ControlLoop {
     private VelocitySmoother smoother;
     private TrackingController tracker;
     private TrackingController stabilizer;
+    private TurnInPlace turn;
     private GoalChecker goalChecker;
     private ProgressChecker progressChecker;
 
@@ -321,11 +327,11 @@ final class ControlLoop {
             case ALIGN -> {
                 double target = trajectory.startPose().theta();
                 double error = Pose2D.normalizeAngle(target - pose.theta());
-                if (Math.abs(error) < ALIGNED && Math.abs(velocity[1]) < 0.3) {
+                if (Math.abs(error) < ALIGNED && Math.abs(velocity[1]) < ALIGNED_RATE) {
                     startFollowing(t);
                     return follow(t);
                 }
-                return new Twist2D(0, MotionTask.clamp(ALIGN_GAIN * error, limits.maxAngularSpeed() * 0.8));
+                return new Twist2D(0, turn.rate(error));
             }
             case FOLLOW -> {
                 return follow(t);
@@ -404,7 +410,7 @@ final class ControlLoop {
         if (Math.abs(headingError) <= headingTolerance * SETTLE_HEADING_FRACTION) {
             return Twist2D.ZERO;
         }
-        return new Twist2D(0, MotionTask.clamp(ALIGN_GAIN * headingError, limits.maxAngularSpeed() * 0.8));
+        return new Twist2D(0, turn.rate(headingError));
     }
 
     /** The controllers run on the loop clock: a reference sample at trajectory time tau is re-stamped at t. */
@@ -475,7 +481,8 @@ final class ControlLoop {
             return new Plan(null, 0, null);
         }
         try {
-            MotionLimits planning = owner.currentLimits().withHeadroom(trackerTask.config().headroom());
+            MotionLimits planning = owner.currentLimits().withHeadroom(trackerTask.config().speedHeadroom(),
+                    trackerTask.config().accelerationHeadroom());
             SplineTrajectory t = SplineTrajectory.planCurvatureLimited(waypoints, planning.maxLinearSpeed(), planning);
             return new Plan(t, t.length(), null);
         } catch (InvalidPathException e) {
@@ -604,6 +611,8 @@ final class ControlLoop {
         smoother = new VelocitySmoother(l, 1.0);
         tracker = trackerTask.newTracker(l);
         stabilizer = trackerTask.newStabilizer(l);
+        turn = new TurnInPlace(l.maxAngularSpeed() * TURN_FRACTION, l.maxAngularAcceleration() * TURN_FRACTION,
+                TURN_GAIN);
         try {
             // the fastest wheel under these limits: full speed while turning at the full yaw rate
             double wheel = Math.min(l.maxWheelRimSpeed(), l.maxLinearSpeed() + l.maxAngularSpeed() * l.trackWidth() / 2);

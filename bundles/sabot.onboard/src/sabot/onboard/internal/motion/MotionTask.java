@@ -46,6 +46,7 @@ import sabot.model.map.OccupancyGrid;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.internal.NamedThreads;
+import sabot.onboard.internal.RealtimeScheduling;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;
@@ -90,6 +91,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
         /** @return default goal position tolerance, m (when a goal does not carry one) */
         double goalTolerance() default 0.1;
+
+        /**
+         * @return SCHED_FIFO priority of the control loop's thread, 1..99 (0: the ordinary policy); without the
+         *         privilege the loop runs at the ordinary policy and the log says why
+         */
+        int realtimePriority() default 0;
     }
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
@@ -155,9 +162,22 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
                 Thread.MAX_PRIORITY));
         long periodNanos = Math.round(1e9 / c.rate());
+        if (c.realtimePriority() > 0) {
+            loopThread.execute(() -> realtime(c.realtimePriority()));
+        }
         loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
         LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}", c.rate(),
                 plannerTask.planner().algorithm(), trackerTask.config().controller());
+    }
+
+    private static void realtime(int priority) {
+        String refused = RealtimeScheduling.applyToCurrentThread(priority);
+        if (refused == null) {
+            LOG.info("control loop thread at real-time priority {} (SCHED_FIFO)", priority);
+        } else {
+            LOG.warn("control loop thread left at the ordinary scheduling policy (motion.realtimePriority = {}): {}",
+                    priority, refused);
+        }
     }
 
     @Deactivate

@@ -43,8 +43,17 @@ public final class TrackerTask implements OnboardTask {
          */
         double stabilizerRate() default 0.5;
 
-        /** @return fraction of the limits the trajectory is planned with (the rest is the feedback's authority) */
-        double headroom() default 0.8;
+        /**
+         * @return fraction of the top speeds (linear, angular) a trajectory is planned with; a lag while cruising is
+         *         made up when the reference slows down, so little is kept back
+         */
+        double speedHeadroom() default 0.95;
+
+        /**
+         * @return fraction of the accelerations (linear, lateral, angular) a trajectory is planned with; the rest is
+         *         the feedback's authority while the reference accelerates
+         */
+        double accelerationHeadroom() default 0.8;
 
         /** @return the robot must move this far (m) within progressTime, or the mission replans, then fails */
         double progressRadius() default 0.1;

@@ -1,0 +1,38 @@
+package sabot.onboard.internal;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+
+import java.util.concurrent.atomic.AtomicReference;
+
+import org.junit.jupiter.api.Test;
+
+/** The control loop's real-time policy: applied to the calling thread only, or refused with the reason. */
+class RealtimeSchedulingTest {
+
+    @Test
+    void threadIsPutUnderFifoOrTheReasonIsGiven() throws InterruptedException {
+        AtomicReference<String> refused = new AtomicReference<>();
+        AtomicReference<String> policy = new AtomicReference<>();
+        Thread t = new Thread(() -> {
+            refused.set(RealtimeScheduling.applyToCurrentThread(10));
+            policy.set(RealtimeScheduling.currentPolicy());
+        }, "rt-test");
+        t.start();
+        t.join();
+        if (refused.get() == null) {
+            assertEquals("1", policy.get(), "SCHED_FIFO is policy 1");
+        } else {
+            assertNotNull(policy.get());
+            assertEquals("0", policy.get(), "refused (" + refused.get() + "): the ordinary policy stays");
+        }
+        assertEquals("0", RealtimeScheduling.currentPolicy(), "other threads keep the ordinary policy");
+    }
+
+    @Test
+    void priorityOutOfRangeIsRefused() {
+        assertThrows(IllegalArgumentException.class, () -> RealtimeScheduling.applyToCurrentThread(0));
+        assertThrows(IllegalArgumentException.class, () -> RealtimeScheduling.applyToCurrentThread(100));
+    }
+}
