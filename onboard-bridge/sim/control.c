@@ -158,6 +158,23 @@ static bool board_command(const control_target_t *t, char **w, int n, char *out,
     return answer(out, len, true, "robot %d %s %s", r->cfg.id, names[b], off ? "off" : "on");
 }
 
+static bool wheel_command(const control_target_t *t, char **w, int n, char *out, size_t len)
+{
+    if (n != 4)
+        return answer(out, len, false, "wheel wants ROBOT left|right jam|free");
+    robot_t *r = robot_arg(t, w[1], out, len);
+    if (!r)
+        return false;
+    bool left = !strcmp(w[2], "left");
+    if (!left && strcmp(w[2], "right"))
+        return answer(out, len, false, "no wheel '%.40s' (left or right)", w[2]);
+    bool jam = !strcmp(w[3], "jam");
+    if (!jam && strcmp(w[3], "free"))
+        return answer(out, len, false, "wheel state must be jam or free, was '%.40s'", w[3]);
+    r->body.wheel[left ? 0 : 1].jammed = jam;
+    return answer(out, len, true, "robot %d %s wheel %s", r->cfg.id, w[2], jam ? "jammed" : "free");
+}
+
 static bool truth_command(const control_target_t *t, char **w, int n, char *out, size_t len)
 {
     if (n != 2)
@@ -207,11 +224,13 @@ bool control_execute(const control_target_t *t, const char *line, char *out, siz
         return scene_command(t, SCENE_PERSON, w, n, out, out_len);
     if (!strcmp(w[0], "board"))
         return board_command(t, w, n, out, out_len);
+    if (!strcmp(w[0], "wheel"))
+        return wheel_command(t, w, n, out, out_len);
     if (!strcmp(w[0], "truth"))
         return truth_command(t, w, n, out, out_len);
     if (!strcmp(w[0], "list"))
         return list_command(t, n, out, out_len);
-    return answer(out, out_len, false, "unknown command '%.40s' (obstacle, person, board, truth, list)", w[0]);
+    return answer(out, out_len, false, "unknown command '%.40s' (obstacle, person, board, wheel, truth, list)", w[0]);
 }
 
 int control_open(control_server_t *s, int port)

@@ -69,6 +69,8 @@ void drivetrain_step(drivetrain_t *d, body_state_t *s, const bridge_input_t in[2
         force[w] = clamp(p->slip_damping * ws->slip, -p->tire_mu * normal, p->tire_mu * normal);
         roll[w] = rolling * tanh(v_contact / 0.005);
         ws->omega += dt * (tau_w - p->wheel_radius * force[w]) / d->wheel_inertia_eff;
+        if (ws->jammed)
+            ws->omega = 0.0;  /* the jam takes any torque: the motor stalls, the tyre drags on the floor */
         ws->motor_angle += dt * ws->omega * p->gear_ratio;
     }
 

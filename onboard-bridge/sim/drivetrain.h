@@ -54,6 +54,7 @@ typedef struct {
     double motor_angle;      /* rad of the motor shaft since start */
     double torque;           /* N m at the motor shaft (for the record) */
     double slip;             /* m/s, wheel surface minus ground */
+    bool jammed;             /* held still by something caught in it (a staged fault: the motor stalls) */
 } wheel_state_t;
 
 typedef struct {

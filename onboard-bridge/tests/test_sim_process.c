@@ -372,6 +372,43 @@ static void aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot(void)
     CHECK(sim_stop(&s) == 0, "exit status");
 }
 
+static void aJammedWheelLatchesAFollowingErrorAndTheBoardRefusesToDrive(void)
+{
+    sim_t s;
+    start_lab_robot(&s, NULL);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    uint16_t speed = (uint16_t)lround(0.2 * COUNTS_PER_M * 50e-6 * 256.0), both[2] = { speed, speed };
+    truth_t t = { 0 };
+    double deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && truth(ctl, 1, &t) && t.v < 0.15)
+        tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2);
+    CHECK(t.v >= 0.15, "robot did not start: v %.3f", t.v);
+    const char *a = command(ctl, "wheel 1 left jam");
+    CHECK(!strcmp(a, "ok robot 1 left wheel jammed"), "%s", a);
+    /* The commanded position runs away from the stalled motor's: the firmware's following-error check latches. */
+    long status = 0;
+    deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && !((status = tcp_read(bus, MB_SACT_ADDRESS, MB_SACT_FILE_MOTOR_LEFT,
+                                                       MB_SACT_MOTOR_STATUS)) & MB_SACT_MOTOR_STATUS_FAULT))
+        continue;
+    CHECK(status > 0 && (status & MB_SACT_MOTOR_STATUS_FAULT) && (status & MB_SACT_MOTOR_STATUS_FOLLOWING_ERROR),
+          "left status 0x%lx, expected a latched following error", status);
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) ==
+              MB_SERVER_DEVICE_FAILURE, "a drive command was accepted with a latched fault");
+    uint16_t stop[2] = { 0, 0 };
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, stop, 2) == 0,
+          "a stop was refused");
+    a = command(ctl, "wheel 1 left free");
+    CHECK(!strcmp(a, "ok robot 1 left wheel free"), "%s", a);
+    uint16_t ack = 0;
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_MOTOR_LEFT, MB_SACT_MOTOR_STATUS, &ack, 1) == 0, "acknowledge");
+    CHECK(tcp_write(bus, MB_SACT_ADDRESS, MB_SACT_FILE_DRIVE, MB_SACT_DRIVE_VELOCITY_SETPOINT_LEFT, both, 2) == 0,
+          "drive refused after the fault was acknowledged");
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
 static void drivingIntoAnObstacleCountsContacts(void)
 {
     sim_t s;
@@ -473,7 +510,7 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         const char *command, *answer;
     } bad[] = {
         { "", "error empty command" },
-        { "fly 1", "error unknown command 'fly' (obstacle, person, board, truth, list)" },
+        { "fly 1", "error unknown command 'fly' (obstacle, person, board, wheel, truth, list)" },
         { "obstacle", "error obstacle wants add, move or remove" },
         { "obstacle add box 5 5 0.3", "error obstacle 'box' exists" },
         { "obstacle add bob 5 5 0.3", "error person 'bob' exists" },
@@ -500,6 +537,10 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         { "board 1 motor off", "error no board 'motor' (sact, ins or sonar)" },
         { "board 1 sact dim", "error board state must be off or on, was 'dim'" },
         { "board 1 sact", "error board wants ROBOT sact|ins|sonar off|on" },
+        { "wheel 1 left", "error wheel wants ROBOT left|right jam|free" },
+        { "wheel 1 middle jam", "error no wheel 'middle' (left or right)" },
+        { "wheel 1 left stuck", "error wheel state must be jam or free, was 'stuck'" },
+        { "wheel 3 left jam", "error no robot '3' (robots are 1..1)" },
         { "truth", "error truth wants ROBOT" },
         { "truth one", "error no robot 'one' (robots are 1..1)" },
         { "list all", "error list takes no arguments" },
@@ -569,6 +610,7 @@ int main(int argc, char **argv)
     RUN(theControlPortIsAnnouncedOnlyWhenAsked);
     RUN(anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved);
     RUN(aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot);
+    RUN(aJammedWheelLatchesAFollowingErrorAndTheBoardRefusesToDrive);
     RUN(drivingIntoAnObstacleCountsContacts);
     RUN(aPersonWalkingIntoTheRobotIsAContactAndTruthAgreesWithTheCsv);
     RUN(everyBadCommandAnswersAnErrorAndChangesNothing);
