@@ -19,6 +19,12 @@ public class BoardException extends IOException {
         FAULTED
     }
 
+    /**
+     * Modbus exception 4: the board could not do what was asked. The SACT board answers it to a non-zero wheel
+     * set-point while a motor fault is latched (docs/SACT-MODBUS.md).
+     */
+    public static final int SERVER_DEVICE_FAILURE = 4;
+
     private final String board;
     private final Kind kind;
     private final int exceptionCode;
@@ -52,5 +58,10 @@ public class BoardException extends IOException {
      */
     public int exceptionCode() {
         return exceptionCode;
+    }
+
+    /** @return whether the board answered {@link #SERVER_DEVICE_FAILURE} */
+    public boolean isServerDeviceFailure() {
+        return kind == Kind.EXCEPTION && exceptionCode == SERVER_DEVICE_FAILURE;
     }
 }

@@ -84,6 +84,34 @@ class SafetyTest extends RigTest {
     }
 
     @Test
+    void aJammedWheelIsAMotorFaultThatStopsTheRobotUntilANewCommand(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            PresenceWatch presence = PresenceWatch.subscribe(rig.operatorConnection, rig.robot.asBareJid());
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
+            rig.sim.command("wheel 1 left jam");
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
+            // the firmware latches a following error within a fraction of a second; the loop sees it at its next
+            // write (a refused set-point) and brakes the other motor too
+            assertTrue(stopped.t() - moving.t() < 1.5, "stopped " + (stopped.t() - moving.t()) + " s after the jam");
+            rig.onboard.await(l -> l.contains("fault: left motor fault: following error"), "reporting the motor fault");
+            MissionStatus failed = rig.get(Resources.MISSION);
+            assertEquals(MissionState.FAILED, failed.state(), failed.toString());
+            assertTrue(failed.detail().contains("left motor fault"), failed.toString());
+            presence.await(p -> p.getMode() == Presence.Mode.away
+                    && String.valueOf(p.getStatus()).contains("left motor fault"), "away, naming the motor");
+
+            rig.sim.command("wheel 1 left free");
+            SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
+            assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved again without a command: " + later);
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            awaitSpeed(rig.sim, 0.2, 20); // a new goal acknowledges the fault and drives again
+        }
+    }
+
+    @Test
     void goalIsReachedOnANoisyBus(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[] { "--fault-crc", "0.02", "--fault-drop",
                 "0.02" }, "")) {

@@ -190,6 +190,8 @@ final class ControlLoop {
             WheelSpeeds w = drive.toWheelSpeeds(applied);
             try {
                 boards.writeWheelSpeeds(w.left(), w.right());
+            } catch (RobotBoards.MotorFaultException e) {
+                fault(e.getMessage());
             } catch (IOException e) {
                 LOG.warn("wheel speed write failed: {}", e.getMessage());
             }
@@ -595,6 +597,10 @@ final class ControlLoop {
             teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
             teleopSent = null;
             return true;
+        } catch (RobotBoards.MotorFaultException e) {
+            teleopSent = null;
+            fault(e.getMessage());
+            return false;
         } catch (IOException e) {
             LOG.debug("joystick write failed: {}", e.getMessage());
             return false;

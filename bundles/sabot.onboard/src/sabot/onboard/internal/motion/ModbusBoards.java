@@ -8,11 +8,14 @@ import java.util.List;
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
 import sabot.modbus.Board;
+import sabot.modbus.BoardException;
 import sabot.modbus.InsMotion;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
 import sabot.modbus.SonarReading;
+import sabot.modbus.WheelState;
+import sabot.modbus.Wheels;
 
 /** {@link RobotBoards} over the three board clients of one Modbus bus. */
 final class ModbusBoards implements RobotBoards {
@@ -36,7 +39,44 @@ final class ModbusBoards implements RobotBoards {
 
     @Override
     public void writeWheelSpeeds(double left, double right) throws IOException {
-        bus.sact().setWheelSpeeds(left, right);
+        try {
+            bus.sact().setWheelSpeeds(left, right);
+        } catch (BoardException e) {
+            if (e.isServerDeviceFailure()) {
+                throw new MotorFaultException(latchedFaults(), e);
+            }
+            throw e;
+        }
+    }
+
+    /** @return which motors have a latched fault and why, e.g. "left motor: following error" */
+    private String latchedFaults() {
+        Wheels w;
+        try {
+            w = bus.sact().readWheels();
+        } catch (IOException e) {
+            return "motor fault latched (the motor board refuses set-points; its status could not be read: "
+                    + e.getMessage() + ")";
+        }
+        List<String> faults = new ArrayList<>();
+        describe("left", w.left(), faults);
+        describe("right", w.right(), faults);
+        return faults.isEmpty() ? "motor board refuses set-points (server device failure) without a latched fault"
+                : String.join(", ", faults);
+    }
+
+    private static void describe(String motor, WheelState s, List<String> out) {
+        if (!s.faultLatched()) {
+            return;
+        }
+        List<String> causes = new ArrayList<>();
+        if (s.followingError()) {
+            causes.add("following error (the wheel does not turn as commanded: jammed or stalled?)");
+        }
+        if (s.overCurrent()) {
+            causes.add("over-current");
+        }
+        out.add(motor + " motor fault: " + (causes.isEmpty() ? "latched" : String.join(" and ", causes)));
     }
 
     @Override

@@ -22,10 +22,24 @@ public interface RobotBoards {
     record ImuSample(double yawRate, double forwardAcceleration) {
     }
 
+    /** The motor board refuses to drive: a motor fault is latched (the board brakes that motor by itself). */
+    final class MotorFaultException extends IOException {
+        private static final long serialVersionUID = 1L;
+
+        /** @param what which motor and why, for a person (e.g. "left motor: following error") */
+        MotorFaultException(String what, Throwable cause) {
+            super(what, cause);
+        }
+    }
+
     /** @return both encoders, one transaction */
     WheelCounts readEncoders() throws IOException;
 
-    /** Writes both wheel speed set-points (rad/s at the wheel, positive forward) in one transaction. */
+    /**
+     * Writes both wheel speed set-points (rad/s at the wheel, positive forward) in one transaction.
+     *
+     * @throws MotorFaultException the board refused because a motor fault is latched (one more transaction read why)
+     */
     void writeWheelSpeeds(double left, double right) throws IOException;
 
     /** @return the inertial board's latest sample, one transaction */
