@@ -30,6 +30,7 @@ static const mb_board_desc_t *board_desc(const char *name)
     if (!strcmp(name, "sact")) return &mb_sact_board;
     if (!strcmp(name, "ins")) return &mb_ins_board;
     if (!strcmp(name, "sonar")) return &mb_sonar_board;
+    if (!strcmp(name, "landmark")) return &mb_landmark_board;
     return NULL;
 }
 
@@ -144,8 +145,8 @@ static void everyRecordOfTheMapIsServedAsDescribed(void)
     json_records = 0;
     each_record(check_descriptor);
     int c_records = 0;
-    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board };
-    for (int b = 0; b < 3; b++)
+    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board, &mb_landmark_board };
+    for (int b = 0; b < 4; b++)
         for (int f = 0; f < all[b]->n_files; f++)
             c_records += all[b]->files[f].n_records;
     CHECK(json_records == c_records, "JSON has %d records, firmware %d", json_records, c_records);
