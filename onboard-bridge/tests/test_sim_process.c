@@ -325,19 +325,29 @@ static void anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved(void)
     CHECK(sim_stop(&s) == 0, "exit status");
 }
 
+/* `board 1 NAME off` silences that board and no other; `on` brings it back. */
+static void switch_board_off_and_on(int ctl, int bus, const char *name, uint8_t address, uint8_t other)
+{
+    char expected[64];
+    CHECK(!silent(bus, address), "%s silent before being switched off", name);
+    const char *a = command(ctl, "board 1 %s off", name);
+    snprintf(expected, sizeof expected, "ok robot 1 %s off", name);
+    CHECK(!strcmp(a, expected), "%s, expected %s", a, expected);
+    CHECK(silent(bus, address), "%s still answers", name);
+    CHECK(!silent(bus, other), "board %u went silent with the %s", other, name);
+    a = command(ctl, "board 1 %s on", name);
+    snprintf(expected, sizeof expected, "ok robot 1 %s on", name);
+    CHECK(!strcmp(a, expected), "%s, expected %s", a, expected);
+    CHECK(!silent(bus, address), "%s silent after being switched on", name);
+}
+
 static void aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot(void)
 {
     sim_t s;
     start_lab_robot(&s, NULL);
     int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
-    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent before being switched off");
-    const char *a = command(ctl, "board 1 sonar off");
-    CHECK(!strcmp(a, "ok robot 1 sonar off"), "%s", a);
-    CHECK(silent(bus, MB_SONAR_ADDRESS), "sonar still answers");
-    CHECK(!silent(bus, MB_INS_ADDRESS), "the inertial board went silent with the sonar");
-    a = command(ctl, "board 1 sonar on");
-    CHECK(!strcmp(a, "ok robot 1 sonar on"), "%s", a);
-    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent after being switched on");
+    switch_board_off_and_on(ctl, bus, "sonar", MB_SONAR_ADDRESS, MB_INS_ADDRESS);
+    const char *a;
 
     /* Deadman 200 ms, then 0.2 m/s forward: in 8.8 counts per Ts. */
     uint16_t timeout = 200;
@@ -592,13 +602,7 @@ static void theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff(void)
           "bearing %.4f rad, truth %.4f", (int16_t)v[3] * 1e-4, bearing);
     CHECK(v[4] <= 110, "age %ld ms at a 100 ms period", v[4]);
 
-    const char *a = command(ctl, "board 1 landmark off");
-    CHECK(!strcmp(a, "ok robot 1 landmark off"), "%s", a);
-    CHECK(silent(bus, MB_LANDMARK_ADDRESS), "landmark board still answers");
-    CHECK(!silent(bus, MB_SONAR_ADDRESS), "the sonar went silent with the landmark board");
-    a = command(ctl, "board 1 landmark on");
-    CHECK(!strcmp(a, "ok robot 1 landmark on"), "%s", a);
-    CHECK(!silent(bus, MB_LANDMARK_ADDRESS), "landmark board silent after being switched on");
+    switch_board_off_and_on(ctl, bus, "landmark", MB_LANDMARK_ADDRESS, MB_SONAR_ADDRESS);
     close(ctl);
     close(bus);
     CHECK(sim_stop(&s) == 0, "exit status");

@@ -60,23 +60,14 @@ final class LandmarkDriver extends BoardDriver implements LandmarkClient {
         }
         Field radius = f(CONFIG, "view_radius");
         Field period = f(CONFIG, "period");
-        long r = raw(radius, "view radius", c.viewRadius());
-        long p = raw(period, "period", c.period().toNanos() / 1e9);
+        long r = radius.raw("landmark view radius", c.viewRadius());
+        long p = period.raw("landmark period", c.period().toNanos() / 1e9);
         if (period.record() == radius.record() + 1) {
             bus.write(counters, new Bus.Write(radius.file(), radius.record(), new short[] { (short) r, (short) p }));
         } else {
             bus.write(counters, new Bus.Write(radius.file(), radius.record(), radius.encode(r)),
                     new Bus.Write(period.file(), period.record(), period.encode(p)));
         }
-    }
-
-    private static long raw(Field f, String what, double si) {
-        if (!Double.isFinite(si)) {
-            throw new IllegalArgumentException("landmark " + what + " is " + si + " " + f.siUnit());
-        }
-        long raw = Math.round(si / f.scale());
-        f.checkBounds("landmark " + what + " " + si + " " + f.siUnit(), raw);
-        return raw;
     }
 
     @Override

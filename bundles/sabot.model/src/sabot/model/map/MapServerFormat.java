@@ -148,15 +148,7 @@ public final class MapServerFormat {
      * @throws MapFormatException naming the file and the missing or malformed key
      */
     public static MapMetadata readMetadata(Path yamlFile) throws IOException {
-        String text;
-        try {
-            text = Files.readString(yamlFile, StandardCharsets.UTF_8);
-        } catch (NoSuchFileException e) {
-            throw new MapFormatException(yamlFile, "map file does not exist");
-        } catch (java.nio.charset.MalformedInputException e) {
-            throw new MapFormatException(yamlFile, "not a UTF-8 text file");
-        }
-        Map<String, String> keys = parseFlatYaml(yamlFile, text);
+        Map<String, String> keys = parseFlatYaml(yamlFile, readText(yamlFile, "map file"));
         for (String key : REQUIRED_KEYS) {
             if (!keys.containsKey(key)) {
                 throw new MapFormatException(yamlFile, "missing key '" + key + "'");
@@ -190,15 +182,7 @@ public final class MapServerFormat {
      *                            landmarks file missing or malformed
      */
     public static List<MapLandmark> readLandmarks(Path yamlFile) throws IOException {
-        String text;
-        try {
-            text = Files.readString(yamlFile, StandardCharsets.UTF_8);
-        } catch (NoSuchFileException e) {
-            throw new MapFormatException(yamlFile, "map file does not exist");
-        } catch (java.nio.charset.MalformedInputException e) {
-            throw new MapFormatException(yamlFile, "not a UTF-8 text file");
-        }
-        String name = parseFlatYaml(yamlFile, text).get(LANDMARKS_KEY);
+        String name = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(LANDMARKS_KEY);
         if (name == null) {
             return List.of();
         }
@@ -218,19 +202,12 @@ public final class MapServerFormat {
      *                            integer in range, a coordinate that is not a decimal number, an id given twice
      */
     public static List<MapLandmark> readLandmarkFile(Path file) throws IOException {
-        List<String> lines;
-        try {
-            lines = Files.readAllLines(file, StandardCharsets.UTF_8);
-        } catch (NoSuchFileException e) {
-            throw new MapFormatException(file, "landmarks file does not exist");
-        } catch (java.nio.charset.MalformedInputException e) {
-            throw new MapFormatException(file, "not a UTF-8 text file");
-        }
+        String[] lines = readText(file, "landmarks file").split("\r?\n|\r", -1);
         List<MapLandmark> landmarks = new ArrayList<>();
         Map<Integer, Integer> lineOfId = new HashMap<>();
-        for (int i = 0; i < lines.size(); i++) {
+        for (int i = 0; i < lines.length; i++) {
             int lineNo = i + 1;
-            String line = lines.get(i);
+            String line = lines[i];
             int hash = line.indexOf('#');
             String content = (hash >= 0 ? line.substring(0, hash) : line).strip();
             if (content.isEmpty()) {
@@ -261,6 +238,17 @@ public final class MapServerFormat {
             landmarks.add(new MapLandmark(id, x, y));
         }
         return List.copyOf(landmarks);
+    }
+
+    /** @return the whole of a UTF-8 text file; {@code what} names it when it does not exist */
+    private static String readText(Path file, String what) throws IOException {
+        try {
+            return Files.readString(file, StandardCharsets.UTF_8);
+        } catch (NoSuchFileException e) {
+            throw new MapFormatException(file, what + " does not exist");
+        } catch (java.nio.charset.MalformedInputException e) {
+            throw new MapFormatException(file, "not a UTF-8 text file");
+        }
     }
 
     private static double coordinate(Path file, int line, String name, String text) throws MapFormatException {
