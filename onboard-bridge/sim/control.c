@@ -140,9 +140,9 @@ static robot_t *robot_arg(const control_target_t *t, const char *word, char *out
 
 static bool board_command(const control_target_t *t, char **w, int n, char *out, size_t len)
 {
-    static const char *const names[BOARD_COUNT] = { "sact", "ins", "sonar" };
+    static const char *const names[BOARD_COUNT] = { "sact", "ins", "sonar", "landmark" };
     if (n != 4)
-        return answer(out, len, false, "board wants ROBOT sact|ins|sonar off|on");
+        return answer(out, len, false, "board wants ROBOT sact|ins|sonar|landmark off|on");
     robot_t *r = robot_arg(t, w[1], out, len);
     if (!r)
         return false;
@@ -150,7 +150,7 @@ static bool board_command(const control_target_t *t, char **w, int n, char *out,
     while (b < BOARD_COUNT && strcmp(w[2], names[b]))
         b++;
     if (b == BOARD_COUNT)
-        return answer(out, len, false, "no board '%s' (sact, ins or sonar)", w[2]);
+        return answer(out, len, false, "no board '%s' (sact, ins, sonar or landmark)", w[2]);
     bool off = !strcmp(w[3], "off");
     if (!off && strcmp(w[3], "on"))
         return answer(out, len, false, "board state must be off or on, was '%s'", w[3]);

@@ -126,6 +126,9 @@ void robot_init(robot_t *r, const robot_config_t *cfg, const arena_t *arena)
     sonar_model_t sonar_model;
     sonar_model_default(&sonar_model);
     sonar_init(&r->sonar, &sonar_model, cfg->seed * 1000003u + 4u, cfg->baud);
+    landmark_model_t landmark_model;
+    landmark_model_default(&landmark_model);
+    landmark_init(&r->landmark, &landmark_model, cfg->seed * 1000003u + 5u, cfg->baud);
 }
 
 static uint16_t adc_sample(robot_t *r, double amps)
@@ -149,6 +152,8 @@ void robot_step(robot_t *r)
             mb_slave_on_byte(&r->ins.modbus, byte, t);
         if (!r->link_cut[BOARD_SONAR])
             mb_slave_on_byte(&r->sonar.modbus, byte, t);
+        if (!r->link_cut[BOARD_LANDMARK])
+            mb_slave_on_byte(&r->landmark.modbus, byte, t);
     }
 
     /* Sample the hardware, run the control interrupt, apply its outputs. */
@@ -173,12 +178,16 @@ void robot_step(robot_t *r)
 
     ins_update(&r->ins, &r->body, r->now_us);
     sonar_update(&r->sonar, &r->body, r->now_us, arena_raycast, r);
+    const world_t *w = r->arena->world;
+    landmark_update(&r->landmark, &r->body, r->now_us, w ? w->landmarks : NULL, w ? w->n_landmarks : 0);
 
-    /* Main loops of the three boards. */
+    /* Main loops of the boards. */
     r->hal.time_us = (uint32_t)r->now_us;
     sact_poll(&r->sact);
     queue_answer(r, BOARD_INS, r->ins.modbus.tx, mb_slave_poll(&r->ins.modbus, (uint32_t)r->now_us));
     queue_answer(r, BOARD_SONAR, r->sonar.modbus.tx, mb_slave_poll(&r->sonar.modbus, (uint32_t)r->now_us));
+    queue_answer(r, BOARD_LANDMARK, r->landmark.modbus.tx,
+                 mb_slave_poll(&r->landmark.modbus, (uint32_t)r->now_us));
 }
 
 size_t robot_bus_write(robot_t *r, int port, const uint8_t *bytes, size_t len)

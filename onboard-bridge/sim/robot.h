@@ -1,6 +1,7 @@
 /*
  * One simulated SabotOne: the SACT firmware core on the host HAL, the drivetrain
- * physics, the inertial and sonar boards, and the RS-485 bus that joins them.
+ * physics, the inertial, sonar and ceiling-landmark boards, and the RS-485 bus that
+ * joins them.
  *
  * The bus is a multi-drop line: every byte a master sends reaches every board's
  * UART, spaced by one character time (11 bits at the configured baud), and the
@@ -17,6 +18,7 @@
 #include "drivetrain.h"
 #include "hal_host.h"
 #include "ins_board.h"
+#include "landmark_board.h"
 #include "rng.h"
 #include "sact.h"
 #include "scene.h"
@@ -60,8 +62,8 @@ typedef struct {
     const scene_t *scene;    /* may be NULL: no obstacles or people beyond the map */
 } arena_t;
 
-/* The three boards on a robot's bus. */
-typedef enum { BOARD_SACT, BOARD_INS, BOARD_SONAR, BOARD_COUNT } robot_board_t;
+/* The boards on a robot's bus. */
+typedef enum { BOARD_SACT, BOARD_INS, BOARD_SONAR, BOARD_LANDMARK, BOARD_COUNT } robot_board_t;
 
 struct robot {
     robot_config_t cfg;
@@ -71,6 +73,7 @@ struct robot {
     sact_board_t sact;
     ins_board_t ins;
     sonar_board_t sonar;
+    landmark_board_t landmark;   /* sees the world's ceiling markers (none without a world) */
     const arena_t *arena;
     sim_rng_t noise_rng, fault_rng;
     uint64_t now_us;

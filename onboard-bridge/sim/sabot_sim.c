@@ -509,12 +509,13 @@ int main(int argc, char **argv)
     printf("{\"robots\": [");
     for (int i = 0; i < o.robots; i++) {
         printf("%s{\"id\": %d, \"pty\": \"%s\", \"link\": \"%s\", \"tcp\": %d, "
-               "\"slaves\": {\"sact\": %d, \"ins\": %d, \"sonar\": %d}}",
+               "\"slaves\": {\"sact\": %d, \"ins\": %d, \"sonar\": %d, \"landmark\": %d}}",
                i ? ", " : "", i + 1, tr[i].pty_path, tr[i].link_path, o.tcp_port >= 0 ? tr[i].tcp_port : -1,
-               MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS);
+               MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS, MB_LANDMARK_ADDRESS);
     }
-    printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d",
-           (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD);
+    printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d, "
+           "\"landmarks\": %d",
+           (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD, world.n_landmarks);
     if (control.listen_fd >= 0)
         printf(", \"control\": %d", control.port);
     printf("}\n");

@@ -151,6 +151,112 @@ static void build_clearance(world_t *w)
     free(ny);
 }
 
+/* A file named in the YAML: relative to the YAML's folder unless absolute, as map_server resolves `image`. */
+static void beside_yaml(char *out, size_t len, const char *yaml_path, const char *name)
+{
+    if (name[0] == '/') {
+        snprintf(out, len, "%s", name);
+    } else {
+        const char *slash = strrchr(yaml_path, '/');
+        int dir_len = slash ? (int)(slash - yaml_path + 1) : 0;
+        snprintf(out, len, "%.*s%s", dir_len, yaml_path, name);
+    }
+}
+
+/* The whole of `text` as a finite decimal number (no hex, inf or nan, which strtod would take). */
+static bool parse_number(const char *text, double *out)
+{
+    if (strspn(text, "0123456789+-.eE") != strlen(text))
+        return false;
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end == text || *end || errno || !isfinite(v))
+        return false;
+    *out = v;
+    return true;
+}
+
+int world_load_landmarks(world_t *w, const char *path, char *err, int err_len)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        snprintf(err, (size_t)err_len, "landmarks file %s: %s", path, strerror(errno));
+        return -1;
+    }
+    world_landmark_t *marks = malloc(sizeof *marks * WORLD_MAX_LANDMARKS);
+    int first_line[WORLD_MAX_LANDMARKS];
+    int n = 0, line_no = 0, rc = -1;
+    char line[512];
+    if (!marks) {
+        snprintf(err, (size_t)err_len, "out of memory");
+        goto out;
+    }
+    while (fgets(line, sizeof line, f)) {
+        line_no++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            snprintf(err, (size_t)err_len, "%s:%d: line longer than %d characters", path, line_no,
+                     (int)sizeof line - 2);
+            goto out;
+        }
+        char *hash = strchr(line, '#');
+        if (hash)
+            *hash = '\0';
+        char *word[3];
+        int words = 0;
+        for (char *tok = strtok(line, " \t\r\n"); tok; tok = strtok(NULL, " \t\r\n"), words++)
+            if (words < 3)
+                word[words] = tok;
+        if (words == 0)
+            continue;
+        if (words != 3) {
+            snprintf(err, (size_t)err_len, "%s:%d: expected 'id x y', got %d field%s", path, line_no, words,
+                     words == 1 ? "" : "s");
+            goto out;
+        }
+        char *end;
+        errno = 0;
+        long id = strtol(word[0], &end, 10);
+        if (end == word[0] || *end || errno || id < 1 || id > 65535) {
+            snprintf(err, (size_t)err_len, "%s:%d: id '%.32s' is not an integer in 1..65535", path, line_no, word[0]);
+            goto out;
+        }
+        double x, y;
+        bool x_ok = parse_number(word[1], &x), y_ok = x_ok && parse_number(word[2], &y);
+        if (!y_ok) {
+            snprintf(err, (size_t)err_len, "%s:%d: %s '%.32s' is not a number (metres)", path, line_no,
+                     x_ok ? "y" : "x", x_ok ? word[2] : word[1]);
+            goto out;
+        }
+        for (int k = 0; k < n; k++) {
+            if (marks[k].id == id) {
+                snprintf(err, (size_t)err_len, "%s:%d: landmark id %ld given twice (first on line %d)", path, line_no,
+                         id, first_line[k]);
+                goto out;
+            }
+        }
+        if (n == WORLD_MAX_LANDMARKS) {
+            snprintf(err, (size_t)err_len, "%s:%d: more than %d landmarks", path, line_no, WORLD_MAX_LANDMARKS);
+            goto out;
+        }
+        first_line[n] = line_no;
+        marks[n++] = (world_landmark_t){ (uint16_t)id, x, y };
+    }
+    if (ferror(f)) {
+        snprintf(err, (size_t)err_len, "landmarks file %s: read error", path);
+        goto out;
+    }
+    free(w->landmarks);
+    w->landmarks = marks;
+    w->n_landmarks = n;
+    marks = NULL;
+    rc = 0;
+out:
+    free(marks);
+    fclose(f);
+    return rc;
+}
+
 int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
 {
     memset(w, 0, sizeof *w);
@@ -159,7 +265,7 @@ int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
         snprintf(err, (size_t)err_len, "map %s: %s", yaml_path, strerror(errno));
         return -1;
     }
-    char line[1024], image[900] = "";
+    char line[1024], image[900] = "", landmarks[900] = "";
     double resolution = 0, ox = 0, oy = 0, occ_thresh = 0.65;
     int negate = 0;
     while (fgets(line, sizeof line, f)) {
@@ -187,6 +293,13 @@ int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
             negate = atoi(val) != 0 || !strcmp(val, "true");
         } else if (!strcmp(key, "occupied_thresh")) {
             occ_thresh = atof(val);
+        } else if (!strcmp(key, "sabot_landmarks")) {
+            if (!val[0]) {
+                snprintf(err, (size_t)err_len, "%s: sabot_landmarks wants a file name", yaml_path);
+                fclose(f);
+                return -1;
+            }
+            snprintf(landmarks, sizeof landmarks, "%s", val);
         }
     }
     fclose(f);
@@ -195,16 +308,18 @@ int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
         return -1;
     }
     char pgm_path[2048];
-    if (image[0] == '/') {
-        snprintf(pgm_path, sizeof pgm_path, "%s", image);
-    } else {
-        const char *slash = strrchr(yaml_path, '/');
-        int dir_len = slash ? (int)(slash - yaml_path + 1) : 0;
-        snprintf(pgm_path, sizeof pgm_path, "%.*s%s", dir_len, yaml_path, image);
+    beside_yaml(pgm_path, sizeof pgm_path, yaml_path, image);
+    if (landmarks[0]) {
+        char landmarks_path[2048];
+        beside_yaml(landmarks_path, sizeof landmarks_path, yaml_path, landmarks);
+        if (world_load_landmarks(w, landmarks_path, err, err_len))
+            return -1;
     }
     uint8_t *pixels = NULL;
-    if (load_pgm(pgm_path, &w->width, &w->height, &pixels, err, err_len))
+    if (load_pgm(pgm_path, &w->width, &w->height, &pixels, err, err_len)) {
+        world_free(w);
         return -1;
+    }
     w->resolution = resolution;
     w->origin_x = ox;
     w->origin_y = oy;
@@ -227,6 +342,7 @@ void world_free(world_t *w)
 {
     free(w->occupied);
     free(w->clearance);
+    free(w->landmarks);
     memset(w, 0, sizeof *w);
 }
 

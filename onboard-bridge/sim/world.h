@@ -7,6 +7,11 @@
  * its occupancy p > occupied_thresh, with p = (255 - v)/255 (or v/255 if negate);
  * unknown cells (between the thresholds) neither block nor echo. Outside the map
  * counts as an obstacle, so robots cannot leave it.
+ *
+ * Ceiling landmarks (a Sabot extension that map_server ignores, as it ignores every
+ * key it does not know): `sabot_landmarks: FILE`, relative to the YAML's folder
+ * unless absolute, one marker per line `id x y` (id 1..65535, x and y in metres in
+ * the map frame), `#` comments and blank lines allowed, ids unique.
  */
 #ifndef SIM_WORLD_H
 #define SIM_WORLD_H
@@ -14,18 +19,33 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#define WORLD_MAX_LANDMARKS 1024
+
+/* A passive marker on the ceiling above (x, y). */
+typedef struct {
+    uint16_t id;               /* 1..65535 */
+    double x, y;               /* m, map frame */
+} world_landmark_t;
+
 typedef struct {
     int width, height;         /* cells */
     double resolution;         /* m per cell */
     double origin_x, origin_y; /* m, lower-left corner */
     uint8_t *occupied;         /* width*height, row 0 = bottom (y up) */
     float *clearance;          /* m from the cell centre to the nearest obstacle cell */
+    world_landmark_t *landmarks; /* n_landmarks markers, in file order (NULL when none) */
+    int n_landmarks;
 } world_t;
 
 /* Loads a map_server YAML (image, resolution, origin, negate, occupied_thresh,
- * free_thresh) and its PGM (P5 or P2). Returns 0, or -1 with a message in err. */
+ * free_thresh, and Sabot's sabot_landmarks), its PGM (P5 or P2) and its landmarks.
+ * Returns 0, or -1 with a message in err (a landmarks file's errors as FILE:LINE: ...). */
 int world_load(world_t *w, const char *yaml_path, char *err, int err_len);
 void world_free(world_t *w);
+
+/* Reads a landmarks file into w->landmarks. Returns 0, or -1 with "FILE:LINE: problem"
+ * (or "FILE: problem") in err, leaving w's landmarks as they were. */
+int world_load_landmarks(world_t *w, const char *path, char *err, int err_len);
 
 bool world_occupied(const world_t *w, double x, double y);
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Interoperability: pymodbus (an independent Modbus implementation) as the master.
 
-Starts sabot-sim, then reads and writes the SACT, inertial and sonar file records over
+Starts sabot-sim, then reads and writes the SACT, inertial, sonar and landmark file records over
 the robot's pseudo-terminal and over Modbus RTU framing on loopback TCP. Expected
 values come from docs/sact-modbus-map.json, the same file the firmware is built from.
 (pymodbus's own server ignores file-record contents, so it can only be the client.)
@@ -67,6 +67,9 @@ def records(board_name, file_name):
 SACT = board("sact")["slave_address"]
 INS = board("ins")["slave_address"]
 SONAR = board("sonar")["slave_address"]
+LANDMARK = board("landmark")["slave_address"]
+LANDMARK_LATEST, LANDMARK_LATEST_RECORDS = records("landmark", "latest")
+LANDMARK_CONFIG, LANDMARK_CONFIG_RECORDS = records("landmark", "config")
 MOTOR_LEFT, MOTOR = records("sact", "motor_left")
 CONFIG, CONFIG_RECORDS = records("sact", "config")
 DRIVE, _ = records("sact", "drive")
@@ -185,6 +188,22 @@ class Transport:
         self.assertIsInstance(latest, list, latest)
         points = read(self.client, SONAR, 2, 0, 65)
         self.assertIsInstance(points, list, points)
+
+    def test_landmark_board_measures_and_holds_its_config_bounds(self):
+        latest = read(self.client, LANDMARK, LANDMARK_LATEST["file"], 0, len(LANDMARK_LATEST_RECORDS))
+        self.assertIsInstance(latest, list, latest)
+        config = read(self.client, LANDMARK, LANDMARK_CONFIG["file"], 0, len(LANDMARK_CONFIG_RECORDS))
+        self.assertEqual(config, [r["default"] for r in LANDMARK_CONFIG_RECORDS])
+        radius = next(r for r in LANDMARK_CONFIG_RECORDS if r["name"] == "view_radius")
+        res = write(self.client, LANDMARK, LANDMARK_CONFIG["file"], radius["record"], radius["max"] + 1)
+        self.assertTrue(res.isError())
+        self.assertEqual(res.exception_code, EXC["illegal_data_value"])
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline:
+            again = read(self.client, LANDMARK, LANDMARK_LATEST["file"], 0, 1)
+            if again[0] != latest[0]:
+                break
+        self.assertNotEqual(again[0], latest[0], "measurement sequence does not advance")
 
 
 class PtyTransport(Transport, unittest.TestCase):

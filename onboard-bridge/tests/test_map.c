@@ -14,6 +14,7 @@
 #define MAP_JSON "../docs/sact-modbus-map.json"
 #endif
 #define ROBOT_PROPERTIES "../docs/sabot-robot.properties"
+#define MAP_DOC "../docs/SACT-MODBUS.md"
 
 static json_t *doc;
 static arena_t arena;
@@ -30,6 +31,7 @@ static const mb_board_desc_t *board_desc(const char *name)
     if (!strcmp(name, "sact")) return &mb_sact_board;
     if (!strcmp(name, "ins")) return &mb_ins_board;
     if (!strcmp(name, "sonar")) return &mb_sonar_board;
+    if (!strcmp(name, "landmark")) return &mb_landmark_board;
     return NULL;
 }
 
@@ -144,8 +146,8 @@ static void everyRecordOfTheMapIsServedAsDescribed(void)
     json_records = 0;
     each_record(check_descriptor);
     int c_records = 0;
-    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board };
-    for (int b = 0; b < 3; b++)
+    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board, &mb_landmark_board };
+    for (int b = 0; b < 4; b++)
         for (int f = 0; f < all[b]->n_files; f++)
             c_records += all[b]->files[f].n_records;
     CHECK(json_records == c_records, "JSON has %d records, firmware %d", json_records, c_records);
@@ -238,6 +240,50 @@ static void velocityLimitFollowsTheConfiguration(void)
           r->sact.max_acceleration, dynamic_limit("max_accel"));
 }
 
+static char *map_doc;
+static int doc_rows;
+
+/* A landmark record's row of the table in docs/SACT-MODBUS.md: "| file | rec | name | type | access | unit |
+ * meaning |", and for a writable record its bounds and default in the meaning. */
+static void check_doc_row(const json_t *board, const json_t *file, const json_t *rec)
+{
+    if (strcmp(json_str(board, "name"), "landmark"))
+        return;
+    char row[160];
+    snprintf(row, sizeof row, "\n| %ld | %ld | %s | %s | %s |", (long)json_num(file, "file", 0),
+             (long)json_num(rec, "record", 0), json_str(rec, "name"), json_str(rec, "type"), json_str(rec, "access"));
+    const char *at = map_doc ? strstr(map_doc, row) : NULL;
+    doc_rows++;
+    CHECK(at != NULL, "%s has no row '%s'", MAP_DOC, row + 1);
+    if (!at || !strchr(json_str(rec, "access"), 'w'))
+        return;
+    const char *end = strchr(at + 1, '\n');
+    char bounds[96];
+    snprintf(bounds, sizeof bounds, "%ld–%ld, default %ld", (long)json_num(rec, "min", 0),
+             (long)json_num(rec, "max", 0), default_of(rec));
+    const char *b = strstr(at, bounds);
+    CHECK(b && (!end || b < end), "%s row of %s does not say '%s'", MAP_DOC, json_str(rec, "name"), bounds);
+}
+
+static void theLandmarkTableOfTheDocumentIsTheMaps(void)
+{
+    FILE *f = fopen(MAP_DOC, "rb");
+    CHECK(f != NULL, "cannot read %s", MAP_DOC);
+    if (!f)
+        return;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    map_doc = calloc(1, (size_t)n + 1);
+    CHECK(fread(map_doc, 1, (size_t)n, f) == (size_t)n, "short read");
+    fclose(f);
+    doc_rows = 0;
+    each_record(check_doc_row);
+    CHECK(doc_rows == 7, "%d landmark records in the map", doc_rows);
+    free(map_doc);
+    map_doc = NULL;
+}
+
 int main(void)
 {
     printf("test_map (%s)\n", MAP_JSON);
@@ -251,6 +297,7 @@ int main(void)
     RUN(writableRecordsStartAtTheMapDefaults);
     RUN(writesAreBoundedExactlyByTheMap);
     RUN(velocityLimitFollowsTheConfiguration);
+    RUN(theLandmarkTableOfTheDocumentIsTheMaps);
     json_free(doc);
     free(slot);
     return REPORT("test_map");

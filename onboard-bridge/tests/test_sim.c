@@ -1,9 +1,13 @@
 /*
  * The simulated world: map loading and ray casting, drivetrain kinematics,
- * collisions, the inertial and sonar boards, determinism, fault injection, speed.
+ * collisions, the inertial, sonar and ceiling-landmark boards, determinism, fault
+ * injection, speed.
  */
+#include <limits.h>
 #include <math.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "bus_client.h"
 #include "check.h"
@@ -251,6 +255,303 @@ static void injectedFaultsCorruptAndDropAnswers(void)
     release(&fl);
 }
 
+/* The landmark board's file 1, read in one sub-request as a master would. */
+typedef struct {
+    long sequence, id, range_mm, bearing, age_ms;   /* bearing in 1e-4 rad */
+} sighting_t;
+
+static bool read_sighting(robot_t *r, sighting_t *s)
+{
+    frame_t req = read_request(MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_LATEST, MB_LANDMARK_LATEST_SEQUENCE, 5), a;
+    if (transact(r, &req, &a) == 0 || answer_exception(&a) != 0 || a.len != 5 + 10 + 2)
+        return false;
+    long v[5];
+    for (int k = 0; k < 5; k++)
+        v[k] = a.data[5 + 2 * k] << 8 | a.data[6 + 2 * k];
+    *s = (sighting_t){ v[0], v[1], v[2], (int16_t)v[3], v[4] };
+    return true;
+}
+
+/* The marker the camera should report from (x, y): the nearest within radius, or NULL. */
+static const world_landmark_t *marker_in_view(double x, double y, double radius)
+{
+    const world_landmark_t *best = NULL;
+    for (int k = 0; k < lab.n_landmarks; k++) {
+        double d = hypot(lab.landmarks[k].x - x, lab.landmarks[k].y - y);
+        if (d <= radius && (!best || d < hypot(best->x - x, best->y - y)))
+            best = &lab.landmarks[k];
+    }
+    return best;
+}
+
+static void theLabHasItsCeilingLandmarks(void)
+{
+    CHECK(lab.n_landmarks == 10, "%d landmarks", lab.n_landmarks);
+    CHECK(lab.n_landmarks > 4 && lab.landmarks[4].id == 5 && fabs(lab.landmarks[4].x - 5.6) < 1e-12 &&
+              fabs(lab.landmarks[4].y - 3.6) < 1e-12,
+          "landmark 5 at %.3f %.3f", lab.n_landmarks > 4 ? lab.landmarks[4].x : NAN,
+          lab.n_landmarks > 4 ? lab.landmarks[4].y : NAN);
+}
+
+static void landmarkBoardReportsTheNearestMarkerInViewAtItsGeometry(void)
+{
+    static const double poses[][3] = {
+        { 6.2, 3.3, 2.0 },    /* south-east of marker 5, facing north-west */
+        { 6.3, 1.6, -2.5 },   /* between markers 2 and 3 */
+        { 1.8, 5.7, 0.7 },    /* north of marker 7 */
+        { 8.1, 6.2, -1.2 },   /* south-east of marker 9 */
+    };
+    const double range_sigma = 0.010, bearing_sigma = 0.5 * M_PI / 180;
+    for (size_t i = 0; i < sizeof poses / sizeof poses[0]; i++) {
+        floor_t fl = { 0 };
+        robot_t *r = place(&fl, 0, poses[i][0], poses[i][1], poses[i][2], 3 + i);
+        run(&r, 1, 0.25);
+        sighting_t s;
+        CHECK(read_sighting(r, &s), "pose %zu: no answer", i);
+        const world_landmark_t *m = marker_in_view(r->body.x, r->body.y, 1.5);
+        CHECK(m != NULL, "pose %zu: test pose has no marker in view", i);
+        if (!m) {
+            release(&fl);
+            continue;
+        }
+        double range = hypot(m->x - r->body.x, m->y - r->body.y);
+        double bearing = remainder(atan2(m->y - r->body.y, m->x - r->body.x) - r->body.theta, 2 * M_PI);
+        CHECK(s.id == m->id, "pose %zu: sees %ld, nearest in view is %u", i, s.id, m->id);
+        CHECK(fabs(s.range_mm * 1e-3 - range) < 4 * range_sigma + 1e-3, "pose %zu: range %ld mm, truth %.1f mm", i,
+              s.range_mm, range * 1e3);
+        CHECK(fabs(remainder(s.bearing * 1e-4 - bearing, 2 * M_PI)) < 4 * bearing_sigma + 1e-4,
+              "pose %zu: bearing %.4f rad, truth %.4f", i, s.bearing * 1e-4, bearing);
+        CHECK(s.sequence >= 2 && s.age_ms < MB_LANDMARK_CONFIG_PERIOD_DEFAULT + 5, "pose %zu: sequence %ld age %ld",
+              i, s.sequence, s.age_ms);
+        release(&fl);
+    }
+}
+
+static void landmarkNoiseHasTheModelledSigmas(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place(&fl, 0, 6.2, 3.3, 2.0, 9);
+    CHECK(bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, MB_LANDMARK_CONFIG_PERIOD, 20) == 0, "period");
+    const world_landmark_t *m = marker_in_view(6.2, 3.3, 1.5);
+    double sr = 0, sr2 = 0, sb = 0, sb2 = 0;
+    const int n = 400;
+    uint16_t last = r->landmark.sequence;
+    for (int k = 0; k < n;) {
+        robot_step(r);
+        if (r->landmark.sequence == last)
+            continue;
+        last = r->landmark.sequence;
+        double range = hypot(m->x - r->body.x, m->y - r->body.y);
+        double bearing = atan2(m->y - r->body.y, m->x - r->body.x) - r->body.theta;
+        double er = r->landmark.range_mm * 1e-3 - range;
+        double eb = remainder(r->landmark.bearing * 1e-4 - bearing, 2 * M_PI);
+        sr += er;
+        sr2 += er * er;
+        sb += eb;
+        sb2 += eb * eb;
+        k++;
+    }
+    double mr = sr / n, mb = sb / n, dr = sqrt(sr2 / n - mr * mr), db = sqrt(sb2 / n - mb * mb);
+    CHECK(fabs(mr) < 4 * 0.010 / sqrt(n) + 0.5e-3, "range bias %.2f mm", mr * 1e3);
+    CHECK(fabs(mb) < 4 * 0.5 * M_PI / 180 / sqrt(n) + 1e-4, "bearing bias %.3f deg", mb * 180 / M_PI);
+    CHECK(dr > 0.8 * 0.010 && dr < 1.2 * 0.010, "range sigma %.2f mm, model 10", dr * 1e3);
+    CHECK(db > 0.8 * 0.5 * M_PI / 180 && db < 1.2 * 0.5 * M_PI / 180, "bearing sigma %.3f deg, model 0.5",
+          db * 180 / M_PI);
+    printf("    figure: landmark range sigma %.2f mm (model 10), bearing sigma %.3f deg (model 0.5), %d samples\n",
+           dr * 1e3, db * 180 / M_PI, n);
+    release(&fl);
+}
+
+static void aMarkerBeyondTheViewRadiusIsNotSeen(void)
+{
+    floor_t fl = { 0 };
+    /* 1.00 m due east of marker 5 (5.6, 3.6); the next nearest is 2.2 m away */
+    robot_t *r = place(&fl, 0, 6.6, 3.6, 0.0, 4);
+    CHECK(bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, MB_LANDMARK_CONFIG_VIEW_RADIUS, 900) == 0,
+          "radius 0.9 m");
+    run(&r, 1, 0.25);
+    sighting_t s;
+    CHECK(read_sighting(r, &s) && s.id == 0 && s.range_mm == 0 && s.bearing == 0,
+          "radius 0.9 m: id %ld range %ld bearing %ld", s.id, s.range_mm, s.bearing);
+    long seq = s.sequence;
+    CHECK(bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, MB_LANDMARK_CONFIG_VIEW_RADIUS, 1100) == 0,
+          "radius 1.1 m");
+    run(&r, 1, 0.25);
+    CHECK(read_sighting(r, &s) && s.id == 5 && labs(s.range_mm - 1000) < 40 && labs(labs(s.bearing) - 31416) < 400,
+          "radius 1.1 m: id %ld range %ld bearing %ld", s.id, s.range_mm, s.bearing);
+    CHECK(s.sequence > seq, "sequence did not advance");
+    release(&fl);
+
+    floor_t far = { 0 };
+    r = place(&far, 0, 10.8, 8.0, 0.0, 4);   /* the north-east corner: nothing within 3 m */
+    run(&r, 1, 0.5);
+    CHECK(read_sighting(r, &s) && s.sequence >= 4 && s.id == 0 && s.range_mm == 0, "north-east: seq %ld id %ld",
+          s.sequence, s.id);
+    release(&far);
+}
+
+static void withoutLandmarksTheBoardMeasuresAndSeesNothing(void)
+{
+    arena_t arena = { 0 };
+    robot_t *slot;
+    robot_t *r = make_robot(1, &arena, &slot);   /* no world at all */
+    run(&r, 1, 1.0);
+    sighting_t s;
+    CHECK(read_sighting(r, &s) && s.sequence >= 10 && s.id == 0, "no world: seq %ld id %ld", s.sequence, s.id);
+    free(slot);
+
+    /* a map without sabot_landmarks: the lab's image, no markers */
+    char dir[PATH_MAX], yaml[PATH_MAX + 32], pgm[PATH_MAX], err[256];
+    CHECK(realpath("maps/lab.pgm", pgm) != NULL, "maps/lab.pgm");
+    snprintf(dir, sizeof dir, "build/tmp");
+    mkdir("build", 0755);
+    mkdir(dir, 0755);
+    snprintf(yaml, sizeof yaml, "%s/plain.yaml", dir);
+    FILE *f = fopen(yaml, "w");
+    fprintf(f, "image: %s\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n", pgm);
+    fclose(f);
+    world_t plain;
+    CHECK(world_load(&plain, yaml, err, sizeof err) == 0, "%s", err);
+    CHECK(plain.n_landmarks == 0 && plain.landmarks == NULL, "%d landmarks", plain.n_landmarks);
+    robot_t *list[1];
+    arena_t a2 = { &plain, list, 1, NULL };
+    list[0] = calloc(1, sizeof(robot_t));
+    robot_config_t c;
+    robot_config_default(&c);
+    c.x = 5.6;   /* right under where the lab's marker 5 would be */
+    c.y = 3.6;
+    robot_init(list[0], &c, &a2);
+    run(list, 1, 0.5);
+    CHECK(read_sighting(list[0], &s) && s.sequence >= 4 && s.id == 0, "plain map: seq %ld id %ld", s.sequence, s.id);
+    free(list[0]);
+    world_free(&plain);
+}
+
+static void landmarkSequenceFollowsThePeriodAndAgeIsReadTime(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place(&fl, 0, 6.2, 3.3, 2.0, 6);
+    run(&r, 1, 0.05);
+    uint16_t s0 = r->landmark.sequence;
+    run(&r, 1, 1.0);
+    CHECK((uint16_t)(r->landmark.sequence - s0) == 10, "%u measurements in 1 s at 100 ms",
+          (unsigned)(uint16_t)(r->landmark.sequence - s0));
+    CHECK(bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, MB_LANDMARK_CONFIG_PERIOD, 250) == 0, "period");
+    /* wait for a measurement under the new period, then count over 1 s */
+    uint16_t s1 = r->landmark.sequence;
+    while (r->landmark.sequence == s1)
+        robot_step(r);
+    s1 = r->landmark.sequence;
+    run(&r, 1, 1.0);
+    CHECK((uint16_t)(r->landmark.sequence - s1) == 4, "%u measurements in 1 s at 250 ms",
+          (unsigned)(uint16_t)(r->landmark.sequence - s1));
+    /* 1.0 s after a measurement at 250 ms: the latest is 0..250 ms old, and the age says so at read time */
+    sighting_t s;
+    CHECK(read_sighting(r, &s), "read");
+    uint64_t expected_ms = (r->now_us - r->landmark.taken_us) / 1000;
+    CHECK(labs(s.age_ms - (long)expected_ms) <= 3 && s.age_ms < 250, "age %ld ms, expected about %llu", s.age_ms,
+          (unsigned long long)expected_ms);
+    /* 120 ms after a fresh measurement (period 250 ms) the same one is read, 120 ms old plus the transaction */
+    uint16_t s2 = r->landmark.sequence;
+    while (r->landmark.sequence == s2)
+        robot_step(r);
+    run(&r, 1, 0.12);
+    sighting_t later;
+    CHECK(read_sighting(r, &later), "read");
+    CHECK(later.sequence == r->landmark.sequence && later.age_ms >= 120 && later.age_ms <= 125,
+          "sequence %ld, age %ld ms, expected 120..125", later.sequence, later.age_ms);
+    release(&fl);
+}
+
+static void badLandmarkConfigurationWritesAreRefusedAndChangeNothing(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place(&fl, 0, 6.2, 3.3, 2.0, 1);
+    static const struct {
+        uint16_t record, value;
+        int exception;
+    } bad[] = {
+        { MB_LANDMARK_CONFIG_VIEW_RADIUS, MB_LANDMARK_CONFIG_VIEW_RADIUS_MIN - 1, MB_EXC_ILLEGAL_DATA_VALUE },
+        { MB_LANDMARK_CONFIG_VIEW_RADIUS, MB_LANDMARK_CONFIG_VIEW_RADIUS_MAX + 1, MB_EXC_ILLEGAL_DATA_VALUE },
+        { MB_LANDMARK_CONFIG_PERIOD, MB_LANDMARK_CONFIG_PERIOD_MIN - 1, MB_EXC_ILLEGAL_DATA_VALUE },
+        { MB_LANDMARK_CONFIG_PERIOD, MB_LANDMARK_CONFIG_PERIOD_MAX + 1, MB_EXC_ILLEGAL_DATA_VALUE },
+        { MB_LANDMARK_CONFIG_PERIOD, 0, MB_EXC_ILLEGAL_DATA_VALUE },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int e = bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, bad[i].record, bad[i].value);
+        CHECK(e == bad[i].exception, "record %u = %u answered %d", bad[i].record, bad[i].value, e);
+    }
+    CHECK(r->landmark.view_radius_mm == MB_LANDMARK_CONFIG_VIEW_RADIUS_DEFAULT &&
+              r->landmark.period_ms == MB_LANDMARK_CONFIG_PERIOD_DEFAULT,
+          "changed: radius %u period %u", r->landmark.view_radius_mm, r->landmark.period_ms);
+    /* one good and one bad value in one request: neither is taken */
+    uint16_t both[2] = { 2000, 5 };
+    frame_t req = write_request(MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_CONFIG, MB_LANDMARK_CONFIG_VIEW_RADIUS, both, 2), a;
+    transact(r, &req, &a);
+    CHECK(answer_exception(&a) == MB_EXC_ILLEGAL_DATA_VALUE, "answered %d", answer_exception(&a));
+    CHECK(r->landmark.view_radius_mm == MB_LANDMARK_CONFIG_VIEW_RADIUS_DEFAULT, "radius taken from a refused request");
+    CHECK(bus_write(r, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_LATEST, MB_LANDMARK_LATEST_LANDMARK_ID, 3) ==
+              MB_EXC_ILLEGAL_DATA_ADDRESS,
+          "the measurement is writable");
+    release(&fl);
+}
+
+/* Writes text to build/tmp/NAME and returns its path. */
+static const char *tmp_file(const char *name, const char *text)
+{
+    static char path[PATH_MAX];
+    mkdir("build", 0755);
+    mkdir("build/tmp", 0755);
+    snprintf(path, sizeof path, "build/tmp/%s", name);
+    FILE *f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+static void badLandmarksFilesAreRefusedWithFileAndLine(void)
+{
+    static const struct {
+        const char *text, *message;
+    } cases[] = {
+        { "1 1.0 2.0\n2 3.0\n", "bad.landmarks:2: expected 'id x y', got 2 fields" },
+        { "# c\n\n1 1 2 3\n", "bad.landmarks:3: expected 'id x y', got 4 fields" },
+        { "0 1.0 2.0\n", "bad.landmarks:1: id '0' is not an integer in 1..65535" },
+        { "65536 1.0 2.0\n", "bad.landmarks:1: id '65536' is not an integer in 1..65535" },
+        { "1.5 1.0 2.0\n", "bad.landmarks:1: id '1.5' is not an integer in 1..65535" },
+        { "7 east 2.0\n", "bad.landmarks:1: x 'east' is not a number (metres)" },
+        { "7 1.0 nan\n", "bad.landmarks:1: y 'nan' is not a number (metres)" },
+        { "7 1.0 0x10\n", "bad.landmarks:1: y '0x10' is not a number (metres)" },
+        { "7 1 1\n8 2 2 # b\n7 3 3\n", "bad.landmarks:3: landmark id 7 given twice (first on line 1)" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *path = tmp_file("bad.landmarks", cases[i].text);
+        world_t w = { 0 };
+        char err[256] = "";
+        int rc = world_load_landmarks(&w, path, err, sizeof err);
+        CHECK(rc == -1 && strstr(err, cases[i].message) && strstr(err, "build/tmp/bad.landmarks:"),
+              "case %zu: rc %d, '%s', expected '%s'", i, rc, err, cases[i].message);
+        CHECK(w.landmarks == NULL && w.n_landmarks == 0, "case %zu: landmarks kept", i);
+    }
+    const char *good = tmp_file("good.landmarks", "# markers\n\n  3 -1.5 2e-1  # tab and comment\n\t9\t4\t5\r\n");
+    world_t w = { 0 };
+    char err[256] = "";
+    CHECK(world_load_landmarks(&w, good, err, sizeof err) == 0, "%s", err);
+    CHECK(w.n_landmarks == 2 && w.landmarks[0].id == 3 && w.landmarks[0].x == -1.5 && w.landmarks[0].y == 0.2 &&
+              w.landmarks[1].id == 9 && w.landmarks[1].y == 5.0,
+          "%d landmarks", w.n_landmarks);
+    free(w.landmarks);
+    /* the YAML names a file that is not there */
+    char pgm[PATH_MAX], yaml_text[PATH_MAX + 200];
+    CHECK(realpath("maps/lab.pgm", pgm) != NULL, "maps/lab.pgm");
+    snprintf(yaml_text, sizeof yaml_text, "image: %s\nresolution: 0.05\norigin: [0, 0, 0]\nsabot_landmarks: gone.lm\n",
+             pgm);
+    const char *yaml = tmp_file("gone.yaml", yaml_text);
+    CHECK(world_load(&w, yaml, err, sizeof err) == -1 &&
+              strstr(err, "landmarks file build/tmp/gone.lm: No such file or directory"),
+          "%s", err);
+}
+
 #if !defined(__SANITIZE_ADDRESS__)
 static void oneRobotRunsAtLeastFiftyTimesRealTime(void)
 {
@@ -285,6 +586,14 @@ int main(void)
     RUN(inertialBoardMeasuresYawRateGravityAndHeading);
     RUN(sonarSeesTheWallAheadAndAnotherRobot);
     RUN(sonarServosSweep);
+    RUN(theLabHasItsCeilingLandmarks);
+    RUN(landmarkBoardReportsTheNearestMarkerInViewAtItsGeometry);
+    RUN(landmarkNoiseHasTheModelledSigmas);
+    RUN(aMarkerBeyondTheViewRadiusIsNotSeen);
+    RUN(withoutLandmarksTheBoardMeasuresAndSeesNothing);
+    RUN(landmarkSequenceFollowsThePeriodAndAgeIsReadTime);
+    RUN(badLandmarkConfigurationWritesAreRefusedAndChangeNothing);
+    RUN(badLandmarksFilesAreRefusedWithFileAndLine);
     RUN(theSameSeedGivesTheSameRun);
     RUN(injectedFaultsCorruptAndDropAnswers);
 #if !defined(__SANITIZE_ADDRESS__)

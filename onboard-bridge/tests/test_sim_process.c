@@ -325,19 +325,29 @@ static void anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved(void)
     CHECK(sim_stop(&s) == 0, "exit status");
 }
 
+/* `board 1 NAME off` silences that board and no other; `on` brings it back. */
+static void switch_board_off_and_on(int ctl, int bus, const char *name, uint8_t address, uint8_t other)
+{
+    char expected[64];
+    CHECK(!silent(bus, address), "%s silent before being switched off", name);
+    const char *a = command(ctl, "board 1 %s off", name);
+    snprintf(expected, sizeof expected, "ok robot 1 %s off", name);
+    CHECK(!strcmp(a, expected), "%s, expected %s", a, expected);
+    CHECK(silent(bus, address), "%s still answers", name);
+    CHECK(!silent(bus, other), "board %u went silent with the %s", other, name);
+    a = command(ctl, "board 1 %s on", name);
+    snprintf(expected, sizeof expected, "ok robot 1 %s on", name);
+    CHECK(!strcmp(a, expected), "%s, expected %s", a, expected);
+    CHECK(!silent(bus, address), "%s silent after being switched on", name);
+}
+
 static void aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot(void)
 {
     sim_t s;
     start_lab_robot(&s, NULL);
     int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
-    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent before being switched off");
-    const char *a = command(ctl, "board 1 sonar off");
-    CHECK(!strcmp(a, "ok robot 1 sonar off"), "%s", a);
-    CHECK(silent(bus, MB_SONAR_ADDRESS), "sonar still answers");
-    CHECK(!silent(bus, MB_INS_ADDRESS), "the inertial board went silent with the sonar");
-    a = command(ctl, "board 1 sonar on");
-    CHECK(!strcmp(a, "ok robot 1 sonar on"), "%s", a);
-    CHECK(!silent(bus, MB_SONAR_ADDRESS), "sonar silent after being switched on");
+    switch_board_off_and_on(ctl, bus, "sonar", MB_SONAR_ADDRESS, MB_INS_ADDRESS);
+    const char *a;
 
     /* Deadman 200 ms, then 0.2 m/s forward: in 8.8 counts per Ts. */
     uint16_t timeout = 200;
@@ -534,9 +544,9 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         { "person jump bob", "error person wants add, move or remove" },
         { "board 2 sact off", "error no robot '2' (robots are 1..1)" },
         { "board 0 sact off", "error no robot '0' (robots are 1..1)" },
-        { "board 1 motor off", "error no board 'motor' (sact, ins or sonar)" },
+        { "board 1 motor off", "error no board 'motor' (sact, ins, sonar or landmark)" },
         { "board 1 sact dim", "error board state must be off or on, was 'dim'" },
-        { "board 1 sact", "error board wants ROBOT sact|ins|sonar off|on" },
+        { "board 1 sact", "error board wants ROBOT sact|ins|sonar|landmark off|on" },
         { "wheel 1 left", "error wheel wants ROBOT left|right jam|free" },
         { "wheel 1 middle jam", "error no wheel 'middle' (left or right)" },
         { "wheel 1 left stuck", "error wheel state must be jam or free, was 'stuck'" },
@@ -585,6 +595,82 @@ static void theControlPortIsAnnouncedOnlyWhenAsked(void)
     CHECK(sim_stop(&s) == 0, "exit status");
 }
 
+/* Reads `count` registers from `record` over TCP into v; false on any failure. */
+static bool tcp_read_n(int fd, uint8_t address, uint16_t file, uint16_t record, uint16_t count, long *v)
+{
+    frame_t req = read_request(address, file, record, count), ans;
+    if (modbus(fd, &req, &ans, 1000) != 5u + 2u * count + 2u || answer_exception(&ans) != 0)
+        return false;
+    for (int k = 0; k < count; k++)
+        v[k] = ans.data[5 + 2 * k] << 8 | ans.data[6 + 2 * k];
+    return true;
+}
+
+static void theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff(void)
+{
+    sim_t s;
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/lm-robot", tmp_dir);
+    /* 0.67 m south-east of the lab's marker 5 at (5.6, 3.6), facing north-west */
+    CHECK(sim_start(&s, SIM_ARGS("--control", "0", "--tcp", "0", "--start", "6.2,3.3,2.0", "--link", link)),
+          "start: %s", s.first_line);
+    CHECK(strstr(s.first_line, "\"landmark\": 4}") && strstr(s.first_line, "\"landmarks\": 10"),
+          "first line does not announce the landmark board and markers: %s", s.first_line);
+    world_t lab = { 0 };
+    char err[256];
+    CHECK(world_load_landmarks(&lab, "maps/lab.landmarks", err, sizeof err) == 0 && lab.n_landmarks >= 5 &&
+              lab.landmarks[4].id == 5,
+          "maps/lab.landmarks: %s", err);
+    double mx = lab.n_landmarks >= 5 ? lab.landmarks[4].x : NAN, my = lab.n_landmarks >= 5 ? lab.landmarks[4].y : NAN;
+    free(lab.landmarks);
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port);
+    long v[5] = { 0 }, seq0 = -1;
+    double deadline = now_s() + DEADLINE_S;
+    /* two fresh measurements, so the first is one taken at the start pose */
+    while (now_s() < deadline && tcp_read_n(bus, MB_LANDMARK_ADDRESS, MB_LANDMARK_FILE_LATEST, 0, 5, v)) {
+        if (seq0 < 0)
+            seq0 = v[0];
+        else if (((v[0] - seq0) & 0xFFFF) >= 2)
+            break;
+    }
+    truth_t t = { 0 };
+    CHECK(truth(ctl, 1, &t), "truth");
+    double range = hypot(mx - t.x, my - t.y), bearing = remainder(atan2(my - t.y, mx - t.x) - t.theta, 2 * M_PI);
+    CHECK(((v[0] - seq0) & 0xFFFF) >= 2, "sequence %ld -> %ld", seq0, v[0]);
+    CHECK(v[1] == 5, "sees landmark %ld, expected 5", v[1]);
+    CHECK(fabs(v[2] * 1e-3 - range) < 0.041, "range %ld mm, truth %.1f mm", v[2], range * 1e3);
+    CHECK(fabs(remainder((int16_t)v[3] * 1e-4 - bearing, 2 * M_PI)) < 4 * 0.5 * M_PI / 180 + 1e-4,
+          "bearing %.4f rad, truth %.4f", (int16_t)v[3] * 1e-4, bearing);
+    CHECK(v[4] <= 110, "age %ld ms at a 100 ms period", v[4]);
+
+    switch_board_off_and_on(ctl, bus, "landmark", MB_LANDMARK_ADDRESS, MB_SONAR_ADDRESS);
+    close(ctl);
+    close(bus);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void aBadLandmarksFileStopsTheSimulatorWithItsLine(void)
+{
+    char pgm[PATH_MAX], yaml[PATH_MAX + 32], marks[PATH_MAX + 32];
+    CHECK(realpath("maps/lab.pgm", pgm) != NULL, "maps/lab.pgm (run from onboard-bridge)");
+    snprintf(yaml, sizeof yaml, "%s/bad-lm.yaml", tmp_dir);
+    snprintf(marks, sizeof marks, "%s/bad-lm.landmarks", tmp_dir);
+    FILE *f = fopen(yaml, "w");
+    fprintf(f, "image: %s\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nsabot_landmarks: bad-lm.landmarks\n", pgm);
+    fclose(f);
+    f = fopen(marks, "w");
+    fputs("# two markers\n1 1.0 1.0\n2 2.0 two\n", f);
+    fclose(f);
+    sim_t s;
+    sim_start(&s, SIM_ARGS("--duration", "0.01", "--map", yaml));
+    char err[1024];
+    size_t len = read_until_newline(s.err_fd, err, sizeof err, now_s() + DEADLINE_S);
+    int status = sim_stop(&s);
+    CHECK(status == 2, "exit status %d", status);
+    CHECK(len > 0 && strstr(err, "bad-lm.landmarks:3: y 'two' is not a number (metres)"), "message '%s'", err);
+    CHECK(s.first_line[0] == '\0', "started anyway: %s", s.first_line);
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -614,5 +700,7 @@ int main(int argc, char **argv)
     RUN(drivingIntoAnObstacleCountsContacts);
     RUN(aPersonWalkingIntoTheRobotIsAContactAndTruthAgreesWithTheCsv);
     RUN(everyBadCommandAnswersAnErrorAndChangesNothing);
+    RUN(theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff);
+    RUN(aBadLandmarksFileStopsTheSimulatorWithItsLine);
     return REPORT("test_sim_process");
 }

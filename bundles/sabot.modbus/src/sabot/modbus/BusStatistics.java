@@ -1,11 +1,12 @@
 package sabot.modbus;
 
 /**
- * The counters of the three boards of one bus, taken together.
+ * The counters of the four boards of one bus, taken together.
  *
- * @param sact  the SACT motor board
- * @param ins   the inertial board
- * @param sonar the sonar board
+ * @param sact     the SACT motor board
+ * @param ins      the inertial board
+ * @param sonar    the sonar board
+ * @param landmark the ceiling-landmark board
  */
-public record BusStatistics(BoardCounters sact, BoardCounters ins, BoardCounters sonar) {
+public record BusStatistics(BoardCounters sact, BoardCounters ins, BoardCounters sonar, BoardCounters landmark) {
 }

@@ -1,7 +1,7 @@
 package sabot.modbus;
 
 /**
- * One RS-485 bus and its three boards. One master, one line: every transaction on the bus is serialised, and the
+ * One RS-485 bus and its four boards. One master, one line: every transaction on the bus is serialised, and the
  * clients may be used from any thread. Closing the bus closes the port; the clients then fail.
  */
 public interface ModbusBus extends AutoCloseable {
@@ -15,7 +15,10 @@ public interface ModbusBus extends AutoCloseable {
     /** @return the sonar board's client */
     SonarClient sonar();
 
-    /** @return the counters of the three boards now */
+    /** @return the ceiling-landmark board's client */
+    LandmarkClient landmark();
+
+    /** @return the counters of the four boards now */
     BusStatistics statistics();
 
     /** @return the settings the bus was opened with */

@@ -21,6 +21,8 @@ import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.EnumSource;
 
+import sabot.model.map.MapLandmark;
+import sabot.model.map.MapServerFormat;
 import sabot.modbus.internal.ModbusMap;
 
 /**
@@ -354,6 +356,77 @@ class ModbusMasterTest {
 
     private static void assertMessage(String expected, org.junit.jupiter.api.function.Executable e) {
         assertEquals(expected, assertThrows(IllegalArgumentException.class, e).getMessage());
+    }
+
+    @ParameterizedTest
+    @EnumSource(Via.class)
+    void aLandmarkInViewIsSightedWhereTheTruthSaysAndOutOfViewIsNone(Via via) throws Exception {
+        // the markers the simulator loads, read by the map model's own reader
+        List<MapLandmark> marks = MapServerFormat.readLandmarks(SimProcess.root().resolve(
+                "onboard-bridge/maps/lab.yaml"));
+        LandmarkSighting sighting;
+        LandmarkConfig defaults;
+        List<String[]> truth;
+        // south-east of the lab's marker 5 (5.6, 3.6), facing north-west
+        try (SimProcess sim = SimProcess.start(dir, "--start", "6.2,3.3,2.0")) {
+            try (ModbusBus bus = ModbusBuses.open(settings(sim, via))) {
+                LandmarkClient camera = bus.landmark();
+                defaults = camera.readConfig();
+                assertEquals(new LandmarkConfig(mapDefault("landmark", "config", "view_radius"),
+                        Duration.ofMillis(Math.round(mapDefault("landmark", "config", "period") * 1000))), defaults);
+                sighting = awaitNewSightings(camera, 2);
+                assertTrue(sighting.age().compareTo(defaults.period().plusMillis(10)) <= 0, "age " + sighting);
+
+                // a view radius shorter than the marker's distance: measurements go on, nothing is seen
+                camera.writeConfig(new LandmarkConfig(0.5, Duration.ofMillis(50)));
+                assertEquals(new LandmarkConfig(0.5, Duration.ofMillis(50)), camera.readConfig());
+                LandmarkSighting none = awaitNewSightings(camera, 2);
+                assertFalse(none.seen(), "seen beyond the view radius: " + none);
+                assertEquals(0.0, none.range());
+
+                long sent = bus.statistics().landmark().framesSent();
+                IllegalArgumentException bad = assertThrows(IllegalArgumentException.class,
+                        () -> camera.writeConfig(new LandmarkConfig(6.0, Duration.ofMillis(100))));
+                assertEquals("landmark view radius 6.0 m: 6000 is outside landmark/config/view_radius's bounds "
+                        + "[100, 5000]", bad.getMessage());
+                assertThrows(IllegalArgumentException.class,
+                        () -> camera.writeConfig(new LandmarkConfig(1.5, Duration.ofMillis(5))));
+                assertEquals(sent, bus.statistics().landmark().framesSent(), "nothing sent");
+                assertEquals(new LandmarkConfig(0.5, Duration.ofMillis(50)), camera.readConfig(), "board unchanged");
+                assertEquals(0, bus.statistics().landmark().timeouts());
+            }
+            sim.close();
+            truth = sim.truthRows();
+        }
+        // the robot stood still: its last true pose is the pose of every measurement
+        String[] last = truth.get(truth.size() - 1);
+        double x = Double.parseDouble(last[2]);
+        double y = Double.parseDouble(last[3]);
+        double theta = Double.parseDouble(last[4]);
+        MapLandmark nearest = marks.stream().min((a, b) -> Double.compare(Math.hypot(a.x() - x, a.y() - y),
+                Math.hypot(b.x() - x, b.y() - y))).orElseThrow();
+        double range = Math.hypot(nearest.x() - x, nearest.y() - y);
+        assertTrue(range < defaults.viewRadius(), "the test pose has no marker in view");
+        double bearing = Math.IEEEremainder(Math.atan2(nearest.y() - y, nearest.x() - x) - theta, 2 * Math.PI);
+        assertEquals(nearest.id(), sighting.landmarkId(), sighting.toString());
+        // 4 sigma of the board's noise (10 mm, 0.5 degree) plus a quantum
+        assertEquals(range, sighting.range(), 4 * 0.010 + 0.001, sighting.toString());
+        assertEquals(0.0, Math.IEEEremainder(sighting.bearing() - bearing, 2 * Math.PI),
+                4 * Math.toRadians(0.5) + 1e-4, sighting + " vs true bearing " + bearing);
+    }
+
+    /** Reads until the sequence has moved on {@code n} times (each read one transaction, paced by the line). */
+    private static LandmarkSighting awaitNewSightings(LandmarkClient camera, int n) throws IOException {
+        long deadline = System.nanoTime() + 3_000_000_000L;
+        LandmarkSighting first = camera.readLatest();
+        LandmarkSighting s = first;
+        while (((s.sequence() - first.sequence()) & 0xFFFF) < n) {
+            if (System.nanoTime() > deadline) {
+                throw new AssertionError("no " + n + " new landmark measurements within 3 s; last " + s);
+            }
+            s = camera.readLatest();
+        }
+        return s;
     }
 
     @Test

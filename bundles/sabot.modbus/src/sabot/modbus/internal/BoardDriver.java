@@ -3,7 +3,7 @@ package sabot.modbus.internal;
 import sabot.modbus.Board;
 import sabot.modbus.BoardCounters;
 
-/** What the three board drivers share: the bus they talk on and their counters. */
+/** What the board drivers share: the bus they talk on and their counters. */
 abstract class BoardDriver implements Board {
 
     protected final Bus bus;

@@ -24,6 +24,7 @@ import sabot.modbus.BusSettings;
 import sabot.modbus.BusStatistics;
 import sabot.modbus.BusTiming;
 import sabot.modbus.InsClient;
+import sabot.modbus.LandmarkClient;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.SactClient;
 import sabot.modbus.SonarClient;
@@ -93,6 +94,7 @@ public final class Bus implements ModbusBus {
     private final SactDriver sact;
     private final InsDriver ins;
     private final SonarDriver sonar;
+    private final LandmarkDriver landmark;
     private volatile boolean closed;
 
     private Bus(BusSettings settings, ModbusMap map, Line line) {
@@ -103,6 +105,7 @@ public final class Bus implements ModbusBus {
         this.sact = new SactDriver(this, new Counters("sact"));
         this.ins = new InsDriver(this, new Counters("ins"));
         this.sonar = new SonarDriver(this, new Counters("sonar"));
+        this.landmark = new LandmarkDriver(this, new Counters("landmark"));
     }
 
     /** Opens the line and reads the SACT configuration (see {@link sabot.modbus.ModbusBuses#open}). */
@@ -261,8 +264,13 @@ public final class Bus implements ModbusBus {
     }
 
     @Override
+    public LandmarkClient landmark() {
+        return landmark;
+    }
+
+    @Override
     public BusStatistics statistics() {
-        return new BusStatistics(sact.counters(), ins.counters(), sonar.counters());
+        return new BusStatistics(sact.counters(), ins.counters(), sonar.counters(), landmark.counters());
     }
 
     @Override

@@ -87,6 +87,22 @@ public final class ModbusMap {
             }
         }
 
+        /**
+         * The raw register value of an SI value: {@code si} / scale, rounded, checked against the static bounds.
+         *
+         * @param what names the value in the message
+         * @throws IllegalArgumentException when {@code si} is not finite or the raw value is out of bounds, naming
+         *                                  {@code what}, the value and the bounds
+         */
+        public long raw(String what, double si) {
+            if (!Double.isFinite(si)) {
+                throw new IllegalArgumentException(what + " is " + si + " " + siUnit);
+            }
+            long raw = Math.round(si / scale);
+            checkBounds(what + " " + si + " " + siUnit, raw);
+            return raw;
+        }
+
         /** @return the 16-bit register words of {@code raw} (high word first for 32-bit types) */
         public short[] encode(long raw) {
             return width() == 2 ? new short[] { (short) (raw >>> 16), (short) raw } : new short[] { (short) raw };

@@ -188,12 +188,7 @@ final class SactDriver extends BoardDriver implements SactClient {
     }
 
     private static long raw(Field f, String what, double si) {
-        if (!Double.isFinite(si)) {
-            throw new IllegalArgumentException(what + " is " + si + " " + f.siUnit());
-        }
-        long raw = Math.round(si / f.scale());
-        f.checkBounds(what + " " + si + " " + f.siUnit(), raw);
-        return raw;
+        return f.raw(what, si);
     }
 
     @Override

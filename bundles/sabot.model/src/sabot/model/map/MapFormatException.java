@@ -12,4 +12,9 @@ public final class MapFormatException extends IOException {
     public MapFormatException(Path file, String problem) {
         super(file + ": " + problem);
     }
+
+    /** @param file the file at fault; {@code line} (from 1) is where; {@code problem} says what is wrong there */
+    public MapFormatException(Path file, int line, String problem) {
+        super(file + ":" + line + ": " + problem);
+    }
 }

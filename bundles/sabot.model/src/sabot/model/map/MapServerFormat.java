@@ -5,10 +5,13 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
+import java.util.regex.Pattern;
 
 import sabot.model.geometry.Pose2D;
 
@@ -24,12 +27,21 @@ import sabot.model.geometry.Pose2D;
  *
  * <p>The YAML reader understands the flat {@code key: value} subset these files use ({@code #} comments, quoted
  * strings, a {@code [x, y, yaw]} list for the origin) and nothing more, so the model stays free of dependencies.
+ *
+ * <p>Sabot extends the YAML with one key, {@value #LANDMARKS_KEY}: the file listing the map's ceiling landmarks
+ * ({@link #readLandmarks}). {@code map_server} reads only the keys it knows, so such a map still loads there.
  */
 public final class MapServerFormat {
 
     /** A loaded map: the grid and the description it was read with. */
     public record LoadedMap(OccupancyGrid grid, MapMetadata metadata) {
     }
+
+    /** The YAML key naming the landmarks file, relative to the YAML file's folder unless absolute. */
+    public static final String LANDMARKS_KEY = "sabot_landmarks";
+
+    /** A decimal number as the landmarks file writes it (no hex, no {@code NaN}, no {@code 1d}: as the C reader). */
+    private static final Pattern DECIMAL = Pattern.compile("[+-]?(\\d+\\.?\\d*|\\.\\d+)([eE][+-]?\\d+)?");
 
     private static final List<String> REQUIRED_KEYS = List.of("image", "resolution", "origin", "negate",
             "occupied_thresh", "free_thresh");
@@ -136,15 +148,7 @@ public final class MapServerFormat {
      * @throws MapFormatException naming the file and the missing or malformed key
      */
     public static MapMetadata readMetadata(Path yamlFile) throws IOException {
-        String text;
-        try {
-            text = Files.readString(yamlFile, StandardCharsets.UTF_8);
-        } catch (NoSuchFileException e) {
-            throw new MapFormatException(yamlFile, "map file does not exist");
-        } catch (java.nio.charset.MalformedInputException e) {
-            throw new MapFormatException(yamlFile, "not a UTF-8 text file");
-        }
-        Map<String, String> keys = parseFlatYaml(yamlFile, text);
+        Map<String, String> keys = parseFlatYaml(yamlFile, readText(yamlFile, "map file"));
         for (String key : REQUIRED_KEYS) {
             if (!keys.containsKey(key)) {
                 throw new MapFormatException(yamlFile, "missing key '" + key + "'");
@@ -166,6 +170,95 @@ public final class MapServerFormat {
         } catch (IllegalArgumentException e) {
             throw new MapFormatException(yamlFile, e.getMessage());
         }
+    }
+
+    /**
+     * The ceiling landmarks of a map: the file its YAML names under {@value #LANDMARKS_KEY}, read by
+     * {@link #readLandmarkFile}.
+     *
+     * @param yamlFile the map's YAML description
+     * @return the landmarks in file order; empty when the YAML has no {@value #LANDMARKS_KEY} key
+     * @throws MapFormatException naming the file (and line) at fault: the YAML unreadable or the key empty, the
+     *                            landmarks file missing or malformed
+     */
+    public static List<MapLandmark> readLandmarks(Path yamlFile) throws IOException {
+        String name = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(LANDMARKS_KEY);
+        if (name == null) {
+            return List.of();
+        }
+        if (name.isBlank()) {
+            throw new MapFormatException(yamlFile, "key '" + LANDMARKS_KEY + "' must name a file");
+        }
+        return readLandmarkFile(resolveImage(yamlFile, name));
+    }
+
+    /**
+     * Reads a landmarks file: one marker per line, {@code id x y} separated by blanks ({@code id} an integer
+     * 1–65535, {@code x} and {@code y} decimal metres in the map frame), {@code #} starting a comment, blank lines
+     * allowed, every id once. The simulator's world loader reads the same format.
+     *
+     * @return the landmarks in file order
+     * @throws MapFormatException naming the file and line: a line without exactly three fields, an id that is not an
+     *                            integer in range, a coordinate that is not a decimal number, an id given twice
+     */
+    public static List<MapLandmark> readLandmarkFile(Path file) throws IOException {
+        String[] lines = readText(file, "landmarks file").split("\r?\n|\r", -1);
+        List<MapLandmark> landmarks = new ArrayList<>();
+        Map<Integer, Integer> lineOfId = new HashMap<>();
+        for (int i = 0; i < lines.length; i++) {
+            int lineNo = i + 1;
+            String line = lines[i];
+            int hash = line.indexOf('#');
+            String content = (hash >= 0 ? line.substring(0, hash) : line).strip();
+            if (content.isEmpty()) {
+                continue;
+            }
+            String[] fields = content.split("\\s+");
+            if (fields.length != 3) {
+                throw new MapFormatException(file, lineNo, "expected 'id x y', got " + fields.length
+                        + (fields.length == 1 ? " field" : " fields"));
+            }
+            int id;
+            try {
+                id = Integer.parseInt(fields[0]);
+            } catch (NumberFormatException e) {
+                id = -1;
+            }
+            if (id < MapLandmark.MIN_ID || id > MapLandmark.MAX_ID) {
+                throw new MapFormatException(file, lineNo, "id '" + fields[0] + "' is not an integer in "
+                        + MapLandmark.MIN_ID + ".." + MapLandmark.MAX_ID);
+            }
+            double x = coordinate(file, lineNo, "x", fields[1]);
+            double y = coordinate(file, lineNo, "y", fields[2]);
+            Integer first = lineOfId.putIfAbsent(id, lineNo);
+            if (first != null) {
+                throw new MapFormatException(file, lineNo, "landmark id " + id + " given twice (first on line "
+                        + first + ")");
+            }
+            landmarks.add(new MapLandmark(id, x, y));
+        }
+        return List.copyOf(landmarks);
+    }
+
+    /** @return the whole of a UTF-8 text file; {@code what} names it when it does not exist */
+    private static String readText(Path file, String what) throws IOException {
+        try {
+            return Files.readString(file, StandardCharsets.UTF_8);
+        } catch (NoSuchFileException e) {
+            throw new MapFormatException(file, what + " does not exist");
+        } catch (java.nio.charset.MalformedInputException e) {
+            throw new MapFormatException(file, "not a UTF-8 text file");
+        }
+    }
+
+    private static double coordinate(Path file, int line, String name, String text) throws MapFormatException {
+        if (DECIMAL.matcher(text).matches()) {
+            double v = Double.parseDouble(text);
+            if (Double.isFinite(v)) {
+                return v;
+            }
+        }
+        throw new MapFormatException(file, line, name + " '" + text + "' is not a number (metres)");
     }
 
     /** @return the YAML text describing a map, in {@code map_saver}'s layout */
