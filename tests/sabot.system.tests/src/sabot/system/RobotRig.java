@@ -49,12 +49,21 @@ final class RobotRig implements AutoCloseable {
      */
     static RobotRig start(PrivateXmppServer xmpp, Path dir, double[] start, String[] simOptions, String extraConfig)
             throws Exception {
+        return start(xmpp, dir, start, start, simOptions, extraConfig);
+    }
+
+    /**
+     * As {@link #start(PrivateXmppServer, Path, double[], String[], String)}, the robot standing at {@code start} but
+     * its onboard product told it stands at {@code believed} (an operator's rough placement).
+     */
+    static RobotRig start(PrivateXmppServer xmpp, Path dir, double[] start, double[] believed, String[] simOptions,
+            String extraConfig) throws Exception {
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         Files.createDirectories(dir);
         SimProcess sim = SimProcess.start(dir, start, simOptions);
         OnboardProcess onboard = null;
         try {
-            onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), start, xmpp.port(),
+            onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, xmpp.port(),
                     OPERATOR + "@" + PrivateXmppServer.DOMAIN), "robot-pw", extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");

@@ -21,13 +21,14 @@ import sabot.modbus.ModbusBus;
 import sabot.modbus.ModbusBuses;
 import sabot.modbus.Parity;
 import sabot.modbus.SactClient;
+import sabot.modbus.LandmarkClient;
 import sabot.modbus.SonarClient;
 import sabot.onboard.task.OnboardTask;
 
 /**
  * Task {@code bus}: the robot's RS-485 line (Modbus RTU master on a serial device, or RTU framing over TCP) and the
- * three board clients on it, registered as services ({@link SactClient}, {@link InsClient}, {@link SonarClient}) and
- * as the control loop's {@link RobotBoards}. Settings: OSGI-INF/metatype/bus.xml.
+ * board clients on it, registered as services ({@link SactClient}, {@link InsClient}, {@link SonarClient},
+ * {@link LandmarkClient}: the landmark board is optional) and as the control loop's {@link RobotBoards}. Settings: OSGI-INF/metatype/bus.xml.
  */
 @Component(name = "sabot.task.bus", configurationPolicy = ConfigurationPolicy.REQUIRE, service = OnboardTask.class)
 public final class BusTask implements OnboardTask {
@@ -70,6 +71,7 @@ public final class BusTask implements OnboardTask {
     private ServiceRegistration<?> sact;
     private ServiceRegistration<?> ins;
     private ServiceRegistration<?> sonar;
+    private ServiceRegistration<?> landmark;
 
     @Activate
     void activate(Config c, BundleContext context) throws IOException {
@@ -86,6 +88,7 @@ public final class BusTask implements OnboardTask {
         sact = context.registerService(SactClient.class, bus.sact(), props);
         ins = context.registerService(InsClient.class, bus.ins(), props);
         sonar = context.registerService(SonarClient.class, bus.sonar(), props);
+        landmark = context.registerService(LandmarkClient.class, bus.landmark(), props);
         boards = context.registerService(RobotBoards.class, new ModbusBoards(bus), props);
         LOG.info("bus open on {} ({}), motor board firmware {}", describe(), bus.timing(),
                 bus.sact().config().firmwareVersion());
@@ -93,7 +96,7 @@ public final class BusTask implements OnboardTask {
 
     @Deactivate
     void deactivate() {
-        for (ServiceRegistration<?> r : new ServiceRegistration<?>[] { boards, sonar, ins, sact }) {
+        for (ServiceRegistration<?> r : new ServiceRegistration<?>[] { boards, landmark, sonar, ins, sact }) {
             if (r != null) {
                 r.unregister();
             }

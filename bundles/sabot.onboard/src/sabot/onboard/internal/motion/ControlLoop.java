@@ -5,9 +5,11 @@ import java.time.Instant;
 import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.Deque;
+import java.util.HashSet;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
+import java.util.Set;
 
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -31,6 +33,7 @@ import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.Trajectory;
 import sabot.controlml.payload.VelocityCommand;
+import sabot.localization.MeasurementResult;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
@@ -65,6 +68,10 @@ final class ControlLoop {
     static final double SETTLE_POSITION_FRACTION = 0.5;
     /** The turn in place aims inside this fraction of the heading tolerance. */
     static final double SETTLE_HEADING_FRACTION = 0.5;
+    /** One optional read in this many goes to the landmark board (about 6 Hz at 50 Hz; the board measures at 10). */
+    static final int LANDMARK_SLOTS = 8;
+    /** Seconds between two reads of a landmark board that has stopped answering. */
+    static final double LANDMARK_RETRY = 2.0;
     /** Half-angle of a sonar's beam (HC-SR04 figures, onboard-bridge/README.md): an echo lies within it. */
     static final double SONAR_HALF_BEAM = Math.toRadians(15);
     /** Largest number of obstacle points kept (cm.obstacles allows 1024 rows). */
@@ -122,6 +129,9 @@ final class ControlLoop {
     /** Set once the settle phase reached the goal's position; the turn in place follows. */
     private boolean positionSettled;
     private int optionalRound;
+    private int lastLandmarkSequence = -1;
+    private double lastLandmarkTry = Double.NEGATIVE_INFINITY;
+    private final Set<Integer> unknownLandmarks = new HashSet<>();
     private int sonarRound;
     private double lastStatus = Double.NEGATIVE_INFINITY;
     private Pose2D pose;
@@ -134,7 +144,7 @@ final class ControlLoop {
         this.boards = boards;
         this.drive = DifferentialDrive.of(robot);
         this.localizerTask = localizerTask;
-        this.localizer = localizerTask.newLocalizer();
+        this.localizer = localizerTask.newLocalizer(plannerTask.landmarks());
         this.plannerTask = plannerTask;
         this.trackerTask = trackerTask;
         this.timing = new LoopTiming(Math.round(1e9 / config.rate()));
@@ -253,9 +263,13 @@ final class ControlLoop {
             return;
         }
         int sonars = boards.sonarSensors();
+        int round = optionalRound++;
         try {
-            // every other spare slot goes to the gyro; the others to the sonar sensors in turn
-            if (optionalRound++ % 2 == 0 || sonars == 0) {
+            // every other spare slot goes to the gyro; one in eight to the landmark board (it measures at 10 Hz), the
+            // others to the sonar sensors in turn
+            if (round % LANDMARK_SLOTS == 1 && landmarkReadDue(t)) {
+                readLandmark(t);
+            } else if (round % 2 == 0 || sonars == 0) {
                 RobotBoards.ImuSample s = boards.readImu();
                 localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
             } else {
@@ -268,6 +282,43 @@ final class ControlLoop {
             LOG.debug("optional read failed: {}", e.getMessage());
         }
         pruneEchoes(t);
+    }
+
+    /** @return how many landmark sightings the estimate used, for the log */
+    String landmarkSummary() {
+        if (!localizer.usesLandmarks()) {
+            return "no landmarks on the map";
+        }
+        long[] n = localizer.landmarkCounts();
+        return "landmark fixes " + n[0] + " (" + n[1] + " rejected by the gate)";
+    }
+
+    /** A landmark board that stopped answering is asked again only every {@link #LANDMARK_RETRY} s. */
+    private boolean landmarkReadDue(double t) {
+        if (!localizer.usesLandmarks()) {
+            return false;
+        }
+        if (boards.landmarkBoardFaulted()) {
+            if (t - lastLandmarkTry < LANDMARK_RETRY) {
+                return false;
+            }
+        }
+        lastLandmarkTry = t;
+        return true;
+    }
+
+    private void readLandmark(double t) throws IOException {
+        RobotBoards.LandmarkSighting s = boards.readLandmark();
+        if (s.sequence() == lastLandmarkSequence) {
+            return; // read again before the board measured anew
+        }
+        lastLandmarkSequence = s.sequence();
+        if (s.landmarkId() != 0) {
+            MeasurementResult r = localizer.landmark(now(), s.landmarkId(), s.range(), s.bearing(), s.age());
+            if (r == null && unknownLandmarks.add(s.landmarkId())) {
+                LOG.warn("landmark {} seen but not on the map's landmark list: ignored", s.landmarkId());
+            }
+        }
     }
 
     private void addEcho(double t, Point2D robotFrame) {

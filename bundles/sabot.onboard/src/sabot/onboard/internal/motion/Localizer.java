@@ -1,15 +1,22 @@
 package sabot.onboard.internal.motion;
 
+import java.util.HashMap;
+import java.util.List;
+import java.util.Map;
+
 import sabot.localization.EkfNoise;
 import sabot.localization.EncoderOdometry;
+import sabot.localization.Landmark;
+import sabot.localization.MeasurementResult;
 import sabot.localization.OdometryCalibration;
 import sabot.localization.PoseEkf;
 import sabot.model.geometry.Pose2D;
+import sabot.model.map.MapLandmark;
 import sabot.model.robot.RobotDescription;
 
 /**
  * The robot's pose estimate: wheel odometry (RK2 on encoder counts) fused with the inertial board's yaw rate and
- * longitudinal acceleration in an EKF. Used by the control loop's thread only (not thread-safe).
+ * longitudinal acceleration, and with sightings of the map's ceiling landmarks (absolute fixes), in an EKF. Used by the control loop's thread only (not thread-safe).
  */
 final class Localizer {
 
@@ -21,10 +28,16 @@ final class Localizer {
     private double firstReadingTime = Double.NaN;
     /** Where the next first encoder reading starts odometry (the start pose, or a re-localisation). */
     private Pose2D pendingPose;
+    private final Map<Integer, Landmark> landmarks = new HashMap<>();
+    private long landmarkFixes;
+    private long landmarkOutliers;
 
-    Localizer(RobotDescription robot, LocalizerTask.Config config) {
+    Localizer(RobotDescription robot, LocalizerTask.Config config, List<MapLandmark> landmarks) {
         this.robot = robot;
         this.config = config;
+        for (MapLandmark m : landmarks) {
+            this.landmarks.put(m.id(), new Landmark(Integer.toString(m.id()), m.x(), m.y()));
+        }
         reset(new Pose2D(config.startX(), config.startY(), config.startTheta()), Double.NaN);
     }
 
@@ -69,6 +82,50 @@ final class Localizer {
         if (config.useAccelerometer()) {
             ekf.updateAccelerometer(time, forwardAcceleration);
         }
+    }
+
+    /** @return whether there are landmarks to fuse (the map names some and the settings use them) */
+    boolean usesLandmarks() {
+        return !landmarks.isEmpty();
+    }
+
+    /**
+     * Fuses one sighting of a ceiling landmark, read at {@code time} and measured {@code age} seconds earlier. The
+     * range and bearing are carried forward to {@code time} with the estimated speed and yaw rate (the robot moves
+     * up to 0.05 m and turns up to 0.2 rad in a 100 ms old measurement), so that the EKF, which takes measurements in
+     * time order, can apply it now.
+     *
+     * @return the EKF's verdict, or null when the id is not on the map or there is no estimate yet
+     */
+    MeasurementResult landmark(double time, int id, double range, double bearing, double age) {
+        Landmark l = landmarks.get(id);
+        if (l == null || Double.isNaN(ekf.time())) {
+            return null;
+        }
+        double v = ekf.state(PoseEkf.V);
+        double w = ekf.state(PoseEkf.OMEGA);
+        double turned = w * age;
+        double ahead = v * age;
+        // the marker in the robot frame of the measurement, then in the robot frame now (moved ahead, then turned)
+        double px = range * Math.cos(bearing) - ahead;
+        double py = range * Math.sin(bearing);
+        double c = Math.cos(turned);
+        double s = Math.sin(turned);
+        double qx = c * px + s * py;
+        double qy = -s * px + c * py;
+        MeasurementResult r = ekf.updateLandmark(time, l, Math.hypot(qx, qy), Math.atan2(qy, qx),
+                config.landmarkRangeSigma(), config.landmarkBearingSigma());
+        if (r == MeasurementResult.ACCEPTED) {
+            landmarkFixes++;
+        } else if (r == MeasurementResult.REJECTED_OUTLIER) {
+            landmarkOutliers++;
+        }
+        return r;
+    }
+
+    /** @return landmark sightings fused and rejected by the gate since the start */
+    long[] landmarkCounts() {
+        return new long[] { landmarkFixes, landmarkOutliers };
     }
 
     /** @return the estimate predicted to {@code time} */

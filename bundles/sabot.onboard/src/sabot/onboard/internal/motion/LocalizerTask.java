@@ -1,10 +1,13 @@
 package sabot.onboard.internal.motion;
 
+import java.util.List;
+
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 
 import sabot.model.geometry.Pose2D;
+import sabot.model.map.MapLandmark;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.task.OnboardTask;
 
@@ -48,6 +51,15 @@ public final class LocalizerTask implements OnboardTask {
         /** @return seconds without odometry after which the estimate is stale (the robot stops) */
         double odometryTimeout() default 0.2;
 
+        /** @return fuse sightings of the ceiling landmarks the map names (when the robot has the landmark board) */
+        boolean useLandmarks() default true;
+
+        /** @return standard deviation of a landmark's range, m (the board's 10 mm, plus the latency compensation's) */
+        double landmarkRangeSigma() default 0.02;
+
+        /** @return standard deviation of a landmark's bearing, rad (the board's 0.5°, plus the compensation's) */
+        double landmarkBearingSigma() default 0.02;
+
         /** @return largest positional standard deviation, m, above which the robot stops (safety) */
         double maxPositionSigma() default 0.5;
     }
@@ -59,9 +71,12 @@ public final class LocalizerTask implements OnboardTask {
         this.config = c;
     }
 
-    /** @return a new estimator at the configured start pose */
-    Localizer newLocalizer() {
-        return new Localizer(RobotDescriptions.defaults(), config);
+    /**
+     * @param landmarks the ceiling landmarks of the map (fused only when {@code useLandmarks})
+     * @return a new estimator at the configured start pose
+     */
+    Localizer newLocalizer(List<MapLandmark> landmarks) {
+        return new Localizer(RobotDescriptions.defaults(), config, config.useLandmarks() ? landmarks : List.of());
     }
 
     /** @return the configured settings */
@@ -81,6 +96,7 @@ public final class LocalizerTask implements OnboardTask {
 
     @Override
     public String status() {
-        return "odometry + EKF" + (config.useImu() ? " with the inertial board" : "") + ", start " + start();
+        return "odometry + EKF" + (config.useImu() ? " with the inertial board" : "")
+                + (config.useLandmarks() ? " and ceiling landmarks" : "") + ", start " + start();
     }
 }

@@ -86,6 +86,17 @@ final class ModbusBoards implements RobotBoards {
     }
 
     @Override
+    public LandmarkSighting readLandmark() throws IOException {
+        sabot.modbus.LandmarkSighting s = bus.landmark().readLatest();
+        return new LandmarkSighting(s.sequence(), s.landmarkId(), s.range(), s.bearing(), s.age().toNanos() * 1e-9);
+    }
+
+    @Override
+    public boolean landmarkBoardFaulted() {
+        return bus.landmark().faulted();
+    }
+
+    @Override
     public int sonarSensors() {
         return bus.sonar().sensorCount();
     }
@@ -172,6 +183,7 @@ final class ModbusBoards implements RobotBoards {
 
     @Override
     public double optionalReadWireTime() {
-        return Math.max(bus.ins().readMotionWireTime().toNanos(), bus.sonar().readSensorWireTime().toNanos()) * 1e-9;
+        return Math.max(Math.max(bus.ins().readMotionWireTime().toNanos(), bus.sonar().readSensorWireTime().toNanos()),
+                bus.landmark().readLatestWireTime().toNanos()) * 1e-9;
     }
 }

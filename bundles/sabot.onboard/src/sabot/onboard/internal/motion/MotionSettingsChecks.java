@@ -14,7 +14,7 @@ import sabot.onboard.task.TaskSettingsCheck;
 
 /**
  * What Metatype cannot say about the motion tasks' settings, checked before anything starts: the bus's serial device
- * must exist (or a TCP gateway be named), and the planner's map must load.
+ * must exist (or a TCP gateway be named), and the planner's map (with the landmarks it names) must load.
  */
 final class MotionSettingsChecks {
 
@@ -42,7 +42,7 @@ final class MotionSettingsChecks {
         }
     }
 
-    /** {@code planner}: the map must be a readable ROS map_server YAML whose image loads. */
+    /** {@code planner}: the map must be a readable ROS map_server YAML whose image and landmarks file load. */
     @Component(service = TaskSettingsCheck.class, property = TaskSettingsCheck.TASK + "=planner")
     public static final class Planner implements TaskSettingsCheck {
         @Override
@@ -57,6 +57,7 @@ final class MotionSettingsChecks {
             }
             try {
                 MapServerFormat.load(file);
+                MapServerFormat.readLandmarks(file);
                 return List.of();
             } catch (IOException | RuntimeException e) {
                 return List.of(new Problem("map", "map " + file + " does not load: " + e.getMessage()));

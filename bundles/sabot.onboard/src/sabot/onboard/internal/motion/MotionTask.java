@@ -192,8 +192,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
         plannerThread.shutdownNow();
         notifier.shutdown();
-        LOG.info("motion task stopped, robot braked; control loop {}; joystick twist to wheel set-point {}",
-                loop.timing().summary(), loop.teleopLatency().describe());
+        LOG.info("motion task stopped, robot braked; control loop {}; joystick twist to wheel set-point {}; {}",
+                loop.timing().summary(), loop.teleopLatency().describe(), loop.landmarkSummary());
     }
 
     @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)

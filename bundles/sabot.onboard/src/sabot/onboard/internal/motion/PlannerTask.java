@@ -2,12 +2,14 @@ package sabot.onboard.internal.motion;
 
 import java.io.IOException;
 import java.nio.file.Path;
+import java.util.List;
 
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
 
+import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
 import sabot.onboard.task.OnboardTask;
 
@@ -43,11 +45,13 @@ public final class PlannerTask implements OnboardTask {
 
     private NavigationPlanner planner;
     private Config config;
+    private List<MapLandmark> landmarks;
 
     @Activate
     void activate(Config c) throws IOException {
         this.config = c;
         MapServerFormat.LoadedMap loaded = MapServerFormat.load(Path.of(c.map()));
+        landmarks = MapServerFormat.readLandmarks(Path.of(c.map()));
         planner = new NavigationPlanner(loaded.grid(), c.algorithm(), c.threads(), c.robotRadius(),
                 c.inflationRadius());
     }
@@ -60,6 +64,11 @@ public final class PlannerTask implements OnboardTask {
     /** @return the planner over the configured map */
     NavigationPlanner planner() {
         return planner;
+    }
+
+    /** @return the ceiling landmarks the map names (its {@code sabot_landmarks} file), possibly none */
+    List<MapLandmark> landmarks() {
+        return landmarks;
     }
 
     /** @return the configured settings */

@@ -45,6 +45,24 @@ public interface RobotBoards {
     /** @return the inertial board's latest sample, one transaction */
     ImuSample readImu() throws IOException;
 
+    /**
+     * The ceiling-landmark board's latest measurement.
+     *
+     * @param sequence   changes with every new measurement
+     * @param landmarkId the marker seen (0: none in view)
+     * @param range      m, horizontal
+     * @param bearing    rad, robot frame, counter-clockwise from the heading
+     * @param age        s since the measurement was taken
+     */
+    record LandmarkSighting(int sequence, int landmarkId, double range, double bearing, double age) {
+    }
+
+    /** @return the landmark board's latest measurement, one transaction */
+    LandmarkSighting readLandmark() throws IOException;
+
+    /** @return whether the landmark board (optional: not every robot has one) has stopped answering */
+    boolean landmarkBoardFaulted();
+
     /** @return the number of sonar sensors */
     int sonarSensors();
 
@@ -75,6 +93,6 @@ public interface RobotBoards {
     /** @return computed wire time of {@link #writeWheelSpeeds}, seconds */
     double wheelWriteWireTime();
 
-    /** @return computed wire time of the loop's optional reads (IMU, one sonar sensor), seconds */
+    /** @return computed wire time of the longest of the loop's optional reads (IMU, one sonar sensor, landmark), s */
     double optionalReadWireTime();
 }
