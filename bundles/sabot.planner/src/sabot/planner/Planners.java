@@ -10,7 +10,8 @@ import sabot.planner.internal.ReferencePlanner;
 public final class Planners {
 
     /** Names {@link #byName} understands. */
-    public static final List<String> NAMES = List.of("lpn", "lpn-bounded", "lpn-incremental", "reference", "dijkstra");
+    public static final List<String> NAMES = List.of("lpn", "lpn-bounded", "lpn-focused", "lpn-incremental", "reference",
+            "dijkstra");
 
     private Planners() {
     }
@@ -41,6 +42,16 @@ public final class Planners {
      */
     public static Planner lpnBounded(CostModel costModel) {
         return new LpnPlanner(costModel, false);
+    }
+
+    /**
+     * @return the LPN planner that computes the navigation function in the order of N plus an underestimate of the
+     *         cost to the start (A*-like, expanding cells again when that order was wrong) and stops once the start's
+     *         value is final: the path of {@link #lpn} (to float rounding), computed over fewer cells when the start
+     *         lies across open space from the goal; as complete (an enclosed goal or start is reported as such)
+     */
+    public static Planner lpnFocused(CostModel costModel) {
+        return LpnPlanner.focused(costModel);
     }
 
     /**
@@ -88,6 +99,7 @@ public final class Planners {
         return Optional.ofNullable(switch (name) {
             case "lpn" -> lpn(costModel, threads);
             case "lpn-bounded" -> lpnBounded(costModel);
+            case "lpn-focused" -> lpnFocused(costModel);
             case "lpn-incremental" -> lpnIncremental(costModel, threads);
             case "reference" -> reference(costModel);
             case "dijkstra" -> dijkstra(costModel);

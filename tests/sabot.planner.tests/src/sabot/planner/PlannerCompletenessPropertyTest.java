@@ -28,10 +28,11 @@ class PlannerCompletenessPropertyTest {
     private static final double COST_TOLERANCE = 1.01;
     private static final double COST_SLACK = 2 * CostModel.COST_NEUTRAL;
 
-    /** LPN on one thread, and on two with bands of a few rows so that most cells lie near a band boundary. */
+    /** LPN on one thread, focused (lpn-focused), and on two with bands of a few rows so that most cells lie near a band boundary. */
     static Stream<Arguments> lpnPlanners() {
         return Stream.of(
                 Arguments.of("one thread", (Supplier<Planner>) Planners::lpn),
+                Arguments.of("focused", (Supplier<Planner>) () -> Planners.lpnFocused(CostModel.standard())),
                 Arguments.of("two threads, small bands",
                         (Supplier<Planner>) () -> new LpnPlanner(
                                 CostModel.standard(), true, false, new LpnNavigationFunction(

@@ -22,6 +22,7 @@ public final class LpnPlanner implements Planner {
     private final float[] density;
     private final PlanningGrid grid = new PlanningGrid();
     private final LpnNavigationFunction navigationFunction;
+    private boolean focused;
 
     /**
      * @param wholeGrid true to compute N over the whole reachable grid (a navigation function valid from anywhere);
@@ -29,6 +30,13 @@ public final class LpnPlanner implements Planner {
      */
     public LpnPlanner(CostModel costModel, boolean wholeGrid) {
         this(costModel, wholeGrid, false);
+    }
+
+    /** The focused planner ({@link LpnNavigationFunction#computeFocused}), {@code lpn-focused}. */
+    public static LpnPlanner focused(CostModel costModel) {
+        LpnPlanner planner = new LpnPlanner(costModel, false);
+        planner.focused = true;
+        return planner;
     }
 
     /**
@@ -68,7 +76,7 @@ public final class LpnPlanner implements Planner {
 
     @Override
     public String name() {
-        return incremental ? "lpn-incremental" : wholeGrid ? "lpn" : "lpn-bounded";
+        return incremental ? "lpn-incremental" : wholeGrid ? "lpn" : focused ? "lpn-focused" : "lpn-bounded";
     }
 
     @Override
@@ -81,7 +89,11 @@ public final class LpnPlanner implements Planner {
         PlanRequest request = PlanRequest.resolve(grid, start, goals);
         if (!(incremental && navigationFunction.repair(grid, changed, request.goalCells()))) {
             navigationFunction.gridChanged(grid, changed);
-            navigationFunction.compute(request.goalCells(), wholeGrid ? -1 : request.startCell());
+            if (focused) {
+                navigationFunction.computeFocused(request.goalCells(), request.startCell());
+            } else {
+                navigationFunction.compute(request.goalCells(), wholeGrid ? -1 : request.startCell());
+            }
         }
         if (!navigationFunction.isReached(request.startCell())) {
             return PlanRequest.enclosed(navigationFunction.finalizedCount());

@@ -30,7 +30,7 @@ public final class PlanCommand {
 
     static final String USAGE = """
             usage: sabot plan (--map FILE.yaml | --costmap FILE.pgm) --start X,Y --goal X,Y [--goal X,Y ...]
-                              [--cells] [--planner lpn|lpn-bounded|reference|dijkstra] [--repeat N] [--png OUT.png]
+                              [--cells] [--planner lpn|lpn-bounded|lpn-focused|lpn-incremental|reference|dijkstra] [--repeat N] [--png OUT.png]
                               [--threads 1|2] [--resolution M] [--inscribed-radius M] [--inflation-radius M]
                               [--cost-scaling F] [--allow-unknown]
               --map            ROS map_server YAML (+ PGM); obstacles are inflated for the robot

@@ -1,0 +1,97 @@
+package sabot.planner;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.util.Random;
+
+import org.junit.jupiter.api.Test;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.map.Costmap;
+
+/**
+ * {@code lpn-focused} against the exhaustive propagation ({@code lpn}): the same answer, the same value at the start
+ * and the same path cost (float rounding aside), over no more cells; enclosed goals and starts are still reported.
+ */
+class FocusedPlanningTest {
+
+    private static final int GRIDS = 300;
+    /**
+     * Relative difference allowed between the focused and the exhaustive N(start), and how much dearer the focused
+     * path may be: the order of expansion changes which diagonal steps the interpolated update takes (the class
+     * comment of LpnNavigationFunction), as it does between one and two threads; measured worst case below 0.1 %.
+     */
+    private static final double TOLERANCE = 2e-3;
+
+    @Test
+    void focusedPlansMatchTheExhaustivePropagationOverNoMoreCells() {
+        try (Planner exhaustive = Planners.lpn(CostModel.standard());
+                Planner focused = Planners.lpnFocused(CostModel.standard())) {
+            int found = 0;
+            int fewer = 0;
+            double worstCost = 0;
+            double worstValue = 0;
+            for (int seed = 1; seed <= GRIDS; seed++) {
+                Random random = new Random(seed);
+                int width = 20 + random.nextInt(120);
+                int height = 20 + random.nextInt(120);
+                Costmap costmap = TestGrids.random(seed, width, height, 0.05 + 0.3 * random.nextDouble());
+                Point2D start = TestGrids.randomFreePoint(random, costmap);
+                Point2D goal = TestGrids.randomFreePoint(random, costmap);
+                String context = "seed " + seed + " (" + width + " x " + height + ")";
+                PlanResult all = exhaustive.plan(costmap, start, goal);
+                PlanResult some = focused.plan(costmap, start, goal);
+                assertEquals(all.isFound(), some.isFound(), context);
+                if (all instanceof PlanResult.Found a && some instanceof PlanResult.Found f) {
+                    found++;
+                    double startValueAll = a.field().valueAt(start);
+                    double startValueSome = f.field().valueAt(start);
+                    assertEquals(startValueAll, startValueSome, TOLERANCE * startValueAll + 1e-3,
+                            context + ": N(start)");
+                    assertTrue(f.path().cost() <= (1 + TOLERANCE) * a.path().cost(), context + ": path cost "
+                            + f.path().cost() + ", exhaustive " + a.path().cost());
+                    worstCost = Math.max(worstCost, f.path().cost() / a.path().cost());
+                    worstValue = Math.max(worstValue, Math.abs(startValueSome / startValueAll - 1));
+                    PathChecks.assertCollisionFree(costmap, f.path(), start, goal, context);
+                    PathChecks.assertDescending(f.field(), f.path(), context);
+                    assertTrue(f.field().reachedCells() <= a.field().reachedCells(), context);
+                    if (f.field().reachedCells() < a.field().reachedCells()) {
+                        fewer++;
+                    }
+                } else {
+                    assertEquals(((PlanResult.Unreachable) all).reason(), ((PlanResult.Unreachable) some).reason(),
+                            context);
+                }
+            }
+            System.out.println("lpn-focused: worst path cost ratio to lpn " + worstCost + ", worst N(start) difference "
+                    + worstValue + ", fewer cells on " + fewer + " of " + found);
+            assertTrue(found > GRIDS / 2, "most seeds must give solvable grids: " + found);
+            assertTrue(fewer > found / 2, "the focus must spare cells on most grids: " + fewer + " of " + found);
+        }
+    }
+
+    @Test
+    void anEnclosedGoalOrStartIsReported() {
+        Costmap costmap = TestGrids.free(60, 60);
+        for (int i = 20; i <= 30; i++) {
+            costmap.set(i, 20, Costmap.LETHAL);
+            costmap.set(i, 30, Costmap.LETHAL);
+            costmap.set(20, i, Costmap.LETHAL);
+            costmap.set(30, i, Costmap.LETHAL);
+        }
+        Point2D inside = costmap.geometry().cellCentre(25, 25);
+        Point2D outside = costmap.geometry().cellCentre(5, 50);
+        try (Planner focused = Planners.lpnFocused(CostModel.standard())) {
+            PlanResult toInside = focused.plan(costmap, outside, inside);
+            assertEquals(UnreachableReason.GOAL_ENCLOSED,
+                    assertInstanceOf(PlanResult.Unreachable.class, toInside).reason());
+            PlanResult fromInside = focused.plan(costmap, inside, outside);
+            assertEquals(UnreachableReason.GOAL_ENCLOSED,
+                    assertInstanceOf(PlanResult.Unreachable.class, fromInside).reason());
+            PlanResult within = focused.plan(costmap, inside, costmap.geometry().cellCentre(27, 23));
+            assertInstanceOf(PlanResult.Found.class, within);
+        }
+    }
+}
