@@ -68,6 +68,10 @@ final class ControlLoop {
     static final double SETTLE_POSITION_FRACTION = 0.5;
     /** The turn in place aims inside this fraction of the heading tolerance. */
     static final double SETTLE_HEADING_FRACTION = 0.5;
+    /** A slave's answer comes this much later than its wire time at most, in the loop's budget (turnaround). */
+    static final double WIRE_TIME_FACTOR = 1.2;
+    /** Time kept free at the end of a period, s: the next start's wake-up jitter. */
+    static final double PERIOD_MARGIN = 0.001;
     /** One optional read in this many goes to the landmark board (about 6 Hz at 50 Hz; the board measures at 10). */
     static final int LANDMARK_SLOTS = 8;
     /** Seconds between two reads of a landmark board that has stopped answering. */
@@ -206,7 +210,7 @@ final class ControlLoop {
                 LOG.warn("wheel speed write failed: {}", e.getMessage());
             }
         }
-        optionalReads(t, start);
+        optionalReads(t);
         timing.ended(System.nanoTime());
         if (config.statusPeriod() > 0 && t - lastStatus >= config.statusPeriod()) {
             lastStatus = t;
@@ -252,13 +256,11 @@ final class ControlLoop {
      * joystick drives: the spare bus time is kept for writing its twists as they arrive (odometry alone estimates the
      * pose meanwhile, and the sonar guards missions, not teleop).
      */
-    private void optionalReads(double t, long periodStart) {
+    private void optionalReads(double t) {
         if (mode == Mode.TELEOP) {
             return;
         }
-        double left = (timing.periodNanos() - (System.nanoTime() - periodStart)) * 1e-9;
-        // margin: wake-up jitter and the next period's first request must not collide
-        if (left < boards.optionalReadWireTime() * 1.2 + 0.001) {
+        if (!fitsBeforeNextPeriod(boards.optionalReadWireTime())) {
             timing.skippedOptionalRead();
             return;
         }
@@ -632,11 +634,20 @@ final class ControlLoop {
         if (mode != Mode.TELEOP || teleopSent == null) {
             return;
         }
-        long now = System.nanoTime();
-        double left = (timing.nextStartNanos() - now) * 1e-9;
-        if (left >= boards.wheelWriteWireTime() * 1.2 + 0.001) {
-            writeTwist((now - t0) * 1e-9);
+        if (fitsBeforeNextPeriod(boards.wheelWriteWireTime())) {
+            writeTwist(now());
         }
+    }
+
+    /**
+     * Whether a transaction of this wire time ends before the next period is due: the bus's silence before the
+     * request, the wire time with {@link #WIRE_TIME_FACTOR} for the slave's turnaround, and {@link #PERIOD_MARGIN}.
+     * Measured against the next period's scheduled start, not this one's actual start, so that a period that began
+     * late drops its optional work and the schedule catches up.
+     */
+    private boolean fitsBeforeNextPeriod(double wireTime) {
+        double left = (timing.nextStartNanos() - System.nanoTime()) * 1e-9;
+        return left >= boards.interFrameDelay() + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
     }
 
     /** Writes the joystick's twist through the smoother; records its latency. @return true when written */

@@ -2,6 +2,9 @@ package sabot.onboard.internal.motion;
 
 import java.util.Locale;
 
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
 /**
  * Measures the control loop: the jitter of each period's start against its schedule (|actual − expected|), the time
  * the period's work took, and how many optional reads were skipped for lack of bus time. Histograms in microseconds
@@ -17,6 +20,11 @@ final class LoopTiming {
     private long periods;
     private long overruns;
     private long skipped;
+    private long lastLate;
+    private long lastEnd;
+    /** A start this late (ns) begins a late run worth a log line (diagnosis of the jitter's tail). */
+    private static final long LATE_NANOS = 10_000_000;
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
     private volatile Summary summary = new Summary(0, 0, 0, 0, 0, 0, 0, 0);
 
     /** Percentiles in microseconds. */
@@ -51,6 +59,12 @@ final class LoopTiming {
         }
         long late = Math.abs(now - expected);
         jitter.add(late);
+        if (late > LATE_NANOS && lastLate <= LATE_NANOS) {
+            LOG.info("control loop period started {} ms late (the previous period's work took {} ms)",
+                    String.format(Locale.ROOT, "%.1f", late * 1e-6),
+                    String.format(Locale.ROOT, "%.1f", (lastEnd - started) * 1e-6));
+        }
+        lastLate = late;
         // a fixed-rate schedule runs a missed period late rather than skipping it: each start is due one period after
         // the previous start was due
         expected += periodNanos;
@@ -58,6 +72,7 @@ final class LoopTiming {
     }
 
     void ended(long now) {
+        lastEnd = now;
         long work = now - started;
         busy.add(work);
         if (work > periodNanos) {

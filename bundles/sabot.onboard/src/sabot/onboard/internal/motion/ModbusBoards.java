@@ -177,6 +177,11 @@ final class ModbusBoards implements RobotBoards {
     }
 
     @Override
+    public double interFrameDelay() {
+        return bus.settings().interFrameDelay().toNanos() * 1e-9;
+    }
+
+    @Override
     public double wheelWriteWireTime() {
         return bus.sact().setWheelSpeedsWireTime().toNanos() * 1e-9;
     }

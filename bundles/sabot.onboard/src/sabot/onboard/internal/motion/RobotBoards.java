@@ -90,6 +90,9 @@ public interface RobotBoards {
     /** @return the name of the first board that has not answered for longer than the bus's fault time, or null */
     String faultedBoard();
 
+    /** @return the silence the bus keeps between an answer and the next request (t3.5), seconds */
+    double interFrameDelay();
+
     /** @return computed wire time of {@link #writeWheelSpeeds}, seconds */
     double wheelWriteWireTime();
 
