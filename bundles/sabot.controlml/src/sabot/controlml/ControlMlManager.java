@@ -28,7 +28,10 @@ import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.filter.StanzaFilter;
 import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
 import org.jivesoftware.smack.iqrequest.IQRequestHandler.Mode;
+import org.jivesoftware.smack.packet.ErrorIQ;
 import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.IqData;
+import org.jivesoftware.smack.packet.StanzaBuilder;
 import org.jivesoftware.smack.packet.Message;
 import org.jivesoftware.smack.packet.MessageBuilder;
 import org.jivesoftware.smack.packet.Stanza;
@@ -410,8 +413,17 @@ public final class ControlMlManager extends Manager {
                 answer.element().contentXml();
                 return new ControlMlIQ(answer.element());
             }
-            return IQ.createErrorResponse(iq, answer.bareError().toStanzaError());
+            // Nothing to echo: the error alone (IQ.createErrorResponse would copy the request's child, i.e. a
+            // control-ml holding only the attributes that could be read, which is not valid ControlML).
+            return bareErrorResponse(iq, answer.bareError());
         }
+    }
+
+    /** @return an {@code <iq type='error'/>} answering {@code request} that carries only the {@code <error/>} */
+    static IQ bareErrorResponse(IQ request, ControlMlError error) {
+        IqData data = StanzaBuilder.buildIqData(request.getStanzaId()).ofType(IQ.Type.error).to(request.getFrom())
+                .from(request.getTo());
+        return ErrorIQ.builder(error.toStanzaError(), data).build();
     }
 
     private static Instant delayOf(Stanza stanza) {

@@ -42,7 +42,7 @@ public final class Endpoint {
     private final Clock clock;
     private final Map<String, GetHandler<?, ?>> getHandlers = new ConcurrentHashMap<>();
     private final Map<String, SetHandler<?>> setHandlers = new ConcurrentHashMap<>();
-    private final ReplayCache replayCache = new ReplayCache(4096);
+    private final ReplayCache replayCache = new ReplayCache(ReplayCache.CAPACITY);
     private final Object setLock = new Object();
     private volatile AccessPolicy accessPolicy = AccessPolicy.CLOSED;
     private volatile StaleCommandPolicy stalePolicy = StaleCommandPolicy.DEFAULT;
@@ -162,8 +162,11 @@ public final class Endpoint {
 
     private Answer serveChecked(ControlMlElement request, ControlMlType carrierType, Jid from, Instant delayStamp,
             Carrier carrier) {
-        if (request.defect() != null) {
-            return refuse(request, request.defect());
+        // The order of checks is the protocol's (docs/CONTROLML.md section 8): a peer must get the same condition
+        // from every conforming device, so a check is not moved for convenience.
+        ControlMlError defect = request.defect();
+        if (defect != null && (!request.hasValidAttributes() || isAttributeDefect(defect))) {
+            return refuse(request, defect);
         }
         AccessLevel level = accessPolicy.levelOf(from);
         if (level == null || level == AccessLevel.NONE) {
@@ -183,16 +186,40 @@ public final class Endpoint {
             return serveGet(request, from, delayStamp, carrier);
         }
         synchronized (setLock) {
-            // The duplicate check and the application are atomic: a retransmitted set is never applied twice.
+            // The duplicate check and the application are atomic: a retransmitted set is never applied twice. The
+            // id names the command: a second set under a remembered id gets the first one's answer whatever it
+            // carries (its payload is not even looked at, so a retransmission that arrives damaged is answered too).
             ControlMlElement earlier = replayCache.get(from, request.id());
             if (earlier != null) {
                 duplicatesReplayed.incrementAndGet();
                 return Answer.of(earlier);
             }
             Answer answer = serveSet(request, from, delayStamp, carrier);
-            replayCache.put(from, request.id(), answer.element());
+            if (isRemembered(answer.element())) {
+                replayCache.put(from, request.id(), answer.element());
+            }
             return answer;
         }
+    }
+
+    /** @return true for a defect of the attributes (checked first), false for one of the content (checked late) */
+    private static boolean isAttributeDefect(ControlMlError defect) {
+        return defect.cmCondition() == ControlMlCondition.BAD_ATTRIBUTES
+                || defect.cmCondition() == ControlMlCondition.BAD_ID;
+    }
+
+    /**
+     * @return whether the answer to a set is kept for retransmissions: every answer but {@code busy}, which tells
+     *         the requester to send the same command again later (it must then be taken as new, not refused again)
+     */
+    static boolean isRemembered(ControlMlElement answer) {
+        return answer != null && !(answer.type() == ControlMlType.ERROR && answer.failure()
+                .cmCondition() == ControlMlCondition.BUSY);
+    }
+
+    /** The content defect of a request that passed the earlier checks: its payload could not be read. */
+    private Answer refuseContentDefect(ControlMlElement request) {
+        return refuse(request, request.defect());
     }
 
     private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
@@ -213,6 +240,9 @@ public final class Endpoint {
         if (!resource.isGettable() || handler == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no get of "
                     + resource.name()));
+        }
+        if (request.defect() != null) {
+            return refuseContentDefect(request);
         }
         Object query = NoQuery.NONE;
         PayloadCodec<Object> queryCodec = resource.queryCodec();
@@ -251,6 +281,9 @@ public final class Endpoint {
         if (!resource.isSettable() || handler == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no set of "
                     + resource.name()));
+        }
+        if (request.defect() != null) {
+            return refuseContentDefect(request);
         }
         if (request.payload() == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_MISMATCH, "a set of "

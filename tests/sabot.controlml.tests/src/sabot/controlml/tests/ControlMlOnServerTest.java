@@ -242,6 +242,47 @@ abstract class ControlMlOnServerTest {
     }
 
     /**
+     * A request whose attributes cannot all be read is answered with the {@code <error/>} alone (section 8): no
+     * {@code <control-ml/>} echoing the attributes that could be read (Smack's createErrorResponse copies the
+     * request's child, which made an element without failure and with the request's type).
+     */
+    @Test
+    void unreadableAttributesAreAnsweredWithTheErrorAlone(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        record Case(String attributes, ControlMlCondition cm) {
+        }
+        List<Case> cases = List.of(
+                new Case("id='20261121:1' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' id='20261121:1'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='put' id='20261121:1' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' id='2026-11-21:1' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261332:1' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:4294967296' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:01' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:1' res='Position'", ControlMlCondition.BAD_ATTRIBUTES));
+        for (IQ.Type iqType : new IQ.Type[] { IQ.Type.get, IQ.Type.set }) {
+            for (Case c : cases) {
+                String attributes = iqType == IQ.Type.set ? c.attributes().replace("'get'", "'set'") : c.attributes();
+                RawIQ iq = new RawIQ(iqType, attributes, "");
+                iq.setTo(robot.jid());
+                IQ answer;
+                try (StanzaCollector collector = wb.createStanzaCollectorAndSend(iq)) {
+                    answer = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+                }
+                assertNotNull(answer, "no answer to " + attributes);
+                assertInstanceOf(org.jivesoftware.smack.packet.ErrorIQ.class, answer, () -> iqType + " " + attributes
+                        + " -> " + answer.toXML());
+                ControlMlError error = ControlMlError.fromStanzaError(answer.getError());
+                assertEquals(Condition.bad_request, error.condition(), attributes);
+                assertEquals(c.cm(), error.cmCondition(), attributes);
+            }
+        }
+        assertTrue(robot.device().applied.isEmpty());
+    }
+
+    /**
      * The RFC 6120 {@code <text/>} of every error answer arrives as the stanza error's descriptive text (in the
      * stanzas namespace, {@code xml:lang='en'}), not only as the copy inside {@code <control-ml/>}: for a handler's
      * refusal, for a request whose attributes cannot be read (bare {@code <error/>}, nothing to echo) and for a bounced
