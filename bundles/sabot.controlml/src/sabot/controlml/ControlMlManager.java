@@ -674,17 +674,37 @@ public final class ControlMlManager extends Manager {
     }
 
     /**
+     * Section 6's deduplication: a telemetry item is taken only when its id is greater than the last one taken from
+     * the same publisher for the same resource (a publisher's ids increase, RequestIdGenerator).
+     */
+    private static boolean isNewer(Map<EntityBareJid, RequestId> lastAccepted, EntityBareJid from, RequestId id) {
+        boolean[] newer = { false };
+        lastAccepted.compute(from, (k, last) -> {
+            newer[0] = last == null || id.compareTo(last) > 0;
+            return newer[0] ? id : last;
+        });
+        return newer[0];
+    }
+
+    /**
      * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
      * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
      * delivery that does not depend on it, also {@link #followTelemetry} each device.
      */
     public <T> void addTelemetryListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
+        Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
         PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
                 ControlMlElement.class, (from, element, itemId, message) -> {
                     if (element.defect() != null || element.payload() == null || !resource.name().equals(element
                             .res())) {
                         telemetryRejected.incrementAndGet();
                         LOGGER.fine("rejected telemetry " + element + " from " + from);
+                        return;
+                    }
+                    if (!isNewer(lastAccepted, from, element.id())) {
+                        // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
+                        // subscription) or an older one overtaken: section 6's rule, by the publication's id
+                        LOGGER.finest("duplicate telemetry " + element + " from " + from);
                         return;
                     }
                     T value;

@@ -12,9 +12,14 @@ import java.util.logging.Logger;
 
 import org.jxmpp.jid.Jid;
 
+import org.jivesoftware.smack.util.PacketParserUtils;
+import org.jivesoftware.smack.xml.XmlPullParser;
+import org.jivesoftware.smack.xml.XmlPullParserException;
+
 import sabot.controlml.AccessLevel;
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.Carrier;
+import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -29,6 +34,8 @@ import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PayloadException;
+import sabot.controlml.swe.SweFormatException;
+import sabot.controlml.swe.SweXml;
 
 /**
  * The device side of ControlML without the connection: typed handlers per resource, the access and stale-command
@@ -325,8 +332,44 @@ public final class Endpoint {
             }
             return Answer.of(ControlMlElement.result(request.id(), request.res(), null));
         }
-        return Answer.of(ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value))
-                .withTextForm(textForm));
+        ControlMlElement result = ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value))
+                .withTextForm(textForm);
+        int size = payloadSizeOver(result.contentXml(), ControlMl.MAX_PAYLOAD_CHARS);
+        if (size > 0) {
+            // a device must not send what a conforming reader refuses (section 1)
+            return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_TOO_LARGE, "the value of "
+                    + resource.name() + " does not fit one payload (more than " + ControlMl.MAX_PAYLOAD_CHARS
+                    + "); larger data travels as files (cm.fs.*)"));
+        }
+        return Answer.of(result);
+    }
+
+    /**
+     * @param contentXml a payload as written
+     * @return 0 when its payload size (section 1) is at most {@code limit}, else a positive number. The written
+     *         form differs from the counted one (namespace declarations, empty-element tags), so only a payload
+     *         whose written length is more than half the limit is read back with the reader's budget.
+     */
+    static int payloadSizeOver(String contentXml, int limit) {
+        if (contentXml.length() <= limit / 2) {
+            return 0;
+        }
+        try {
+            XmlPullParser parser = PacketParserUtils.getParserFor(contentXml);
+            SweXml.readPayload(parser, new SweXml.Budget(limit), href -> {
+                for (Resource<?, ?> r : Resources.all()) {
+                    if (href.equals(r.recordHref())) {
+                        return r.recordTemplate();
+                    }
+                }
+                return null;
+            });
+            return 0;
+        } catch (SweFormatException e) {
+            return e.problem() == SweFormatException.Problem.TOO_LARGE ? 1 : 0;
+        } catch (XmlPullParserException | java.io.IOException e) {
+            return 0; // our own writer's output: well-formed
+        }
     }
 
 

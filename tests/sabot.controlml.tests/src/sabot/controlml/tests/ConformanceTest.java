@@ -223,6 +223,19 @@ class ConformanceTest {
                 + emoji.repeat(n + 1) + tail + "</control-ml>", ControlMlType.SET)).cmCondition());
     }
 
+    @Test
+    void aValueThatDoesNotFitOnePayloadIsRefusedNotSent() throws Exception {
+        byte[] cells = new byte[200 * 200]; // "0" and a separator per cell: 80,000 > 65,536
+        endpoint.onGet(Resources.MAP, (r, q) -> Outcome.success(new sabot.controlml.payload.GridMap(0.05, 200, 200,
+                new sabot.model.geometry.Pose2D(0, 0, 0), cells)));
+        ControlMlError error = errorOf(serve("<control-ml xmlns='urn:sabot:controlml:1' type='get' id='20261121:5' "
+                + "res='cm.map'/>", ControlMlType.GET));
+        assertNotNull(error);
+        assertEquals(ControlMlCondition.PAYLOAD_TOO_LARGE, error.cmCondition(), error.toString());
+        assertNull(errorOf(serve("<control-ml xmlns='urn:sabot:controlml:1' type='get' id='20261121:6' "
+                + "res='cm.position'/>", ControlMlType.GET)), "a small answer still goes out");
+    }
+
     // ------------------------------------------------------------------------------------------ section 3's figures
 
     private static int elements(String xml) throws Exception {

@@ -545,6 +545,62 @@ abstract class ControlMlOnServerTest {
         assertEquals(0, robot.manager().statistics().telemetryFailed()); // acknowledgements are counted asynchronously
     }
 
+    /**
+     * Section 6's recipe for a client that comes back: the listener before login (+notify), the mutual presence
+     * subscription it already has, and an explicit subscription again. Prosody 0.12 then delivers every item twice
+     * (for the caps and for the subscription); the receiver takes each publication once, by its control-ml id.
+     */
+    @Test
+    void aReturningClientTakesEveryTelemetryItemOnce(TestInfo info) throws Exception {
+        String wbName = unique(info, "wb");
+        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
+        EntityBareJid robotBare = robot.jid().asEntityBareJidIfPossible();
+        java.util.List<Double> xs = java.util.Collections.synchronizedList(new java.util.ArrayList<>());
+        BlockingQueue<Double> arrived = new ArrayBlockingQueue<>(1000);
+        for (int session = 0; session < 2; session++) {
+            XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).build());
+            closeAfterClass.add(wb);
+            ControlMlManager.getInstanceFor(wb).addTelemetryListener(Resources.POSITION, (device, pose) -> {
+                xs.add(pose.pose().x());
+                arrived.offer(pose.pose().x());
+            });
+            wb.connect().login();
+            if (session == 0) {
+                Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
+                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(1));
+                followOncePublished(ControlMlManager.getInstanceFor(wb), robotBare);
+                wb.disconnect();
+                continue;
+            }
+            assertTrue(ControlMlManager.getInstanceFor(wb).followTelemetry(robotBare, Resources.POSITION)
+                    .isSuccess());
+            for (int x = 101; x <= 106; x++) {
+                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(x));
+            }
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+            Double x;
+            do {
+                x = arrived.poll(Math.max(1, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                assertNotNull(x, "telemetry missing: " + xs);
+            } while (x != 106);
+            // an item delivered twice is sent before the next publication's: after 106 the second copy of each
+            // earlier one would have arrived; publish once more and wait for it to be sure of 106's own copy
+            robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(107));
+            do {
+                x = arrived.poll(Math.max(1, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                assertNotNull(x, "telemetry missing: " + xs);
+            } while (x != 107);
+        }
+        assertEquals(List.of(101.0, 102.0, 103.0, 104.0, 105.0, 106.0, 107.0), xs.stream().filter(x -> x > 100)
+                .toList(), "every publication once, in order");
+    }
+
+    private static PoseEstimate poseAt(double x) {
+        return new PoseEstimate(Samples.T, new Pose2D(x, 0, 0), Samples.POSE.covariance());
+    }
+
     /** Follows a robot's cm.position telemetry once its first publication has created the node. */
     private static void followOncePublished(ControlMlManager manager, EntityBareJid robot) {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
