@@ -41,7 +41,7 @@ network_settings = { nagle = false }
 
 -- Lua 5.4's generational collector instead of Prosody's default (incremental, pause 105 %: collecting almost all
 -- the time). Stanzas are short-lived tables; profiled under the ControlML benchmark, the incremental sweep alone was
--- ~17 % of Prosody's CPU. Measured (./sabot bench controlml, docs/CONTROLML.md section 11): server CPU per round trip
+-- ~17 % of Prosody's CPU. Measured (./sabot bench controlml, docs/CONTROLML.md section 12): server CPU per round trip
 -- -30 to -40 %, 100 robots x 10 Hz telemetry at 35-39 % CPU instead of 59-76 %, telemetry p99 25-34 ms instead of
 -- 56-145 ms. Needs Lua 5.4 (Prosody refuses the setting on older Lua).
 gc = { mode = "generational" }
