@@ -85,17 +85,7 @@ abstract class ControlMlOnServerTest {
     Robot robot(XMPPTCPConnection connection, Map<Jid, AccessLevel> rights) {
         RecordingDevice device = new RecordingDevice();
         ControlMlManager m = ControlMlManager.getInstanceFor(connection);
-        device.registerOn(new RecordingDevice.Registry() {
-            @Override
-            public <T, Q> void onGet(Resource<T, Q> resource, sabot.controlml.GetHandler<T, Q> handler) {
-                m.onGet(resource, handler);
-            }
-
-            @Override
-            public <T> void onSet(Resource<T, ?> resource, sabot.controlml.SetHandler<T> handler) {
-                m.onSet(resource, handler);
-            }
-        });
+        device.registerOn(m);
         m.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), AccessLevel.NONE));
         return new Robot(connection, device, m);
     }

@@ -27,7 +27,6 @@ import sabot.controlml.AccessLevel;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
-import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.PoseEstimate;
@@ -82,17 +81,7 @@ abstract class InteropSuiteTest {
                 == AccessLevel.NONE ? SubscribeAnswer.Deny : SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
         ControlMlManager device = ControlMlManager.getInstanceFor(robot);
         RecordingDevice recording = new RecordingDevice();
-        recording.registerOn(new RecordingDevice.Registry() {
-            @Override
-            public <T, Q> void onGet(Resource<T, Q> resource, sabot.controlml.GetHandler<T, Q> handler) {
-                device.onGet(resource, handler);
-            }
-
-            @Override
-            public <T> void onSet(Resource<T, ?> resource, sabot.controlml.SetHandler<T> handler) {
-                device.onSet(resource, handler);
-            }
-        });
+        recording.registerOn(device);
         device.removeHandlers(Resources.MAP);
         AtomicInteger busyOnce = new AtomicInteger();
         device.onSet(Resources.MISSION, (request, mission) -> switch (mission.detail()) {
