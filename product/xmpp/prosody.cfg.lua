@@ -6,13 +6,18 @@
 --   SABOT_RUN_AS_ROOT=1   needed when started by root, or Prosody refuses and hangs
 --   SABOT_ARCHIVE_STORE   "memory" for tests (the file archive caps a chatting pair at ~600 msgs/s)
 --   SABOT_DOMAIN, SABOT_DOMAIN2  the two virtual hosts (default sabot.local, sabot2.local)
+--   SABOT_TLS=1           offer STARTTLS (needs sabot.local.crt/.key in $SABOT_XMPP_RUN/certs); off by default
 local run = ENV_SABOT_XMPP_RUN or error("SABOT_XMPP_RUN is not set")
 local c2s_port = (ENV_SABOT_C2S_PORT or "15222") + 0
 
 run_as_root = (ENV_SABOT_RUN_AS_ROOT == "1")
 data_path = run .. "/data"
 pidfile   = run .. "/prosody.pid"
-certificates = run .. "/certs"      -- a self-signed sabot.local.crt/.key here turns STARTTLS on
+certificates = run .. "/certs"
+-- No TLS until the fleet gives servers real certificates: mod_tls advertises STARTTLS even without a certificate
+-- ("No certificate present ... SNI will be required") and the handshake then fails, so standard clients that take
+-- an offered STARTTLS cannot log in. SABOT_TLS=1 (with sabot.local.crt/.key in $SABOT_XMPP_RUN/certs) turns it on.
+local tls_module = (ENV_SABOT_TLS == "1") and "tls" or nil
 log = { { levels = { min = ENV_SABOT_XMPP_LOGLEVEL or "info" }, to = "file", filename = run .. "/prosody.log" } }
 
 -- loopback only, non-default port, no s2s, no http
@@ -36,7 +41,7 @@ network_settings = { nagle = false }
 
 -- Lua 5.4's generational collector instead of Prosody's default (incremental, pause 105 %: collecting almost all
 -- the time). Stanzas are short-lived tables; profiled under the ControlML benchmark, the incremental sweep alone was
--- ~17 % of Prosody's CPU. Measured (./sabot bench controlml, docs/CONTROLML.md section 11): server CPU per round trip
+-- ~17 % of Prosody's CPU. Measured (./sabot bench controlml, docs/CONTROLML.md section 12): server CPU per round trip
 -- -30 to -40 %, 100 robots x 10 Hz telemetry at 35-39 % CPU instead of 59-76 %, telemetry p99 25-34 ms instead of
 -- 56-145 ms. Needs Lua 5.4 (Prosody refuses the setting on older Lua).
 gc = { mode = "generational" }
@@ -56,7 +61,7 @@ smacks_hibernation_time = 60
 
 modules_enabled = {
     "roster"; "saslauth"; "disco"; "ping"; "time"; "version"; "uptime";
-    "tls"; "private"; "blocklist"; "carbons";
+    "private"; "blocklist"; "carbons";
     "register";      -- XEP-0077
     "pep";           -- XEP-0163
     "vcard";         -- XEP-0054 vcard-temp, stored verbatim (vcard_legacy converts to vCard4 and drops
@@ -65,6 +70,7 @@ modules_enabled = {
     "smacks";        -- XEP-0198
     "offline";       -- XEP-0160 offline storage with XEP-0203 delay stamps
 }
+if tls_module then table.insert(modules_enabled, tls_module) end
 
 VirtualHost (ENV_SABOT_DOMAIN or "sabot.local")
 VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests

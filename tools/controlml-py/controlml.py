@@ -296,8 +296,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--port", type=int, default=int(os.environ.get("SABOT_XMPP_PORT", "15222")))
     p.add_argument("--timeout", type=float, default=10.0, help="seconds for login, presence and each answer")
     p.add_argument("--tls", choices=("off", "starttls"),
-                   help="STARTTLS or a plain stream (default: off on a loopback server, whose private Prosody offers "
-                        "STARTTLS but fails the handshake when it has no certificate; starttls elsewhere). The "
+                   help="STARTTLS or a plain stream (default: off on a loopback server, whose private server has no "
+                        "certificate and offers no STARTTLS; starttls elsewhere). The "
                         "password never travels in clear: SCRAM is used on a plain stream.")
     p.add_argument("--no-verify", action="store_true", help="accept a self-signed TLS certificate")
     p.add_argument("-v", "--verbose", action="store_true", help="log the XMPP traffic")

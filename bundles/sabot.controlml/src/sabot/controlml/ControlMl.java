@@ -17,7 +17,11 @@ public final class ControlMl {
     public static final String ERRORS_NAMESPACE = "urn:sabot:controlml:1:errors";
     /** The element name. */
     public static final String ELEMENT = "control-ml";
-    /** Largest payload accepted, in characters of XML as received (names, attribute values, text, markup). */
+    /**
+     * Largest payload accepted: 65,536 in ControlML's payload size, i.e. code points of the payload element written
+     * in a canonical way (no namespace declarations, prefixes or comments; every element as a start and an end tag;
+     * text after entity expansion): see {@code docs/CONTROLML.md} section 1 and {@link sabot.controlml.swe.SweXml.Budget}.
+     */
     public static final int MAX_PAYLOAD_CHARS = 64 * 1024;
     /** Prefix of the PEP node of a resource's telemetry: node = prefix + resource name. */
     public static final String TELEMETRY_NODE_PREFIX = NAMESPACE + ":telemetry:";

@@ -28,7 +28,10 @@ import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.filter.StanzaFilter;
 import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
 import org.jivesoftware.smack.iqrequest.IQRequestHandler.Mode;
+import org.jivesoftware.smack.packet.ErrorIQ;
 import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.IqData;
+import org.jivesoftware.smack.packet.StanzaBuilder;
 import org.jivesoftware.smack.packet.Message;
 import org.jivesoftware.smack.packet.MessageBuilder;
 import org.jivesoftware.smack.packet.Stanza;
@@ -410,8 +413,17 @@ public final class ControlMlManager extends Manager {
                 answer.element().contentXml();
                 return new ControlMlIQ(answer.element());
             }
-            return IQ.createErrorResponse(iq, answer.bareError().toStanzaError());
+            // Nothing to echo: the error alone (IQ.createErrorResponse would copy the request's child, i.e. a
+            // control-ml holding only the attributes that could be read, which is not valid ControlML).
+            return bareErrorResponse(iq, answer.bareError());
         }
+    }
+
+    /** @return an {@code <iq type='error'/>} answering {@code request} that carries only the {@code <error/>} */
+    static IQ bareErrorResponse(IQ request, ControlMlError error) {
+        IqData data = StanzaBuilder.buildIqData(request.getStanzaId()).ofType(IQ.Type.error).to(request.getFrom())
+                .from(request.getTo());
+        return ErrorIQ.builder(error.toStanzaError(), data).build();
     }
 
     private static Instant delayOf(Stanza stanza) {
@@ -662,17 +674,37 @@ public final class ControlMlManager extends Manager {
     }
 
     /**
+     * Section 6's deduplication: a telemetry item is taken only when its id is greater than the last one taken from
+     * the same publisher for the same resource (a publisher's ids increase, RequestIdGenerator).
+     */
+    private static boolean isNewer(Map<EntityBareJid, RequestId> lastAccepted, EntityBareJid from, RequestId id) {
+        boolean[] newer = { false };
+        lastAccepted.compute(from, (k, last) -> {
+            newer[0] = last == null || id.compareTo(last) > 0;
+            return newer[0] ? id : last;
+        });
+        return newer[0];
+    }
+
+    /**
      * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
      * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
      * delivery that does not depend on it, also {@link #followTelemetry} each device.
      */
     public <T> void addTelemetryListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
+        Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
         PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
                 ControlMlElement.class, (from, element, itemId, message) -> {
                     if (element.defect() != null || element.payload() == null || !resource.name().equals(element
                             .res())) {
                         telemetryRejected.incrementAndGet();
                         LOGGER.fine("rejected telemetry " + element + " from " + from);
+                        return;
+                    }
+                    if (!isNewer(lastAccepted, from, element.id())) {
+                        // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
+                        // subscription) or an older one overtaken: section 6's rule, by the publication's id
+                        LOGGER.finest("duplicate telemetry " + element + " from " + from);
                         return;
                     }
                     T value;

@@ -12,9 +12,14 @@ import java.util.logging.Logger;
 
 import org.jxmpp.jid.Jid;
 
+import org.jivesoftware.smack.util.PacketParserUtils;
+import org.jivesoftware.smack.xml.XmlPullParser;
+import org.jivesoftware.smack.xml.XmlPullParserException;
+
 import sabot.controlml.AccessLevel;
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.Carrier;
+import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -29,6 +34,8 @@ import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PayloadException;
+import sabot.controlml.swe.SweFormatException;
+import sabot.controlml.swe.SweXml;
 
 /**
  * The device side of ControlML without the connection: typed handlers per resource, the access and stale-command
@@ -42,7 +49,7 @@ public final class Endpoint {
     private final Clock clock;
     private final Map<String, GetHandler<?, ?>> getHandlers = new ConcurrentHashMap<>();
     private final Map<String, SetHandler<?>> setHandlers = new ConcurrentHashMap<>();
-    private final ReplayCache replayCache = new ReplayCache(4096);
+    private final ReplayCache replayCache = new ReplayCache(ReplayCache.CAPACITY);
     private final Object setLock = new Object();
     private volatile AccessPolicy accessPolicy = AccessPolicy.CLOSED;
     private volatile StaleCommandPolicy stalePolicy = StaleCommandPolicy.DEFAULT;
@@ -162,8 +169,11 @@ public final class Endpoint {
 
     private Answer serveChecked(ControlMlElement request, ControlMlType carrierType, Jid from, Instant delayStamp,
             Carrier carrier) {
-        if (request.defect() != null) {
-            return refuse(request, request.defect());
+        // The order of checks is the protocol's (docs/CONTROLML.md section 8): a peer must get the same condition
+        // from every conforming device, so a check is not moved for convenience.
+        ControlMlError defect = request.defect();
+        if (defect != null && (!request.hasValidAttributes() || isAttributeDefect(defect))) {
+            return refuse(request, defect);
         }
         AccessLevel level = accessPolicy.levelOf(from);
         if (level == null || level == AccessLevel.NONE) {
@@ -183,16 +193,40 @@ public final class Endpoint {
             return serveGet(request, from, delayStamp, carrier);
         }
         synchronized (setLock) {
-            // The duplicate check and the application are atomic: a retransmitted set is never applied twice.
+            // The duplicate check and the application are atomic: a retransmitted set is never applied twice. The
+            // id names the command: a second set under a remembered id gets the first one's answer whatever it
+            // carries (its payload is not even looked at, so a retransmission that arrives damaged is answered too).
             ControlMlElement earlier = replayCache.get(from, request.id());
             if (earlier != null) {
                 duplicatesReplayed.incrementAndGet();
                 return Answer.of(earlier);
             }
             Answer answer = serveSet(request, from, delayStamp, carrier);
-            replayCache.put(from, request.id(), answer.element());
+            if (isRemembered(answer.element())) {
+                replayCache.put(from, request.id(), answer.element());
+            }
             return answer;
         }
+    }
+
+    /** @return true for a defect of the attributes (checked first), false for one of the content (checked late) */
+    private static boolean isAttributeDefect(ControlMlError defect) {
+        return defect.cmCondition() == ControlMlCondition.BAD_ATTRIBUTES
+                || defect.cmCondition() == ControlMlCondition.BAD_ID;
+    }
+
+    /**
+     * @return whether the answer to a set is kept for retransmissions: every answer but {@code busy}, which tells
+     *         the requester to send the same command again later (it must then be taken as new, not refused again)
+     */
+    static boolean isRemembered(ControlMlElement answer) {
+        return answer != null && !(answer.type() == ControlMlType.ERROR && answer.failure()
+                .cmCondition() == ControlMlCondition.BUSY);
+    }
+
+    /** The content defect of a request that passed the earlier checks: its payload could not be read. */
+    private Answer refuseContentDefect(ControlMlElement request) {
+        return refuse(request, request.defect());
     }
 
     private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
@@ -213,6 +247,9 @@ public final class Endpoint {
         if (!resource.isGettable() || handler == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no get of "
                     + resource.name()));
+        }
+        if (request.defect() != null) {
+            return refuseContentDefect(request);
         }
         Object query = NoQuery.NONE;
         PayloadCodec<Object> queryCodec = resource.queryCodec();
@@ -251,6 +288,9 @@ public final class Endpoint {
         if (!resource.isSettable() || handler == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNSUPPORTED_OPERATION, "this device serves no set of "
                     + resource.name()));
+        }
+        if (request.defect() != null) {
+            return refuseContentDefect(request);
         }
         if (request.payload() == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_MISMATCH, "a set of "
@@ -292,8 +332,44 @@ public final class Endpoint {
             }
             return Answer.of(ControlMlElement.result(request.id(), request.res(), null));
         }
-        return Answer.of(ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value))
-                .withTextForm(textForm));
+        ControlMlElement result = ControlMlElement.result(request.id(), request.res(), resource.codec().encode(value))
+                .withTextForm(textForm);
+        int size = payloadSizeOver(result.contentXml(), ControlMl.MAX_PAYLOAD_CHARS);
+        if (size > 0) {
+            // a device must not send what a conforming reader refuses (section 1)
+            return refuse(request, ControlMlError.of(ControlMlCondition.PAYLOAD_TOO_LARGE, "the value of "
+                    + resource.name() + " does not fit one payload (more than " + ControlMl.MAX_PAYLOAD_CHARS
+                    + "); larger data travels as files (cm.fs.*)"));
+        }
+        return Answer.of(result);
+    }
+
+    /**
+     * @param contentXml a payload as written
+     * @return 0 when its payload size (section 1) is at most {@code limit}, else a positive number. The written
+     *         form differs from the counted one (namespace declarations, empty-element tags), so only a payload
+     *         whose written length is more than half the limit is read back with the reader's budget.
+     */
+    static int payloadSizeOver(String contentXml, int limit) {
+        if (contentXml.length() <= limit / 2) {
+            return 0;
+        }
+        try {
+            XmlPullParser parser = PacketParserUtils.getParserFor(contentXml);
+            SweXml.readPayload(parser, new SweXml.Budget(limit), href -> {
+                for (Resource<?, ?> r : Resources.all()) {
+                    if (href.equals(r.recordHref())) {
+                        return r.recordTemplate();
+                    }
+                }
+                return null;
+            });
+            return 0;
+        } catch (SweFormatException e) {
+            return e.problem() == SweFormatException.Problem.TOO_LARGE ? 1 : 0;
+        } catch (XmlPullParserException | java.io.IOException e) {
+            return 0; // our own writer's output: well-formed
+        }
     }
 
 

@@ -11,9 +11,14 @@ import sabot.controlml.RequestId;
 /**
  * The answers to the most recent sets, by requester full JID and request id: a retransmitted set (same requester,
  * same id, e.g. resent after a reconnection) is answered again from here instead of being applied twice. Ids are
- * unique per requester per day, so a bounded least-recently-used map is enough. Thread-safe.
+ * unique per requester per day, so a bounded least-recently-used map is enough: the protocol promises replay for the
+ * {@link #CAPACITY} most recent sets of all requesters together, with no time limit, and not across a restart of the
+ * device (docs/CONTROLML.md section 1). The endpoint does not keep {@code busy} refusals. Thread-safe.
  */
 public final class ReplayCache {
+
+    /** How many answers a device keeps at least (the protocol's figure, docs/CONTROLML.md section 1). */
+    public static final int CAPACITY = 4096;
 
     private final Map<String, ControlMlElement> answers;
 

@@ -34,12 +34,18 @@ public final class SweXml {
     private SweXml() {
     }
 
-    /** A size budget in characters, shared by one read. */
+    /**
+     * A size budget, shared by one read, in ControlML's payload size (docs/CONTROLML.md section 1): the payload's
+     * length written without namespace declarations, prefixes, comments or processing instructions and with every
+     * element as a start and an end tag, in Unicode code points. An element costs its name twice plus 5
+     * ({@code <n>}, {@code </n>}), an attribute its name and value plus 4 ({@code  n=''}), text its characters
+     * after entity expansion (white space between elements included).
+     */
     public static final class Budget {
         private final int limit;
         private int used;
 
-        /** @param limit characters the payload may use */
+        /** @param limit code points the payload may use */
         public Budget(int limit) {
             this.limit = limit;
         }
@@ -370,7 +376,8 @@ public final class SweXml {
             case "-INF":
                 return Double.NEGATIVE_INFINITY;
             default:
-                if (t.length() > 64 || !isDecimalDouble(t)) {
+                // no length limit of its own: the payload's size limit bounds every number
+                if (!isDecimalDouble(t)) {
                     throw malformed("not an xs:double: '" + abbreviate(t) + "'");
                 }
                 return Double.parseDouble(t);
@@ -482,7 +489,7 @@ public final class SweXml {
             switch (e) {
                 case TEXT_CHARACTERS, IGNORABLE_WHITESPACE, ENTITY_REFERENCE -> {
                     String t = p.getText();
-                    budget.charge(t.length());
+                    budget.charge(codePoints(t));
                     if (text == null && single.isEmpty()) {
                         single = t;
                     } else {
@@ -493,7 +500,7 @@ public final class SweXml {
                     }
                 }
                 case END_ELEMENT -> {
-                    budget.charge(p.getName().length() + 3);
+                    budget.charge(codePoints(p.getName()) + 3);
                     return text == null ? single : text.toString();
                 }
                 case START_ELEMENT -> throw malformed("element " + p.getName() + " inside a text value");
@@ -521,12 +528,12 @@ public final class SweXml {
                     return true;
                 }
                 case END_ELEMENT -> {
-                    budget.charge(p.getName().length() + 3);
+                    budget.charge(codePoints(p.getName()) + 3);
                     return false;
                 }
-                case TEXT_CHARACTERS, ENTITY_REFERENCE -> {
+                case TEXT_CHARACTERS, IGNORABLE_WHITESPACE, ENTITY_REFERENCE -> {
                     String t = p.getText();
-                    budget.charge(t.length());
+                    budget.charge(codePoints(t));
                     if (!t.isBlank()) {
                         throw malformed("text '" + abbreviate(t.strip()) + "' where an element belongs");
                     }
@@ -583,11 +590,25 @@ public final class SweXml {
     }
 
     private static void chargeStartTag(XmlPullParser p, Budget budget) throws SweFormatException {
-        int n = p.getName().length() + 2;
+        int n = codePoints(p.getName()) + 2;
         for (int i = 0; i < p.getAttributeCount(); i++) {
-            n += p.getAttributeName(i).length() + p.getAttributeValue(i).length() + 4;
+            n += codePoints(p.getAttributeName(i)) + codePoints(p.getAttributeValue(i)) + 4;
         }
         budget.charge(n);
+    }
+
+    /**
+     * @return the number of Unicode code points of {@code s}: the unit of the payload size (docs/CONTROLML.md
+     *         section 1), which a peer in any language counts the same way (UTF-16 units would not be)
+     */
+    static int codePoints(String s) {
+        int n = s.length();
+        for (int i = 0; i < s.length(); i++) {
+            if (Character.isLowSurrogate(s.charAt(i)) && i > 0 && Character.isHighSurrogate(s.charAt(i - 1))) {
+                n--;
+            }
+        }
+        return n;
     }
 
     private static SweFormatException malformed(String message) {

@@ -85,17 +85,7 @@ abstract class ControlMlOnServerTest {
     Robot robot(XMPPTCPConnection connection, Map<Jid, AccessLevel> rights) {
         RecordingDevice device = new RecordingDevice();
         ControlMlManager m = ControlMlManager.getInstanceFor(connection);
-        device.registerOn(new RecordingDevice.Registry() {
-            @Override
-            public <T, Q> void onGet(Resource<T, Q> resource, sabot.controlml.GetHandler<T, Q> handler) {
-                m.onGet(resource, handler);
-            }
-
-            @Override
-            public <T> void onSet(Resource<T, ?> resource, sabot.controlml.SetHandler<T> handler) {
-                m.onSet(resource, handler);
-            }
-        });
+        device.registerOn(m);
         m.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), AccessLevel.NONE));
         return new Robot(connection, device, m);
     }
@@ -239,6 +229,47 @@ abstract class ControlMlOnServerTest {
         assertTrue(robot.device().applied.isEmpty(), "state changed: " + robot.device().applied);
         assertEquals(Samples.POSE, ControlMlManager.getInstanceFor(wb).get(robot.jid(), Resources.POSITION)
                 .orElseThrow());
+    }
+
+    /**
+     * A request whose attributes cannot all be read is answered with the {@code <error/>} alone (section 8): no
+     * {@code <control-ml/>} echoing the attributes that could be read (Smack's createErrorResponse copies the
+     * request's child, which made an element without failure and with the request's type).
+     */
+    @Test
+    void unreadableAttributesAreAnsweredWithTheErrorAlone(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        record Case(String attributes, ControlMlCondition cm) {
+        }
+        List<Case> cases = List.of(
+                new Case("id='20261121:1' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' id='20261121:1'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='put' id='20261121:1' res='cm.position'", ControlMlCondition.BAD_ATTRIBUTES),
+                new Case("type='get' id='2026-11-21:1' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261332:1' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:4294967296' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:01' res='cm.position'", ControlMlCondition.BAD_ID),
+                new Case("type='get' id='20261121:1' res='Position'", ControlMlCondition.BAD_ATTRIBUTES));
+        for (IQ.Type iqType : new IQ.Type[] { IQ.Type.get, IQ.Type.set }) {
+            for (Case c : cases) {
+                String attributes = iqType == IQ.Type.set ? c.attributes().replace("'get'", "'set'") : c.attributes();
+                RawIQ iq = new RawIQ(iqType, attributes, "");
+                iq.setTo(robot.jid());
+                IQ answer;
+                try (StanzaCollector collector = wb.createStanzaCollectorAndSend(iq)) {
+                    answer = collector.nextResult(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+                }
+                assertNotNull(answer, "no answer to " + attributes);
+                assertInstanceOf(org.jivesoftware.smack.packet.ErrorIQ.class, answer, () -> iqType + " " + attributes
+                        + " -> " + answer.toXML());
+                ControlMlError error = ControlMlError.fromStanzaError(answer.getError());
+                assertEquals(Condition.bad_request, error.condition(), attributes);
+                assertEquals(c.cm(), error.cmCondition(), attributes);
+            }
+        }
+        assertTrue(robot.device().applied.isEmpty());
     }
 
     /**
@@ -502,6 +533,62 @@ abstract class ControlMlOnServerTest {
         }
         assertEquals(0, fromOthers.get());
         assertEquals(0, robot.manager().statistics().telemetryFailed()); // acknowledgements are counted asynchronously
+    }
+
+    /**
+     * Section 6's recipe for a client that comes back: the listener before login (+notify), the mutual presence
+     * subscription it already has, and an explicit subscription again. Prosody 0.12 then delivers every item twice
+     * (for the caps and for the subscription); the receiver takes each publication once, by its control-ml id.
+     */
+    @Test
+    void aReturningClientTakesEveryTelemetryItemOnce(TestInfo info) throws Exception {
+        String wbName = unique(info, "wb");
+        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
+        EntityBareJid robotBare = robot.jid().asEntityBareJidIfPossible();
+        java.util.List<Double> xs = java.util.Collections.synchronizedList(new java.util.ArrayList<>());
+        BlockingQueue<Double> arrived = new ArrayBlockingQueue<>(1000);
+        for (int session = 0; session < 2; session++) {
+            XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).build());
+            closeAfterClass.add(wb);
+            ControlMlManager.getInstanceFor(wb).addTelemetryListener(Resources.POSITION, (device, pose) -> {
+                xs.add(pose.pose().x());
+                arrived.offer(pose.pose().x());
+            });
+            wb.connect().login();
+            if (session == 0) {
+                Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
+                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(1));
+                followOncePublished(ControlMlManager.getInstanceFor(wb), robotBare);
+                wb.disconnect();
+                continue;
+            }
+            assertTrue(ControlMlManager.getInstanceFor(wb).followTelemetry(robotBare, Resources.POSITION)
+                    .isSuccess());
+            for (int x = 101; x <= 106; x++) {
+                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(x));
+            }
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+            Double x;
+            do {
+                x = arrived.poll(Math.max(1, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                assertNotNull(x, "telemetry missing: " + xs);
+            } while (x != 106);
+            // an item delivered twice is sent before the next publication's: after 106 the second copy of each
+            // earlier one would have arrived; publish once more and wait for it to be sure of 106's own copy
+            robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(107));
+            do {
+                x = arrived.poll(Math.max(1, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                assertNotNull(x, "telemetry missing: " + xs);
+            } while (x != 107);
+        }
+        assertEquals(List.of(101.0, 102.0, 103.0, 104.0, 105.0, 106.0, 107.0), xs.stream().filter(x -> x > 100)
+                .toList(), "every publication once, in order");
+    }
+
+    private static PoseEstimate poseAt(double x) {
+        return new PoseEstimate(Samples.T, new Pose2D(x, 0, 0), Samples.POSE.covariance());
     }
 
     /** Follows a robot's cm.position telemetry once its first publication has created the node. */

@@ -46,6 +46,21 @@ final class RecordingDevice {
         return e;
     }
 
+    /** Registers the handlers on a connection's manager. */
+    void registerOn(sabot.controlml.ControlMlManager manager) {
+        registerOn(new Registry() {
+            @Override
+            public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
+                manager.onGet(resource, handler);
+            }
+
+            @Override
+            public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
+                manager.onSet(resource, handler);
+            }
+        });
+    }
+
     void registerOn(Registry registry) {
         for (Resource<?, ?> r : Resources.all()) {
             register(registry, r);

@@ -42,6 +42,28 @@ abstract class SmackSmokeTest {
 
     protected abstract PrivateXmppServer server();
 
+    /**
+     * A private server has no certificate, so it must not offer STARTTLS: a standard client takes an offered
+     * STARTTLS, and the handshake then fails (Prosody's mod_tls advertised it without a certificate).
+     */
+    @Test
+    void noStartTlsIsOfferedWithoutACertificate() throws Exception {
+        try (Socket s = new Socket(java.net.InetAddress.getLoopbackAddress(), server().port())) {
+            s.setSoTimeout((int) TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+            s.getOutputStream().write(("<?xml version='1.0'?><stream:stream to='" + PrivateXmppServer.DOMAIN
+                    + "' version='1.0' xmlns='jabber:client' xmlns:stream='http://etherx.jabber.org/streams'>")
+                    .getBytes(java.nio.charset.StandardCharsets.UTF_8));
+            StringBuilder reply = new StringBuilder();
+            byte[] buf = new byte[4096];
+            int n;
+            while (reply.indexOf("</stream:features>") < 0 && (n = s.getInputStream().read(buf)) > 0) {
+                reply.append(new String(buf, 0, n, java.nio.charset.StandardCharsets.UTF_8));
+            }
+            assertTrue(reply.indexOf("</stream:features>") >= 0, reply::toString);
+            assertFalse(reply.indexOf("urn:ietf:params:xml:ns:xmpp-tls") >= 0, reply::toString);
+        }
+    }
+
     @Test
     void twoClientsExchangeAChatMessage() throws Exception {
         XMPPTCPConnection alice = server().login("alice-chat");

@@ -11,7 +11,7 @@ import java.util.concurrent.TimeUnit;
  * others, as in a deployment, where the server never shares a CPU with the robots and workbenches it serves. The
  * usual practice of latency benchmarks (the load generator apart from the system under test); on a machine with two
  * CPUs, sharing them let the clients' threads and the server's event loop preempt each other, which spread the
- * round-trip ratio over 1.29–1.46 from run to run (docs/CONTROLML.md, section 11).
+ * round-trip ratio over 1.29–1.46 from run to run (docs/CONTROLML.md, section 12).
  *
  * <p>Set with {@code taskset(1)} (util-linux) on every thread of both processes and of the server's descendants
  * (ejabberd runs beam.smp under its control script); threads started later inherit their creator's CPUs.
