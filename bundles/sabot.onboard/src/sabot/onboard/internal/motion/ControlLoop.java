@@ -260,7 +260,8 @@ final class ControlLoop {
         if (mode == Mode.TELEOP) {
             return;
         }
-        if (!fitsBeforeNextPeriod(boards.optionalReadWireTime())) {
+        // the period's last transaction has just ended: the whole inter-frame silence comes first
+        if (!fitsBeforeNextPeriod(boards.interFrameDelay(), boards.optionalReadWireTime())) {
             timing.skippedOptionalRead();
             return;
         }
@@ -270,7 +271,7 @@ final class ControlLoop {
             // every other spare slot goes to the gyro; one in eight to the landmark board (it measures at 10 Hz), the
             // others to the sonar sensors in turn
             if (round % LANDMARK_SLOTS == 1 && landmarkReadDue(t)) {
-                readLandmark(t);
+                readLandmark();
             } else if (round % 2 == 0 || sonars == 0) {
                 RobotBoards.ImuSample s = boards.readImu();
                 localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
@@ -300,16 +301,14 @@ final class ControlLoop {
         if (!localizer.usesLandmarks()) {
             return false;
         }
-        if (boards.landmarkBoardFaulted()) {
-            if (t - lastLandmarkTry < LANDMARK_RETRY) {
-                return false;
-            }
+        if (boards.landmarkBoardFaulted() && t - lastLandmarkTry < LANDMARK_RETRY) {
+            return false;
         }
         lastLandmarkTry = t;
         return true;
     }
 
-    private void readLandmark(double t) throws IOException {
+    private void readLandmark() throws IOException {
         RobotBoards.LandmarkSighting s = boards.readLandmark();
         if (s.sequence() == lastLandmarkSequence) {
             return; // read again before the board measured anew
@@ -634,20 +633,25 @@ final class ControlLoop {
         if (mode != Mode.TELEOP || teleopSent == null) {
             return;
         }
-        if (fitsBeforeNextPeriod(boards.wheelWriteWireTime())) {
+        // the silence after the period's last answer has partly or wholly passed while the twist was on its way
+        double sinceWork = (System.nanoTime() - timing.lastEndNanos()) * 1e-9;
+        if (fitsBeforeNextPeriod(Math.max(0, boards.interFrameDelay() - sinceWork), boards.wheelWriteWireTime())) {
             writeTwist(now());
         }
     }
 
     /**
-     * Whether a transaction of this wire time ends before the next period is due: the bus's silence before the
-     * request, the wire time with {@link #WIRE_TIME_FACTOR} for the slave's turnaround, and {@link #PERIOD_MARGIN}.
-     * Measured against the next period's scheduled start, not this one's actual start, so that a period that began
-     * late drops its optional work and the schedule catches up.
+     * Whether a transaction ends before the next period is due: the bus's silence still to keep before the request,
+     * the wire time with {@link #WIRE_TIME_FACTOR} for the slave's turnaround, and {@link #PERIOD_MARGIN}. Measured
+     * against the next period's scheduled start, not this one's actual start, so that a period that began late drops
+     * its optional work and the schedule catches up.
+     *
+     * @param silence  seconds of inter-frame silence still due before the request may be sent
+     * @param wireTime the transaction's computed wire time, seconds
      */
-    private boolean fitsBeforeNextPeriod(double wireTime) {
+    private boolean fitsBeforeNextPeriod(double silence, double wireTime) {
         double left = (timing.nextStartNanos() - System.nanoTime()) * 1e-9;
-        return left >= boards.interFrameDelay() + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
+        return left >= silence + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
     }
 
     /** Writes the joystick's twist through the smoother; records its latency. @return true when written */

@@ -53,6 +53,11 @@ final class LoopTiming {
         return expected;
     }
 
+    /** @return when the last period's work ended (System.nanoTime); meaningful once a period has ended */
+    long lastEndNanos() {
+        return lastEnd;
+    }
+
     void started(long now) {
         if (expected == Long.MIN_VALUE) {
             expected = now;
