@@ -182,6 +182,11 @@ final class ModbusBoards implements RobotBoards {
     }
 
     @Override
+    public double encoderReadWireTime() {
+        return bus.sact().readPositionsWireTime().toNanos() * 1e-9;
+    }
+
+    @Override
     public double wheelWriteWireTime() {
         return bus.sact().setWheelSpeedsWireTime().toNanos() * 1e-9;
     }

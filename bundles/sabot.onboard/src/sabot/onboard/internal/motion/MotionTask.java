@@ -5,6 +5,7 @@ import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -166,8 +167,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
             loopThread.execute(() -> realtime(c.realtimePriority()));
         }
         loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
-        LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}", c.rate(),
-                plannerTask.planner().algorithm(), trackerTask.config().controller());
+        LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}; bus time per period: encoder read "
+                + "{} ms + wheel write {} ms, then an optional read of {} ms when it fits (wire times, each after a "
+                + "{} ms inter-frame silence)", c.rate(), plannerTask.planner().algorithm(),
+                trackerTask.config().controller(), ms(boards.encoderReadWireTime()), ms(boards.wheelWriteWireTime()),
+                ms(boards.optionalReadWireTime()), ms(boards.interFrameDelay()));
+    }
+
+    private static String ms(double seconds) {
+        return String.format(Locale.ROOT, "%.2f", seconds * 1000);
     }
 
     private static void realtime(int priority) {

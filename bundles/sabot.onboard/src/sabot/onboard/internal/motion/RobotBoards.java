@@ -93,6 +93,9 @@ public interface RobotBoards {
     /** @return the silence the bus keeps between an answer and the next request (t3.5), seconds */
     double interFrameDelay();
 
+    /** @return computed wire time of {@link #readEncoders}, seconds */
+    double encoderReadWireTime();
+
     /** @return computed wire time of {@link #writeWheelSpeeds}, seconds */
     double wheelWriteWireTime();
 
