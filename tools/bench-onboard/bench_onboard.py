@@ -315,8 +315,7 @@ def report_main(args: argparse.Namespace) -> int:
         drive = json.load(f)
     lines = read_log(args.log)
     command = f"./sabot bench onboard --minutes {args.minutes}" + "".join(
-        f" --jvm-option {o}" for o in args.jvm_options.split()) + (
-        f" --realtime {args.realtime}" if args.realtime else "")
+        f" --jvm-option {o}" for o in args.jvm_options.split())
     figures: list[dict] = []
     problems: list[str] = []
 
@@ -467,7 +466,6 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     r.add_argument("--truth", required=True)
     r.add_argument("--out", required=True)
     r.add_argument("--jvm-options", default="", help="extra options the onboard's JVM ran with (shown in the command)")
-    r.add_argument("--realtime", type=int, default=0, help="the control loop's SCHED_FIFO priority (0: none)")
     a = p.parse_args(argv)
     if a.minutes < 1:
         p.error("--minutes must be >= 1")
