@@ -1,9 +1,9 @@
 package sabot.workbench.internal;
 
 import org.eclipse.jface.action.ContributionItem;
+import org.eclipse.jface.action.StatusLineLayoutData;
 import org.eclipse.swt.SWT;
 import org.eclipse.swt.custom.CLabel;
-import org.eclipse.swt.layout.GridData;
 import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Label;
 
@@ -27,10 +27,14 @@ final class ConnectionStatusItem extends ContributionItem {
     public void fill(Composite parent) {
         Label separator = new Label(parent, SWT.SEPARATOR);
         label = new CLabel(parent, SWT.SHADOW_NONE);
-        GridData gd = new GridData();
-        gd.widthHint = 560;
-        label.setLayoutData(gd);
-        separator.setLayoutData(new GridData(SWT.DEFAULT, SWT.FILL, false, true));
+        label.setLayoutData(new StatusLineLayoutData() {
+            {
+                widthHint = 560;
+            }
+        });
+        StatusLineLayoutData line = new StatusLineLayoutData();
+        line.heightHint = 20;
+        separator.setLayoutData(line);
         fleet = new FleetBinding(parent.getDisplay(), this::refresh);
         label.addDisposeListener(e -> fleet.dispose());
         refresh();

@@ -2,6 +2,8 @@ package sabot.workbench.controlml.internal;
 
 import java.io.IOException;
 import java.net.InetAddress;
+import java.nio.file.Files;
+import java.nio.file.Path;
 import java.time.Clock;
 import java.time.Duration;
 import java.time.Instant;
@@ -52,6 +54,8 @@ import sabot.controlml.Outcome;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
+import sabot.controlml.payload.FileChunk;
+import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
@@ -63,6 +67,8 @@ import sabot.fleet.FleetConnections;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.SubscriptionGate;
 import sabot.model.geometry.Twist2D;
+import sabot.model.map.MapServerFormat;
+import sabot.model.map.OccupancyGrid;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
 import sabot.workbench.fleet.Availability;
@@ -230,9 +236,21 @@ public final class ControlMlFleet implements FleetState {
         return set(robot, Resources.VELOCITY, new VelocityCommand(clock.instant(), twist)).thenApply(x -> null);
     }
 
+    /**
+     * Where a robot keeps its map for workbenches when {@code cm.map} cannot carry it (a payload holds at most 64 KiB
+     * of characters, about 30,000 cells: the lab's 240 x 180 grid does not fit): a ROS map_server YAML at the root
+     * of its remote files, its image beside it.
+     */
+    public static final String MAP_FILE = "map.yaml";
+
     @Override
     public CompletableFuture<GridMap> map(String robot) {
-        CompletableFuture<GridMap> f = maps.computeIfAbsent(robot, r -> get(r, Resources.MAP));
+        CompletableFuture<GridMap> f = maps.computeIfAbsent(robot, r -> this.<GridMap>get(r, Resources.MAP)
+                .exceptionallyCompose(e -> {
+                    FleetCommandException refused = FleetCommandException.in(e);
+                    return refused != null && refused.condition() == ControlMlCondition.PAYLOAD_TOO_LARGE
+                            ? mapFromFiles(r) : CompletableFuture.failedFuture(e);
+                }));
         // a failed fetch is not cached: the next call asks again
         f.whenComplete((m, e) -> {
             if (e != null) {
@@ -240,6 +258,63 @@ public final class ControlMlFleet implements FleetState {
             }
         });
         return f;
+    }
+
+    /** The map from the robot's remote files ({@link #MAP_FILE} and the image it names), on the request pool. */
+    private CompletableFuture<GridMap> mapFromFiles(String robot) {
+        return CompletableFuture.supplyAsync(() -> {
+            Path dir = null;
+            try {
+                dir = Files.createTempDirectory("sabot-map-");
+                Path yaml = dir.resolve(MAP_FILE);
+                Files.write(yaml, download(robot, MAP_FILE));
+                String image = MapServerFormat.readMetadata(yaml).image();
+                if (image.contains("/") || image.startsWith(".")) {
+                    throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, robot + "'s " + MAP_FILE
+                            + " names an image outside its folder: " + image);
+                }
+                Files.write(dir.resolve(image), download(robot, image));
+                MapServerFormat.LoadedMap loaded = MapServerFormat.load(yaml);
+                OccupancyGrid g = loaded.grid();
+                return new GridMap(g.resolution(), g.width(), g.height(), g.geometry().origin(), g.toArray());
+            } catch (IOException e) {
+                throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "map of " + robot + " from its "
+                        + "files: " + e.getMessage());
+            } finally {
+                deleteTree(dir);
+            }
+        }, requests);
+    }
+
+    /** Reads a whole file of the robot's remote files, chunk by chunk (each checked by its SHA-256 on arrival). */
+    private byte[] download(String robot, String path) {
+        java.io.ByteArrayOutputStream out = new java.io.ByteArrayOutputStream();
+        while (true) {
+            FileQuery q = new FileQuery(path, out.size(), 0);
+            FileChunk c = callNow(robot, (m, jid) -> m.get(jid, Resources.FS_READ, q));
+            out.writeBytes(c.data());
+            if (c.last()) {
+                return out.toByteArray();
+            }
+            if (c.data().length == 0) {
+                throw new FleetCommandException(ControlMlCondition.DEVICE_FAULT, robot + " sent an empty chunk of "
+                        + path + " at " + out.size());
+            }
+        }
+    }
+
+    private static void deleteTree(Path dir) {
+        if (dir == null) {
+            return;
+        }
+        try (var files = Files.list(dir)) {
+            for (Path f : (Iterable<Path>) files::iterator) {
+                Files.deleteIfExists(f);
+            }
+            Files.deleteIfExists(dir);
+        } catch (IOException e) {
+            LOG.debug("cannot remove {}: {}", dir, e.getMessage());
+        }
     }
 
     @Override
@@ -262,38 +337,15 @@ public final class ControlMlFleet implements FleetState {
         Outcome<T> on(ControlMlManager manager, Jid robot);
     }
 
-    /** Runs a request on the request pool against the robot's available full JID. */
+    /** Runs a request on the request pool. */
     private <T> CompletableFuture<T> request(String robot, Call<T> call) {
         CompletableFuture<T> f = new CompletableFuture<>();
         try {
             requests.execute(() -> {
                 try {
-                    Session s = session;
-                    if (s == null || !s.connection().isAuthenticated()) {
-                        throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not "
-                                + "connected (" + status.summary() + ")");
-                    }
-                    if (!robots.containsKey(robot)) {
-                        throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
-                                + " is not a robot of this workbench's fleet");
-                    }
-                    Presence p = s.roster().getPresence(JidCreate.entityBareFrom(robot));
-                    if (!p.isAvailable()) {
-                        throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot + " is offline");
-                    }
-                    Outcome<T> o = call.on(s.manager(), p.getFrom());
-                    if (o instanceof Outcome.Failure<T> failure) {
-                        ControlMlError e = failure.error();
-                        throw new FleetCommandException(e.cmCondition() != null ? e.cmCondition()
-                                : ControlMlCondition.UNSPECIFIED, e.text() == null ? String.valueOf(e.condition()) : e
-                                        .text());
-                    }
-                    f.complete(o.orElseThrow());
+                    f.complete(callNow(robot, call));
                 } catch (FleetCommandException e) {
                     f.completeExceptionally(e);
-                } catch (XmppStringprepException e) {
-                    f.completeExceptionally(new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot
-                            + "' is not a JID: " + e.getMessage()));
                 } catch (RuntimeException e) {
                     f.completeExceptionally(new FleetCommandException(ControlMlCondition.UNSPECIFIED, e.toString()));
                 }
@@ -303,6 +355,40 @@ public final class ControlMlFleet implements FleetState {
                     "the ControlML plug-in has stopped"));
         }
         return f;
+    }
+
+    /**
+     * Sends a request to the robot's available full JID and waits for the answer (calling thread).
+     *
+     * @throws FleetCommandException with the robot's condition and text, or why it could not be asked
+     */
+    private <T> T callNow(String robot, Call<T> call) {
+        Session s = session;
+        if (s == null || !s.connection().isAuthenticated()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
+                    + status.summary() + ")");
+        }
+        if (!robots.containsKey(robot)) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
+                    + " is not a robot of this workbench's fleet");
+        }
+        Presence p;
+        try {
+            p = s.roster().getPresence(JidCreate.entityBareFrom(robot));
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        }
+        if (!p.isAvailable()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot + " is offline");
+        }
+        Outcome<T> o = call.on(s.manager(), p.getFrom());
+        if (o instanceof Outcome.Failure<T> failure) {
+            ControlMlError e = failure.error();
+            throw new FleetCommandException(e.cmCondition() != null ? e.cmCondition() : ControlMlCondition.UNSPECIFIED,
+                    e.text() == null ? String.valueOf(e.condition()) : e.text());
+        }
+        return o.orElseThrow();
     }
 
     // ------------------------------------------------------------------------------------------------ connection
@@ -321,6 +407,8 @@ public final class ControlMlFleet implements FleetState {
             return;
         }
         if (problem != null || password == null) {
+            // without an account there is no fleet: the robots of a former account go
+            new ArrayList<>(robots.keySet()).forEach(this::remove);
             setStatus(State.NO_ACCOUNT, account.jid(), problem != null ? problem : "no password stored");
             return;
         }
