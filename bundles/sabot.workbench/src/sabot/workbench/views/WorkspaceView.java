@@ -60,6 +60,8 @@ import sabot.workbench.map.MapViewport;
  */
 public final class WorkspaceView extends ViewPart implements ISelectionProvider {
 
+    private static final org.slf4j.Logger LOG = org.slf4j.LoggerFactory.getLogger("sabot.workbench");
+
     public static final String ID = "sabot.workbench.views.workspace";
 
     /** Area shown at start and on Home: a 10 m × 10 m lab floor from the map origin. */
@@ -68,7 +70,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private static final int GRID_MIN_PX = 40;
     private static final int SCALE_BAR_MIN_PX = 100;
     /** Footprint radius drawn, metres: the planner's default robot radius ({@code planner.robotRadius}). */
-    static final double FOOTPRINT_RADIUS_M = 0.25;
+    public static final double FOOTPRINT_RADIUS_M = 0.25;
     /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
     public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
@@ -91,6 +93,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private Point pointer;
     private boolean homed;
     private String selected;
+    private boolean liveShown;
     private String message;
     private boolean messageIsError;
     /** The map drawn: the first robot's with a map, fetched once. */
@@ -269,6 +272,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (!canvas.isDisposed()) {
             canvas.redraw();
         }
+    }
+
+    /** @return true once a live robot has been drawn on its map */
+    public boolean showsLiveRobot() {
+        return liveShown;
     }
 
     /** @return the last command answer shown, or null (for tests) */
@@ -515,7 +523,15 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawAxes(gc, area);
         Instant now = Instant.now();
         for (RobotState r : fleet.robots()) {
-            drawRobot(gc, r, r.isStale(now));
+            boolean stale = r.isStale(now);
+            drawRobot(gc, r, stale);
+            if (!stale && r.pose() != null && map != null && !liveShown) {
+                liveShown = true;
+                // the figure "workbench start to first live robot on screen": from the JVM's start to this paint
+                long ms = java.time.Duration.between(ProcessHandle.current().info().startInstant().orElse(now), now)
+                        .toMillis();
+                LOG.info("first live robot on screen: {} on the map {} ms after the workbench started", r.name(), ms);
+            }
         }
         drawGoalGesture(gc);
         drawScaleBar(gc, area);

@@ -139,8 +139,10 @@ class LiveFleetUiTest {
         workspace.centreOn(ROBOT_JID);
         flush();
         MapViewport v = workspace.viewport();
-        RGB at = pixel(workspace.canvas(), (int) Math.round(v.toScreenX(truth.x())), (int) Math.round(v.toScreenY(
-                truth.y())));
+        // sampled half a radius behind the centre: the heading line runs from the centre forwards
+        double behind = 0.5 * WorkspaceView.FOOTPRINT_RADIUS_M;
+        RGB at = pixel(workspace.canvas(), sx(v, truth.x() - behind * Math.cos(truth.theta())), sy(v, truth.y() - behind
+                * Math.sin(truth.theta())));
         assertTrue(at.blue > at.red + 40, "no robot drawn at its true pose: " + at);
 
         assertTrue(statusLineText().contains("online"), statusLineText());
@@ -199,8 +201,14 @@ class LiveFleetUiTest {
                 ".*go to \\((5\\.9|6\\.0)\\d, 4\\.[34]\\d, 1\\.57 rad\\): done")) /* one pixel is 2-3 cm */, messages
                 .toString());
 
+        printFrameTimes(workspace.frameTimesNanos());
+
+        // the goal sent is the pressed pixel (about 3 cm a pixel at Home's zoom); the robot's tolerance is 0.1 m and
+        // its localisation on a busy 2-core machine adds up to ~0.1 m (as the system tests allow)
+        sabot.model.geometry.Pose2D sent = robotRow().goal().pose();
+        assertTrue(Math.hypot(sent.x() - GOAL[0], sent.y() - GOAL[1]) < 0.05, "goal sent " + sent);
         SimProcess.Truth truth = sim.truth();
-        assertTrue(truth.distanceTo(GOAL[0], GOAL[1]) < 0.15, "robot not at the goal: " + truth);
+        assertTrue(truth.distanceTo(sent.x(), sent.y()) < 0.2, "robot not at the goal " + sent + ": " + truth);
         assertEquals(GOAL[2], truth.theta(), 0.3, "heading at the goal: " + truth);
     }
 
@@ -217,6 +225,18 @@ class LiveFleetUiTest {
     }
 
     // ------------------------------------------------------------------------------------------------ helpers
+
+    /** The figure of docs/WORKBENCH.md: paint time of the workspace (map, grid, robot, path, trail) while it drove. */
+    private static void printFrameTimes(long[] nanos) {
+        long[] sorted = nanos.clone();
+        java.util.Arrays.sort(sorted);
+        if (sorted.length == 0) {
+            return;
+        }
+        System.out.printf(Locale.ROOT, "[figure] workspace frame time, 1 live robot on the lab map: n=%d p50=%.2f ms "
+                + "p99=%.2f ms max=%.2f ms%n", sorted.length, sorted[sorted.length / 2] / 1e6, sorted[(int) Math.min(
+                        sorted.length - 1, Math.ceil(sorted.length * 0.99) - 1)] / 1e6, sorted[sorted.length - 1] / 1e6);
+    }
 
     private static boolean live(RobotState r) {
         return r != null && r.availability() != Availability.OFFLINE && r.pose() != null && !r.isStale(Instant.now());

@@ -111,11 +111,19 @@ public final class ControlMlFleet implements FleetState {
     private final Set<FleetListener> listeners = new CopyOnWriteArraySet<>();
     private final Map<String, CompletableFuture<GridMap>> maps = new ConcurrentHashMap<>();
     private final Object stateLock = new Object();
+    /** True while a reconnection is queued: the several keys of one account change make one reconnection. */
+    private final java.util.concurrent.atomic.AtomicBoolean reconnectQueued =
+            new java.util.concurrent.atomic.AtomicBoolean();
     private final IPreferenceChangeListener accountChanged = e -> {
         if (e.getKey().startsWith(XmppAccountStore.KEY_PREFIX)) {
             reconnect();
         }
     };
+    /**
+     * How often the robots' roster state is checked again while online: a subscription handshake cut short (the
+     * workbench reconnected in between) is asked for again, and a presence missed is read from the roster.
+     */
+    static final long RECONCILE_MS = 2000;
 
     private volatile ConnectionStatus status;
     /** The live connection, touched on the connection thread only (read elsewhere). */
@@ -202,8 +210,9 @@ public final class ControlMlFleet implements FleetState {
 
     @Override
     public void reconnect() {
-        if (!connector.isShutdown()) {
+        if (!connector.isShutdown() && reconnectQueued.compareAndSet(false, true)) {
             connector.execute(() -> {
+                reconnectQueued.set(false);
                 backoff.reset();
                 closeSession();
                 connect();
@@ -454,9 +463,13 @@ public final class ControlMlFleet implements FleetState {
                     follow(s, r.jid(), 0);
                 }
             }
-        } catch (Exception e) {
+            connector.schedule(() -> reconcile(s), RECONCILE_MS, TimeUnit.MILLISECONDS);
+        } catch (Exception | LinkageError e) {
+            // a LinkageError (a bundle missing from the runtime) would otherwise vanish in the executor
             if (e instanceof InterruptedException) {
                 Thread.currentThread().interrupt();
+            } else if (e instanceof LinkageError) {
+                LOG.error("cannot connect: {}", e.toString(), e);
             }
             if (c != null) {
                 c.instantShutdown();
@@ -533,6 +546,27 @@ public final class ControlMlFleet implements FleetState {
         }
     }
 
+    /** Connection thread, every {@link #RECONCILE_MS} while the session lives: see there. */
+    private void reconcile(Session s) {
+        if (session != s) {
+            return;
+        }
+        for (RobotState r : robots.values()) {
+            try {
+                EntityBareJid jid = JidCreate.entityBareFrom(r.jid());
+                RosterEntry e = s.roster().getEntry(jid);
+                if (e != null && !e.canSeeHisPresence() && !e.isSubscriptionPending()) {
+                    LOG.info("asking {} again for its presence (subscription {})", jid, e.getType());
+                    s.roster().sendSubscriptionRequest(jid);
+                }
+                presence(s, s.roster().getPresence(jid));
+            } catch (Exception e) {
+                LOG.debug("reconciling {}: {}", r.jid(), e.toString());
+            }
+        }
+        connector.schedule(() -> reconcile(s), RECONCILE_MS, TimeUnit.MILLISECONDS);
+    }
+
     private void presence(Session s, Presence p) {
         String jid = p.getFrom().asBareJid().toString();
         if (!robots.containsKey(jid)) {
@@ -546,6 +580,9 @@ public final class ControlMlFleet implements FleetState {
         };
         String reason = p.getStatus() == null ? "" : p.getStatus();
         RobotState before = robots.get(jid);
+        if (before != null && before.availability() == a && before.reason().equals(reason)) {
+            return;
+        }
         update(jid, r -> r.withPresence(a, reason));
         if (before != null && before.availability() == Availability.OFFLINE && a != Availability.OFFLINE && session
                 == s) {
