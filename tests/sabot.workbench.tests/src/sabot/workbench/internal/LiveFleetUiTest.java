@@ -26,7 +26,6 @@ import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.graphics.Rectangle;
 import org.eclipse.swt.widgets.Control;
 import org.eclipse.swt.widgets.Display;
-import org.eclipse.swt.widgets.Event;
 import org.eclipse.ui.IWorkbenchPage;
 import org.eclipse.ui.PlatformUI;
 import org.junit.jupiter.api.AfterAll;
@@ -329,11 +328,7 @@ class LiveFleetUiTest {
     }
 
     private static void mouse(Control c, int type, int x, int y) {
-        Event e = new Event();
-        e.x = x;
-        e.y = y;
-        e.button = 1;
-        c.notifyListeners(type, e);
+        WorkbenchUiTest.mouse(c, type, x, y);
     }
 
     private static RGB pixel(Control c, int x, int y) {

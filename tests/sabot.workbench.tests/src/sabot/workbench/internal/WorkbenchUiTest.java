@@ -168,7 +168,8 @@ class WorkbenchUiTest {
         assertNull(store.loadPassword());
     }
 
-    private static void mouse(Control c, int type, int x, int y) {
+    /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */
+    static void mouse(Control c, int type, int x, int y) {
         Event e = new Event();
         e.x = x;
         e.y = y;
