@@ -10,6 +10,7 @@ import java.util.List;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import sabot.testsupport.robot.OnboardProcess;
 
 /**
  * Proof 8: a configuration that cannot work stops the product before anything starts, with one line naming the file,

@@ -28,6 +28,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * Proofs 4 and 7: the XMPP side of a running robot. The server stopped mid-drive stops the robot, which reconnects

@@ -10,6 +10,7 @@ import org.junit.jupiter.api.io.TempDir;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.model.geometry.Pose2D;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * Landmark fixes: the robot is placed 0.28 m from where its configuration says it stands (an operator's rough

@@ -13,6 +13,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.model.geometry.Pose2D;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * Proof 1 of the onboard issue: a goal sent over XMPP moves the simulated robot. Real processes: a private Prosody,

@@ -12,6 +12,7 @@ import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.model.geometry.Pose2D;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * Proof 2: an obstacle placed on the path while the robot drives. The sonar sees it, the robot replans around it and

@@ -7,6 +7,7 @@ import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
 
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * What the system tests share: a private Prosody per test (started in ~0.1-0.2 s; accounts do not leak between

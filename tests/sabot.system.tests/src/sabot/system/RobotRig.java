@@ -14,6 +14,8 @@ import sabot.controlml.Outcome;
 import sabot.controlml.Resource;
 import sabot.controlml.payload.NoQuery;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.robot.SimProcess;
+import sabot.testsupport.robot.OnboardProcess;
 
 /**
  * One simulated robot as a lab runs it: {@code sabot-sim} on the lab map, the onboard product on the simulator's pty

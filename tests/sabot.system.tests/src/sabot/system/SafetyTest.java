@@ -21,6 +21,7 @@ import sabot.controlml.payload.MotionLimits;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.testsupport.robot.SimProcess;
 
 /**
  * The robot stops by itself, proven on the simulator's ground truth: joystick silence (deadman), a motor board that

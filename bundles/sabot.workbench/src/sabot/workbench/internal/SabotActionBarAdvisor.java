@@ -2,6 +2,7 @@ package sabot.workbench.internal;
 
 import org.eclipse.jface.action.GroupMarker;
 import org.eclipse.jface.action.IMenuManager;
+import org.eclipse.jface.action.IStatusLineManager;
 import org.eclipse.jface.action.MenuManager;
 import org.eclipse.jface.action.Separator;
 import org.eclipse.ui.IWorkbenchActionConstants;
@@ -33,6 +34,11 @@ final class SabotActionBarAdvisor extends ActionBarAdvisor {
     private IWorkbenchAction register(IWorkbenchAction action) {
         super.register(action);
         return action;
+    }
+
+    @Override
+    protected void fillStatusLine(IStatusLineManager statusLine) {
+        statusLine.add(new ConnectionStatusItem());
     }
 
     @Override

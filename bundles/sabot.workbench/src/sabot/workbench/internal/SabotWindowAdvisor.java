@@ -55,6 +55,30 @@ final class SabotWindowAdvisor extends WorkbenchWindowAdvisor {
             return;
         }
         Display display = shell.getDisplay();
+        if (options.waitForLiveRobot()) {
+            long deadline = System.nanoTime() + LaunchOptions.LIVE_WAIT_S * 1_000_000_000L;
+            awaitLiveRobot(display, deadline, () -> capture(shell, display));
+            return;
+        }
+        capture(shell, display);
+    }
+
+    /** Looks every 100 ms (on the UI thread's timer) whether the workspace shows a live robot, then runs {@code then}. */
+    private void awaitLiveRobot(Display display, long deadline, Runnable then) {
+        org.eclipse.ui.IWorkbenchPage page = getWindowConfigurer().getWindow().getActivePage();
+        sabot.workbench.views.WorkspaceView w = page == null ? null : (sabot.workbench.views.WorkspaceView) page
+                .findView(sabot.workbench.views.WorkspaceView.ID);
+        if (w != null && w.showsLiveRobot() || System.nanoTime() > deadline) {
+            if (w == null || !w.showsLiveRobot()) {
+                LOG.warn("no live robot on the map within {} s; screenshot taken anyway", LaunchOptions.LIVE_WAIT_S);
+            }
+            then.run();
+            return;
+        }
+        display.timerExec(100, () -> awaitLiveRobot(display, deadline, then));
+    }
+
+    private void capture(Shell shell, Display display) {
         // Queued behind the events of the first layout and paint, so the capture shows the drawn window.
         display.asyncExec(() -> display.asyncExec(() -> {
             if (options.screenshot() != null && !shell.isDisposed()) {

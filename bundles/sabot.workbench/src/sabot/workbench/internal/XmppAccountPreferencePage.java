@@ -1,10 +1,7 @@
 package sabot.workbench.internal;
 
 import java.io.IOException;
-import java.nio.file.Path;
-import java.nio.file.Paths;
 
-import org.eclipse.core.runtime.preferences.InstanceScope;
 import org.eclipse.jface.layout.GridDataFactory;
 import org.eclipse.jface.layout.GridLayoutFactory;
 import org.eclipse.jface.preference.PreferencePage;
@@ -26,9 +23,6 @@ import sabot.workbench.account.XmppAccountStore;
  */
 public final class XmppAccountPreferencePage extends PreferencePage implements IWorkbenchPreferencePage {
 
-    /** System property overriding the folder of the password file (default ~/.sabot/workbench). */
-    public static final String SECRETS_DIR_PROPERTY = "sabot.workbench.secrets";
-
     private XmppAccountStore store;
     private Text server;
     private Text port;
@@ -37,11 +31,7 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
 
     /** @return the store the workbench uses for the operator's account */
     public static XmppAccountStore defaultStore() {
-        String dir = System.getProperty(SECRETS_DIR_PROPERTY);
-        Path secrets = dir != null ? Paths.get(dir) : Paths.get(System.getProperty("user.home"), ".sabot",
-                "workbench");
-        return new XmppAccountStore(InstanceScope.INSTANCE.getNode("sabot.workbench"), secrets.resolve(
-                "xmpp-password"));
+        return XmppAccountStore.workbenchStore();
     }
 
     @Override

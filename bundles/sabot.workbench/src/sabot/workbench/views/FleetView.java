@@ -1,40 +1,88 @@
 package sabot.workbench.views;
 
+import java.time.Duration;
+import java.time.Instant;
+import java.util.Comparator;
 import java.util.List;
+import java.util.Locale;
+import java.util.function.Function;
 
 import org.eclipse.jface.viewers.ArrayContentProvider;
 import org.eclipse.jface.viewers.ColumnLabelProvider;
+import org.eclipse.jface.viewers.ISelection;
+import org.eclipse.jface.viewers.IStructuredSelection;
+import org.eclipse.jface.viewers.StructuredSelection;
 import org.eclipse.jface.viewers.TableViewer;
 import org.eclipse.jface.viewers.TableViewerColumn;
+import org.eclipse.jface.viewers.Viewer;
+import org.eclipse.jface.viewers.ViewerComparator;
 import org.eclipse.swt.SWT;
+import org.eclipse.swt.graphics.Color;
 import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Table;
+import org.eclipse.swt.widgets.TableColumn;
+import org.eclipse.ui.ISelectionListener;
+import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.part.ViewPart;
 
+import sabot.controlml.payload.MissionStatus;
+import sabot.workbench.fleet.RobotState;
+import sabot.workbench.internal.FleetBinding;
+
 /**
- * The fleet: one row per robot with its presence level, pose and current task. Rows come from the robots the
- * workbench's XMPP session knows; without a session the table is empty.
+ * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
+ * reason, pose, mission state and progress, and the age of its last telemetry; stale rows are grey. Click a header to
+ * sort by it (again to reverse); the selection is the workbench's (the workspace map follows it); double-click centres
+ * the map on the robot.
  */
 public final class FleetView extends ViewPart {
 
     public static final String ID = "sabot.workbench.views.fleet";
 
     /** Column titles, in order. */
-    public static final List<String> COLUMNS = List.of("Robot", "Presence", "Pose (x, y, θ)", "Task");
-    private static final int[] WIDTHS = { 220, 110, 240, 300 };
-
-    /**
-     * One robot as the table shows it.
-     *
-     * @param robot    the robot's nickname or JID
-     * @param presence Free, Busy, Away or Offline
-     * @param pose     the last pose, formatted, or "–" when unknown
-     * @param task     what the robot is doing
-     */
-    public record Row(String robot, String presence, String pose, String task) {
-    }
+    public static final List<String> COLUMNS = List.of("Robot", "Presence", "Pose (x, y, θ)", "Mission",
+            "Telemetry");
+    private static final int[] WIDTHS = { 220, 220, 220, 330, 110 };
+    /** How often the ages are refreshed without news (ms): stale robots turn grey without an event. */
+    private static final int AGE_REFRESH_MS = 500;
 
     private TableViewer viewer;
+    private FleetBinding fleet;
+    private int sortColumn = 0;
+    private boolean descending;
+    private Color grey;
+    private final ISelectionListener otherViews = this::otherViewSelected;
+
+    /** The texts of one row (for tests and the sort). */
+    public static List<String> texts(RobotState r, Instant now) {
+        return List.of(r.name() + " <" + r.jid() + ">", presence(r), pose(r), mission(r.mission()), age(r, now));
+    }
+
+    private static String presence(RobotState r) {
+        return r.reason().isEmpty() ? r.availability().label() : r.availability().label() + " — " + r.reason();
+    }
+
+    private static String pose(RobotState r) {
+        return r.pose() == null ? "–" : String.format(Locale.ROOT, "%.2f m, %.2f m, %.1f°", r.pose().pose().x(), r
+                .pose().pose().y(), Math.toDegrees(r.pose().pose().theta()));
+    }
+
+    private static String mission(MissionStatus m) {
+        if (m == null) {
+            return "–";
+        }
+        String s = String.format(Locale.ROOT, "%s %.0f %%", m.state().code(), m.progress());
+        return (m.maintenance() ? "maintenance, " : "") + (m.detail().isEmpty() ? s : s + " — " + m.detail());
+    }
+
+    private static String age(RobotState r, Instant now) {
+        Duration d = r.telemetryAge(now);
+        if (d == null) {
+            return "never";
+        }
+        long ms = Math.max(0, d.toMillis());
+        return ms < 10_000 ? String.format(Locale.ROOT, "%.1f s", ms / 1000.0) : ms / 1000 + " s";
+    }
 
     @Override
     public void createPartControl(Composite parent) {
@@ -42,32 +90,106 @@ public final class FleetView extends ViewPart {
         Table table = viewer.getTable();
         table.setHeaderVisible(true);
         table.setLinesVisible(true);
+        grey = new Color(150, 150, 150);
+        table.addDisposeListener(e -> grey.dispose());
         for (int i = 0; i < COLUMNS.size(); i++) {
             TableViewerColumn column = new TableViewerColumn(viewer, SWT.LEFT);
-            column.getColumn().setText(COLUMNS.get(i));
-            column.getColumn().setWidth(WIDTHS[i]);
-            column.getColumn().setMoveable(true);
+            TableColumn c = column.getColumn();
+            c.setText(COLUMNS.get(i));
+            c.setWidth(WIDTHS[i]);
+            c.setMoveable(true);
             int index = i;
+            c.addListener(SWT.Selection, e -> sortBy(index));
             column.setLabelProvider(new ColumnLabelProvider() {
                 @Override
                 public String getText(Object element) {
-                    Row r = (Row) element;
-                    return switch (index) {
-                        case 0 -> r.robot();
-                        case 1 -> r.presence();
-                        case 2 -> r.pose();
-                        default -> r.task();
-                    };
+                    return texts((RobotState) element, Instant.now()).get(index);
+                }
+
+                @Override
+                public Color getForeground(Object element) {
+                    return ((RobotState) element).isStale(Instant.now()) ? grey : null;
                 }
             });
         }
         viewer.setContentProvider(ArrayContentProvider.getInstance());
+        viewer.setComparator(new ViewerComparator() {
+            @Override
+            public int compare(Viewer v, Object a, Object b) {
+                int c = comparator(sortColumn).compare((RobotState) a, (RobotState) b);
+                return descending ? -c : c;
+            }
+        });
         viewer.setInput(List.of());
+        viewer.addDoubleClickListener(e -> {
+            if (e.getSelection() instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r) {
+                WorkspaceView map = (WorkspaceView) getSite().getPage().findView(WorkspaceView.ID);
+                if (map != null) {
+                    map.select(r.jid(), true);
+                    map.centreOn(r.jid());
+                }
+            }
+        });
+        getSite().setSelectionProvider(viewer);
+        getSite().getPage().addSelectionListener(otherViews);
+        fleet = new FleetBinding(table.getDisplay(), this::refresh);
+        tick();
     }
 
-    /** Replaces the rows (UI thread only). */
-    public void setRows(List<Row> rows) {
-        viewer.setInput(List.copyOf(rows));
+    private static Comparator<RobotState> comparator(int column) {
+        Function<RobotState, Comparable<?>> key = switch (column) {
+            case 1 -> r -> r.availability().ordinal() * 1000 + 0;
+            case 2 -> r -> r.pose() == null ? Double.NEGATIVE_INFINITY : r.pose().pose().x();
+            case 3 -> r -> r.mission() == null ? -1.0 : r.mission().progress();
+            case 4 -> r -> r.lastTelemetry() == null ? Instant.MIN : r.lastTelemetry();
+            default -> RobotState::name;
+        };
+        @SuppressWarnings({ "unchecked", "rawtypes" })
+        Comparator<RobotState> c = Comparator.comparing(r -> (Comparable) key.apply(r));
+        return c.thenComparing(RobotState::jid);
+    }
+
+    /** Sorts by a column; the same column again reverses the order. */
+    public void sortBy(int column) {
+        descending = column == sortColumn && !descending;
+        sortColumn = column;
+        Table t = viewer.getTable();
+        t.setSortColumn(t.getColumn(column));
+        t.setSortDirection(descending ? SWT.DOWN : SWT.UP);
+        viewer.refresh();
+    }
+
+    private void tick() {
+        if (viewer.getTable().isDisposed()) {
+            return;
+        }
+        viewer.refresh(true);
+        viewer.getTable().getDisplay().timerExec(AGE_REFRESH_MS, this::tick);
+    }
+
+    private void refresh() {
+        if (viewer.getTable().isDisposed()) {
+            return;
+        }
+        ISelection before = viewer.getSelection();
+        String selected = before instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r ? r
+                .jid() : null;
+        List<RobotState> robots = fleet.robots();
+        viewer.setInput(robots);
+        if (selected != null) {
+            robots.stream().filter(r -> r.jid().equals(selected)).findFirst().ifPresent(r -> viewer.setSelection(
+                    new StructuredSelection(r)));
+        }
+    }
+
+    private void otherViewSelected(IWorkbenchPart part, ISelection selection) {
+        if (part == this || !(selection instanceof IStructuredSelection s)) {
+            return;
+        }
+        if (s.getFirstElement() instanceof RobotState r) {
+            fleet.robots().stream().filter(x -> x.jid().equals(r.jid())).findFirst().ifPresent(x -> viewer
+                    .setSelection(new StructuredSelection(x), true));
+        }
     }
 
     /** @return the table (for tests) */
@@ -75,8 +197,22 @@ public final class FleetView extends ViewPart {
         return viewer.getTable();
     }
 
+    /** @return the rows in the table's order (for tests) */
+    public List<RobotState> rows() {
+        return java.util.Arrays.stream(viewer.getTable().getItems()).map(i -> (RobotState) i.getData()).toList();
+    }
+
     @Override
     public void setFocus() {
         viewer.getControl().setFocus();
+    }
+
+    @Override
+    public void dispose() {
+        getSite().getPage().removeSelectionListener(otherViews);
+        if (fleet != null) {
+            fleet.dispose();
+        }
+        super.dispose();
     }
 }

@@ -1,5 +1,20 @@
 package sabot.workbench.views;
 
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.Objects;
+
+import org.eclipse.jface.action.Action;
+import org.eclipse.jface.action.IStatusLineManager;
+import org.eclipse.jface.action.MenuManager;
+import org.eclipse.jface.viewers.ISelection;
+import org.eclipse.jface.viewers.ISelectionChangedListener;
+import org.eclipse.jface.viewers.ISelectionProvider;
+import org.eclipse.jface.viewers.IStructuredSelection;
+import org.eclipse.jface.viewers.SelectionChangedEvent;
+import org.eclipse.jface.viewers.StructuredSelection;
 import org.eclipse.swt.SWT;
 import org.eclipse.swt.events.MouseEvent;
 import org.eclipse.swt.events.MouseListener;
@@ -7,21 +22,45 @@ import org.eclipse.swt.events.MouseMoveListener;
 import org.eclipse.swt.events.PaintEvent;
 import org.eclipse.swt.graphics.Color;
 import org.eclipse.swt.graphics.GC;
+import org.eclipse.swt.graphics.Image;
+import org.eclipse.swt.graphics.ImageData;
+import org.eclipse.swt.graphics.PaletteData;
 import org.eclipse.swt.graphics.Point;
+import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.graphics.Rectangle;
 import org.eclipse.swt.widgets.Canvas;
 import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Display;
+import org.eclipse.ui.ISelectionListener;
+import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.part.ViewPart;
 
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.Obstacle;
+import sabot.controlml.payload.PoseCovariance;
+import sabot.controlml.payload.TrajectoryPoint;
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.workbench.fleet.FleetState;
+import sabot.workbench.fleet.RobotState;
+import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.internal.FleetJobs;
 import sabot.workbench.map.MapViewport;
 
 /**
  * The shared workspace: a map canvas in the map frame (metres, y up) with a metric grid, the frame's axes and a
- * scale bar. Drag to pan, wheel to zoom at the pointer, double-click or Home to show the default area, +/- and the
- * arrow keys from the keyboard. Robots, obstacles and paths are drawn on it by later layers.
+ * scale bar, the robots' map (fetched with {@code cm.map}), and every robot of the {@link FleetState}: footprint with
+ * heading, 95 % covariance ellipse, planned path, trail, sonar obstacles and goal; stale robots greyed.
+ * <p>
+ * Mouse: click a robot to select it; with a robot selected, press at a target and drag for the heading, release sends
+ * the goal (a click without drag: heading from the robot towards the target); right-click for go here, stop, centre.
+ * Drag with no robot selected, with the middle button or with Ctrl to pan; wheel zooms at the pointer; double-click
+ * empty floor or Home shows the default area; Esc clears the selection.
  */
-public final class WorkspaceView extends ViewPart {
+public final class WorkspaceView extends ViewPart implements ISelectionProvider {
+
+    private static final org.slf4j.Logger LOG = org.slf4j.LoggerFactory.getLogger("sabot.workbench");
 
     public static final String ID = "sabot.workbench.views.workspace";
 
@@ -30,12 +69,39 @@ public final class WorkspaceView extends ViewPart {
     private static final double WHEEL_ZOOM = 1.2;
     private static final int GRID_MIN_PX = 40;
     private static final int SCALE_BAR_MIN_PX = 100;
+    /** Footprint radius drawn, metres: the planner's default robot radius ({@code planner.robotRadius}). */
+    public static final double FOOTPRINT_RADIUS_M = 0.25;
+    /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
+    public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
+    public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
+    /** Chi-square 95 % quantile for 2 degrees of freedom: the ellipse holds the robot with 95 % probability. */
+    private static final double ELLIPSE_SCALE = Math.sqrt(5.991);
+    /** Drags shorter than this (pixels) are clicks. */
+    private static final int CLICK_SLOP_PX = 5;
+    /** Paint times kept for the frame-time figure. */
+    private static final int FRAME_SAMPLES = 4096;
 
     private final MapViewport viewport = new MapViewport(50, 5, 5);
+    private final List<ISelectionChangedListener> selectionListeners = new ArrayList<>();
+    private final long[] frameNanos = new long[FRAME_SAMPLES];
+    private int frames;
     private Canvas canvas;
+    private FleetBinding fleet;
     private Point dragFrom;
+    private Point pressAt;
+    private boolean panning;
     private Point pointer;
     private boolean homed;
+    private String selected;
+    private boolean liveShown;
+    private String message;
+    private boolean messageIsError;
+    /** The map drawn: the first robot's with a map, fetched once. */
+    private GridMap map;
+    private Image mapImage;
+    private String mapFrom;
+    private boolean mapRequested;
+    private final ISelectionListener otherViews = this::otherViewSelected;
 
     @Override
     public void createPartControl(Composite parent) {
@@ -56,23 +122,23 @@ public final class WorkspaceView extends ViewPart {
         canvas.addMouseListener(new MouseListener() {
             @Override
             public void mouseDown(MouseEvent e) {
-                if (e.button == 1) {
-                    dragFrom = new Point(e.x, e.y);
-                }
+                pressed(e);
             }
 
             @Override
             public void mouseUp(MouseEvent e) {
-                dragFrom = null;
+                released(e);
             }
 
             @Override
             public void mouseDoubleClick(MouseEvent e) {
-                home();
+                if (robotAt(e.x, e.y) == null && selected == null) {
+                    home();
+                }
             }
         });
         canvas.addMouseMoveListener((MouseMoveListener) e -> {
-            if (dragFrom != null) {
+            if (dragFrom != null && panning) {
                 viewport.panByPixels(e.x - dragFrom.x, e.y - dragFrom.y);
                 dragFrom = new Point(e.x, e.y);
             }
@@ -87,6 +153,7 @@ public final class WorkspaceView extends ViewPart {
                 case SWT.ARROW_UP -> viewport.panByPixels(0, step);
                 case SWT.ARROW_DOWN -> viewport.panByPixels(0, -step);
                 case SWT.HOME -> home();
+                case SWT.ESC -> select(null, true);
                 default -> {
                     if (e.character == '+' || e.character == '=') {
                         viewport.zoomAt(WHEEL_ZOOM, viewport.width() / 2.0, viewport.height() / 2.0);
@@ -97,11 +164,342 @@ public final class WorkspaceView extends ViewPart {
             }
             canvas.redraw();
         });
+        createContextMenu();
+        getSite().setSelectionProvider(this);
+        getSite().getPage().addSelectionListener(otherViews);
+        fleet = new FleetBinding(canvas.getDisplay(), this::fleetChanged);
+        canvas.addDisposeListener(e -> {
+            if (mapImage != null) {
+                mapImage.dispose();
+            }
+        });
     }
+
+    @Override
+    public void dispose() {
+        getSite().getPage().removeSelectionListener(otherViews);
+        if (fleet != null) {
+            fleet.dispose();
+        }
+        super.dispose();
+    }
+
+    // ---------------------------------------------------------------------------------------------- mouse
+
+    private void pressed(MouseEvent e) {
+        if (e.button == 2 || e.button == 1 && (e.stateMask & SWT.MOD1) != 0) {
+            dragFrom = new Point(e.x, e.y);
+            panning = true;
+            return;
+        }
+        if (e.button != 1) {
+            return;
+        }
+        String hit = robotAt(e.x, e.y);
+        if (hit != null) {
+            select(hit, true);
+            return;
+        }
+        if (selected != null && fleet.robot(selected) != null) {
+            pressAt = new Point(e.x, e.y); // a goal: the release gives the heading
+            return;
+        }
+        dragFrom = new Point(e.x, e.y);
+        panning = true;
+    }
+
+    private void released(MouseEvent e) {
+        dragFrom = null;
+        panning = false;
+        if (pressAt != null && e.button == 1) {
+            Point at = pressAt;
+            pressAt = null;
+            sendGoal(selected, goalFor(at, new Point(e.x, e.y)));
+        }
+        canvas.redraw();
+    }
+
+    /**
+     * @return the goal of a press at {@code at} released at {@code to}: the target under the press, the heading along
+     *         the drag; a click without drag faces away from the robot's position
+     */
+    Goal goalFor(Point at, Point to) {
+        double x = viewport.toMapX(at.x);
+        double y = viewport.toMapY(at.y);
+        double theta;
+        if (Math.hypot(to.x - at.x, to.y - at.y) >= CLICK_SLOP_PX) {
+            theta = Math.atan2(-(to.y - at.y), to.x - at.x); // screen y grows downwards
+        } else {
+            RobotState r = fleet.robot(selected);
+            theta = r != null && r.pose() != null ? Math.atan2(y - r.pose().pose().y(), x - r.pose().pose().x()) : 0;
+        }
+        return new Goal(new Pose2D(x, y, theta), GOAL_POSITION_TOLERANCE_M, GOAL_HEADING_TOLERANCE_RAD);
+    }
+
+    /** Sends a goal to a robot in a job; the answer appears in the status line and on the map. */
+    public void sendGoal(String robot, Goal goal) {
+        if (robot == null) {
+            return;
+        }
+        String what = String.format(Locale.ROOT, "%s: go to (%.2f, %.2f, %.2f rad)", name(robot), goal.pose().x(),
+                goal.pose().y(), goal.pose().theta());
+        FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.goTo(robot, goal), this::show);
+    }
+
+    /** Stops a robot in a job. */
+    public void stopRobot(String robot) {
+        if (robot != null) {
+            FleetJobs.run(name(robot) + ": stop", canvas.getDisplay(), fleet.fleet(), f -> f.stop(robot), this::show);
+        }
+    }
+
+    private String name(String jid) {
+        RobotState r = fleet.robot(jid);
+        return r == null ? jid : r.name();
+    }
+
+    /** Shows a command's answer: in the status line (an error for a refusal) and on the map. */
+    void show(String text, boolean error) {
+        message = text;
+        messageIsError = error;
+        IStatusLineManager status = getViewSite().getActionBars().getStatusLineManager();
+        if (error) {
+            status.setErrorMessage(text);
+        } else {
+            status.setErrorMessage(null);
+            status.setMessage(text);
+        }
+        if (!canvas.isDisposed()) {
+            canvas.redraw();
+        }
+    }
+
+    /** @return true once a live robot has been drawn on its map */
+    public boolean showsLiveRobot() {
+        return liveShown;
+    }
+
+    /** @return the last command answer shown, or null (for tests) */
+    public String lastMessage() {
+        return message;
+    }
+
+    private void createContextMenu() {
+        MenuManager menu = new MenuManager();
+        menu.setRemoveAllWhenShown(true);
+        menu.addMenuListener(m -> {
+            Point at = canvas.toControl(canvas.getDisplay().getCursorLocation());
+            String hit = robotAt(at.x, at.y);
+            if (hit != null) {
+                select(hit, true);
+            }
+            String robot = selected;
+            boolean known = robot != null && fleet.robot(robot) != null;
+            Action go = new Action("&Go here") {
+                @Override
+                public void run() {
+                    sendGoal(robot, goalFor(at, at));
+                }
+            };
+            go.setEnabled(known && hit == null);
+            Action stop = new Action("&Stop") {
+                @Override
+                public void run() {
+                    stopRobot(robot);
+                }
+            };
+            stop.setEnabled(known);
+            Action centre = new Action("&Centre") {
+                @Override
+                public void run() {
+                    centreOn(robot);
+                }
+            };
+            centre.setEnabled(known && fleet.robot(robot).pose() != null);
+            m.add(go);
+            m.add(stop);
+            m.add(centre);
+        });
+        canvas.setMenu(menu.createContextMenu(canvas));
+    }
+
+    /** Centres the map on a robot's last pose (nothing when it has none). */
+    public void centreOn(String robot) {
+        RobotState r = fleet.robot(robot);
+        if (r != null && r.pose() != null) {
+            viewport.panByPixels(viewport.width() / 2.0 - viewport.toScreenX(r.pose().pose().x()), viewport.height()
+                    / 2.0 - viewport.toScreenY(r.pose().pose().y()));
+            canvas.redraw();
+        }
+    }
+
+    /** @return the robot whose footprint is under a pixel, or null */
+    String robotAt(int px, int py) {
+        double x = viewport.toMapX(px);
+        double y = viewport.toMapY(py);
+        double reach = Math.max(FOOTPRINT_RADIUS_M, 8 / viewport.scale());
+        for (RobotState r : fleet == null ? List.<RobotState>of() : fleet.robots()) {
+            if (r.pose() != null && Math.hypot(r.pose().pose().x() - x, r.pose().pose().y() - y) <= reach) {
+                return r.jid();
+            }
+        }
+        return null;
+    }
+
+    // ---------------------------------------------------------------------------------------------- selection
+
+    /** Selects a robot (null: none) and, when {@code announce}, tells the workbench's selection service. */
+    public void select(String jid, boolean announce) {
+        if (Objects.equals(jid, selected)) {
+            return;
+        }
+        selected = jid;
+        if (announce) {
+            SelectionChangedEvent event = new SelectionChangedEvent(this, getSelection());
+            for (ISelectionChangedListener l : List.copyOf(selectionListeners)) {
+                l.selectionChanged(event);
+            }
+        }
+        canvas.redraw();
+    }
+
+    /** @return the selected robot's JID, or null */
+    public String selectedRobot() {
+        return selected;
+    }
+
+    private void otherViewSelected(IWorkbenchPart part, ISelection selection) {
+        if (part != this && selection instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r) {
+            select(r.jid(), false);
+        }
+    }
+
+    @Override
+    public ISelection getSelection() {
+        RobotState r = fleet == null ? null : fleet.robot(selected);
+        return r == null ? StructuredSelection.EMPTY : new StructuredSelection(r);
+    }
+
+    @Override
+    public void setSelection(ISelection selection) {
+        if (selection instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r) {
+            select(r.jid(), true);
+        } else {
+            select(null, true);
+        }
+    }
+
+    @Override
+    public void addSelectionChangedListener(ISelectionChangedListener listener) {
+        selectionListeners.add(listener);
+    }
+
+    @Override
+    public void removeSelectionChangedListener(ISelectionChangedListener listener) {
+        selectionListeners.remove(listener);
+    }
+
+    // ---------------------------------------------------------------------------------------------- fleet
+
+    private void fleetChanged() {
+        if (canvas.isDisposed()) {
+            return;
+        }
+        if (map == null && !mapRequested) {
+            requestMap();
+        }
+        canvas.redraw();
+    }
+
+    /** Fetches the map of the first robot online (robots of one lab share it), off the UI thread. */
+    private void requestMap() {
+        FleetState f = fleet.fleet();
+        RobotState source = fleet.robots().stream().filter(r -> r.availability()
+                != sabot.workbench.fleet.Availability.OFFLINE).findFirst().orElse(null);
+        if (f == null || source == null) {
+            return;
+        }
+        mapRequested = true;
+        Display display = canvas.getDisplay();
+        f.map(source.jid()).whenComplete((m, e) -> display.asyncExec(() -> {
+            if (canvas.isDisposed()) {
+                return;
+            }
+            if (m != null) {
+                setMap(m, source.jid());
+            } else {
+                mapRequested = false; // asked again with the next change
+                show("map of " + source.name() + ": " + describe(e), true);
+            }
+        }));
+    }
+
+    private static String describe(Throwable e) {
+        sabot.workbench.fleet.FleetCommandException f = sabot.workbench.fleet.FleetCommandException.in(e);
+        return f != null ? f.text() + " (" + f.condition().element() + ")" : String.valueOf(e);
+    }
+
+    /** Shows a map (UI thread). */
+    public void setMap(GridMap m, String from) {
+        map = m;
+        mapFrom = from;
+        if (mapImage != null) {
+            mapImage.dispose();
+        }
+        mapImage = new Image(canvas.getDisplay(), imageOf(m));
+        canvas.redraw();
+    }
+
+    /** @return the map shown, or null */
+    public GridMap map() {
+        return map;
+    }
+
+    /** @return the JID of the robot the map came from, or null */
+    public String mapSource() {
+        return mapFrom;
+    }
+
+    /** An 8-bit grey image of a grid, row 0 at the top (the grid's row 0 is at the bottom). */
+    static ImageData imageOf(GridMap m) {
+        RGB[] greys = new RGB[256];
+        for (int i = 0; i < 256; i++) {
+            greys[i] = new RGB(i, i, i);
+        }
+        ImageData data = new ImageData(m.width(), m.height(), 8, new PaletteData(greys));
+        byte[] cells = m.cells();
+        byte[] line = new byte[m.width()];
+        for (int row = 0; row < m.height(); row++) {
+            for (int col = 0; col < m.width(); col++) {
+                int v = cells[row * m.width() + col];
+                // map_server's look: free white, occupied black, unknown mid grey (a lighter one: less ink)
+                line[col] = (byte) (v < 0 ? 214 : 255 - Math.round(v * 2.3f));
+            }
+            data.setPixels(0, m.height() - 1 - row, m.width(), line, 0);
+        }
+        return data;
+    }
+
+    // ---------------------------------------------------------------------------------------------- view
 
     /** @return the viewport (for plug-ins drawing on the map and for tests) */
     public MapViewport viewport() {
         return viewport;
+    }
+
+    /** @return the canvas (for tests) */
+    public Canvas canvas() {
+        return canvas;
+    }
+
+    /** @return the durations of the paints so far, nanoseconds, at most the last {@value #FRAME_SAMPLES} */
+    public long[] frameTimesNanos() {
+        int n = Math.min(frames, FRAME_SAMPLES);
+        long[] out = new long[n];
+        for (int i = 0; i < n; i++) {
+            out[i] = frameNanos[(frames - n + i) % FRAME_SAMPLES];
+        }
+        return out;
     }
 
     /** Shows the default area. */
@@ -113,22 +511,194 @@ public final class WorkspaceView extends ViewPart {
     }
 
     private void paint(PaintEvent e) {
+        long t0 = System.nanoTime();
         GC gc = e.gc;
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();
         gc.setAntialias(SWT.ON);
         gc.setBackground(d.getSystemColor(SWT.COLOR_WHITE));
         gc.fillRectangle(area);
+        drawMap(gc);
         drawGrid(gc, area);
         drawAxes(gc, area);
+        Instant now = Instant.now();
+        for (RobotState r : fleet.robots()) {
+            boolean stale = r.isStale(now);
+            drawRobot(gc, r, stale);
+            if (!stale && r.pose() != null && map != null && !liveShown) {
+                liveShown = true;
+                // the figure "workbench start to first live robot on screen": from the JVM's start to this paint
+                long ms = java.time.Duration.between(ProcessHandle.current().info().startInstant().orElse(now), now)
+                        .toMillis();
+                LOG.info("first live robot on screen: {} on the map {} ms after the workbench started", r.name(), ms);
+            }
+        }
+        drawGoalGesture(gc);
         drawScaleBar(gc, area);
         drawPointer(gc, area);
+        drawMessage(gc, area);
+        frameNanos[frames % FRAME_SAMPLES] = System.nanoTime() - t0;
+        frames++;
+    }
+
+    private void drawMap(GC gc) {
+        if (mapImage == null) {
+            return;
+        }
+        double res = map.resolution();
+        int x0 = (int) Math.round(viewport.toScreenX(map.origin().x()));
+        int y1 = (int) Math.round(viewport.toScreenY(map.origin().y() + map.height() * res));
+        int w = (int) Math.round(map.width() * res * viewport.scale());
+        int h = (int) Math.round(map.height() * res * viewport.scale());
+        gc.setInterpolation(SWT.NONE); // crisp cells when zoomed in
+        gc.drawImage(mapImage, 0, 0, map.width(), map.height(), x0, y1, w, h);
+    }
+
+    private void drawRobot(GC gc, RobotState r, boolean stale) {
+        Display d = canvas.getDisplay();
+        boolean sel = r.jid().equals(selected);
+        Color body = new Color(stale ? new RGB(150, 150, 150) : sel ? new RGB(230, 120, 20) : new RGB(30, 110, 200));
+        Color path = new Color(stale ? new RGB(190, 190, 190) : new RGB(40, 160, 70));
+        Color trail = new Color(new RGB(170, 140, 210));
+        Color obstacle = new Color(stale ? new RGB(180, 180, 180) : new RGB(210, 40, 40));
+        try {
+            if (r.trail().size() > 1) {
+                gc.setForeground(trail);
+                gc.setLineWidth(2);
+                gc.drawPolyline(toScreen(r.trail()));
+            }
+            if (r.path() != null && r.path().points().size() > 1) {
+                List<Point2D> pts = new ArrayList<>();
+                for (TrajectoryPoint p : r.path().points()) {
+                    pts.add(new Point2D(p.x(), p.y()));
+                }
+                gc.setForeground(path);
+                gc.setLineWidth(2);
+                gc.setLineStyle(SWT.LINE_DASH);
+                gc.drawPolyline(toScreen(pts));
+                gc.setLineStyle(SWT.LINE_SOLID);
+            }
+            if (r.goal() != null && r.mission() != null && r.mission().state().isActive()) {
+                drawGoal(gc, r.goal().pose(), path);
+            }
+            if (r.obstacles() != null) {
+                gc.setForeground(obstacle);
+                gc.setLineWidth(2);
+                for (Obstacle o : r.obstacles().obstacles()) {
+                    int rad = Math.max(3, (int) Math.round(o.radius() * viewport.scale()));
+                    gc.drawOval(sx(o.x()) - rad, sy(o.y()) - rad, 2 * rad, 2 * rad);
+                }
+            }
+            if (r.pose() == null) {
+                return;
+            }
+            Pose2D p = r.pose().pose();
+            drawEllipse(gc, p, r.pose().covariance(), body);
+            int rad = Math.max(4, (int) Math.round(FOOTPRINT_RADIUS_M * viewport.scale()));
+            int cx = sx(p.x());
+            int cy = sy(p.y());
+            gc.setBackground(body);
+            gc.setAlpha(stale ? 90 : 160);
+            gc.fillOval(cx - rad, cy - rad, 2 * rad, 2 * rad);
+            gc.setAlpha(255);
+            gc.setForeground(d.getSystemColor(stale ? SWT.COLOR_GRAY : SWT.COLOR_BLACK));
+            gc.setLineWidth(sel ? 3 : 1);
+            gc.drawOval(cx - rad, cy - rad, 2 * rad, 2 * rad);
+            gc.setLineWidth(2);
+            int hx = cx + (int) Math.round(rad * Math.cos(p.theta()));
+            int hy = cy - (int) Math.round(rad * Math.sin(p.theta()));
+            gc.drawLine(cx, cy, hx, hy);
+            gc.setLineWidth(1);
+            String label = r.name() + (stale ? " (stale)" : "");
+            gc.drawString(label, cx + rad + 3, cy - rad - 14, true);
+        } finally {
+            body.dispose();
+            path.dispose();
+            trail.dispose();
+            obstacle.dispose();
+        }
+    }
+
+    /** The 95 % ellipse of the position's 2×2 covariance (eigenvectors of [[xx, xy], [xy, yy]]). */
+    private void drawEllipse(GC gc, Pose2D p, PoseCovariance c, Color colour) {
+        double tr = c.xx() + c.yy();
+        double det = c.xx() * c.yy() - c.xy() * c.xy();
+        double disc = Math.sqrt(Math.max(0, tr * tr / 4 - det));
+        double l1 = Math.max(0, tr / 2 + disc);
+        double l2 = Math.max(0, tr / 2 - disc);
+        double angle = 0.5 * Math.atan2(2 * c.xy(), c.xx() - c.yy());
+        double a = ELLIPSE_SCALE * Math.sqrt(l1);
+        double b = ELLIPSE_SCALE * Math.sqrt(l2);
+        if (a * viewport.scale() < 1) {
+            return; // smaller than a pixel
+        }
+        int n = 36;
+        int[] pts = new int[2 * n];
+        for (int i = 0; i < n; i++) {
+            double t = 2 * Math.PI * i / n;
+            double ex = a * Math.cos(t);
+            double ey = b * Math.sin(t);
+            double x = p.x() + ex * Math.cos(angle) - ey * Math.sin(angle);
+            double y = p.y() + ex * Math.sin(angle) + ey * Math.cos(angle);
+            pts[2 * i] = sx(x);
+            pts[2 * i + 1] = sy(y);
+        }
+        gc.setForeground(colour);
+        gc.setLineWidth(1);
+        gc.setLineStyle(SWT.LINE_DOT);
+        gc.drawPolygon(pts);
+        gc.setLineStyle(SWT.LINE_SOLID);
+    }
+
+    private void drawGoal(GC gc, Pose2D g, Color colour) {
+        int gx = sx(g.x());
+        int gy = sy(g.y());
+        gc.setForeground(colour);
+        gc.setLineWidth(3);
+        gc.drawLine(gx - 7, gy - 7, gx + 7, gy + 7);
+        gc.drawLine(gx - 7, gy + 7, gx + 7, gy - 7);
+        gc.setLineWidth(2);
+        gc.drawLine(gx, gy, gx + (int) Math.round(22 * Math.cos(g.theta())), gy - (int) Math.round(22 * Math.sin(g
+                .theta())));
+        gc.setLineWidth(1);
+    }
+
+    private void drawGoalGesture(GC gc) {
+        if (pressAt == null || pointer == null) {
+            return;
+        }
+        Color c = new Color(230, 120, 20);
+        try {
+            Goal g = goalFor(pressAt, pointer);
+            drawGoal(gc, g.pose(), c);
+        } finally {
+            c.dispose();
+        }
+    }
+
+    private int[] toScreen(List<Point2D> pts) {
+        int[] out = new int[2 * pts.size()];
+        for (int i = 0; i < pts.size(); i++) {
+            out[2 * i] = sx(pts.get(i).x());
+            out[2 * i + 1] = sy(pts.get(i).y());
+        }
+        return out;
+    }
+
+    private int sx(double x) {
+        return (int) Math.round(viewport.toScreenX(x));
+    }
+
+    private int sy(double y) {
+        return (int) Math.round(viewport.toScreenY(y));
     }
 
     private void drawGrid(GC gc, Rectangle area) {
         double step = viewport.niceStep(GRID_MIN_PX);
         Color minor = new Color(232, 236, 240);
         Color major = new Color(200, 208, 216);
+        // over a map the grid is drawn lightly, so the walls stay readable
+        gc.setAlpha(mapImage != null ? 110 : 255);
         try {
             double x0 = Math.floor(viewport.toMapX(0) / step) * step;
             double x1 = viewport.toMapX(area.width);
@@ -145,6 +715,7 @@ public final class WorkspaceView extends ViewPart {
                 gc.drawLine(0, sy, area.width, sy);
             }
         } finally {
+            gc.setAlpha(255);
             minor.dispose();
             major.dispose();
         }
@@ -192,6 +763,15 @@ public final class WorkspaceView extends ViewPart {
         Point size = gc.textExtent(text);
         gc.setForeground(canvas.getDisplay().getSystemColor(SWT.COLOR_DARK_GRAY));
         gc.drawString(text, area.width - size.x - 12, area.height - size.y - 10, true);
+    }
+
+    private void drawMessage(GC gc, Rectangle area) {
+        if (message == null) {
+            return;
+        }
+        gc.setForeground(canvas.getDisplay().getSystemColor(messageIsError ? SWT.COLOR_DARK_RED
+                : SWT.COLOR_DARK_GRAY));
+        gc.drawString(message, 12, 8, true);
     }
 
     @Override

@@ -79,7 +79,7 @@ class WorkbenchUiTest {
 
         flush();
         Path dir = Paths.get(System.getProperty("sabot.screenshots", "target/screenshots"));
-        Path png = dir.resolve("workbench.png");
+        Path png = dir.resolve("workbench-start.png");
         SabotWindowAdvisor.saveScreenshot(shell, png);
         ImageData image = new ImageLoader().load(png.toString())[0];
         assertTrue(image.width >= 800 && image.height >= 500, image.width + "x" + image.height);
@@ -88,7 +88,7 @@ class WorkbenchUiTest {
         if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
             Path docs = Paths.get(root, "docs", "images");
             Files.createDirectories(docs);
-            Files.copy(png, docs.resolve("workbench.png"), StandardCopyOption.REPLACE_EXISTING);
+            Files.copy(png, docs.resolve("workbench-start.png"), StandardCopyOption.REPLACE_EXISTING);
         }
     }
 
@@ -168,7 +168,8 @@ class WorkbenchUiTest {
         assertNull(store.loadPassword());
     }
 
-    private static void mouse(Control c, int type, int x, int y) {
+    /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */
+    static void mouse(Control c, int type, int x, int y) {
         Event e = new Event();
         e.x = x;
         e.y = y;

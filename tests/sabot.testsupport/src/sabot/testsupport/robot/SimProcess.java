@@ -1,4 +1,4 @@
-package sabot.system;
+package sabot.testsupport.robot;
 
 import java.io.BufferedReader;
 import java.io.IOException;
@@ -23,7 +23,7 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * robot's buses on ptys, ground truth in a CSV, and its control channel (a line protocol on loopback TCP) to place
  * obstacles, switch boards off and read the true pose.
  */
-final class SimProcess implements AutoCloseable {
+public final class SimProcess implements AutoCloseable {
 
     private static final Pattern LINK = Pattern.compile("\"link\": \"([^\"]+)\"");
     private static final Pattern CONTROL = Pattern.compile("\"control\": (\\d+)");
@@ -38,8 +38,8 @@ final class SimProcess implements AutoCloseable {
     private PrintWriter controlOut;
 
     /** The true state of one robot, from the simulator. */
-    record Truth(double t, double x, double y, double theta, double v, double omega, long contacts) {
-        double distanceTo(double gx, double gy) {
+    public record Truth(double t, double x, double y, double theta, double v, double omega, long contacts) {
+        public double distanceTo(double gx, double gy) {
             return Math.hypot(gx - x, gy - y);
         }
 
@@ -65,7 +65,7 @@ final class SimProcess implements AutoCloseable {
     }
 
     /** @return the simulator binary, built by the reactor's onboard-bridge module */
-    static Path binary() {
+    public static Path binary() {
         Path bin = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/build/sabot-sim");
         if (!Files.isExecutable(bin)) {
             throw new IllegalStateException(bin + " missing: build the reactor (make -C onboard-bridge build/sabot-sim)");
@@ -79,7 +79,7 @@ final class SimProcess implements AutoCloseable {
      * @param dir   folder for the pty links and the truth file
      * @param extra further options, e.g. {@code --fault-crc 0.02}
      */
-    static SimProcess start(Path dir, double[] start, String... extra) throws IOException {
+    public static SimProcess start(Path dir, double[] start, String... extra) throws IOException {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
         Path truth = dir.resolve("truth.csv");
         List<String> cmd = new ArrayList<>(List.of(binary().toString(), "--map", map.toString(), "--start",
@@ -109,12 +109,12 @@ final class SimProcess implements AutoCloseable {
     }
 
     /** @return the pty link of robot {@code n} (from 1): the serial device the onboard product opens */
-    String link(int n) {
+    public String link(int n) {
         return links.get(n - 1);
     }
 
     /** @return the truth CSV */
-    Path truthFile() {
+    public Path truthFile() {
         return truth;
     }
 
@@ -123,7 +123,7 @@ final class SimProcess implements AutoCloseable {
      *
      * @throws IOException when the simulator answers {@code error ...}
      */
-    synchronized String command(String line) throws IOException {
+    public synchronized String command(String line) throws IOException {
         if (control == null) {
             control = new Socket(InetAddress.getLoopbackAddress(), controlPort);
             control.setSoTimeout(5000);
@@ -142,7 +142,7 @@ final class SimProcess implements AutoCloseable {
     }
 
     /** @return robot 1's true state now */
-    Truth truth() throws IOException {
+    public Truth truth() throws IOException {
         String answer = command("truth 1");
         double[] v = new double[7];
         String[] names = { "t", "x", "y", "theta", "v", "omega", "contacts" };
@@ -158,7 +158,7 @@ final class SimProcess implements AutoCloseable {
     }
 
     /** @return the largest contact count of robot 1 in the truth file so far */
-    long contactsInTruthFile() throws IOException {
+    public long contactsInTruthFile() throws IOException {
         long max = 0;
         for (String line : Files.readAllLines(truth)) {
             String[] f = line.split(",");

@@ -5,12 +5,17 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.AtomicMoveNotSupportedException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.util.ArrayList;
+import java.util.List;
 import java.nio.file.StandardCopyOption;
 import java.nio.file.attribute.PosixFilePermission;
 import java.nio.file.attribute.PosixFilePermissions;
 import java.util.EnumSet;
 import java.util.Set;
 
+import org.eclipse.core.runtime.preferences.IEclipsePreferences;
+import org.eclipse.core.runtime.preferences.InstanceScope;
 import org.osgi.service.prefs.BackingStoreException;
 import org.osgi.service.prefs.Preferences;
 
@@ -21,9 +26,17 @@ import org.osgi.service.prefs.Preferences;
  */
 public final class XmppAccountStore {
 
-    static final String KEY_SERVER = "xmpp.server";
-    static final String KEY_PORT = "xmpp.port";
-    static final String KEY_JID = "xmpp.jid";
+    /** The instance-scope preference node of the workbench's account (the core bundle's name, kept for saved data). */
+    public static final String NODE = "sabot.workbench";
+    /** System property overriding the folder of the password file (default {@code ~/.sabot/workbench}). */
+    public static final String SECRETS_DIR_PROPERTY = "sabot.workbench.secrets";
+    /** Preference keys; every key of the account starts with {@link #KEY_PREFIX}. */
+    public static final String KEY_PREFIX = "xmpp.";
+    static final String KEY_SERVER = KEY_PREFIX + "server";
+    static final String KEY_PORT = KEY_PREFIX + "port";
+    static final String KEY_JID = KEY_PREFIX + "jid";
+    /** The robots to follow besides those already in the roster (fleet rule 12): bare JIDs, comma-separated. */
+    static final String KEY_ROBOTS = KEY_PREFIX + "robots";
     private static final Set<PosixFilePermission> OWNER_ONLY = EnumSet.of(PosixFilePermission.OWNER_READ,
             PosixFilePermission.OWNER_WRITE);
 
@@ -37,6 +50,66 @@ public final class XmppAccountStore {
     public XmppAccountStore(Preferences preferences, Path passwordFile) {
         this.preferences = preferences;
         this.passwordFile = passwordFile;
+    }
+
+    /**
+     * @return the store the workbench uses: the instance-scope node {@link #NODE}, the password in
+     *         {@code xmpp-password} of the folder named by {@link #SECRETS_DIR_PROPERTY} or {@code ~/.sabot/workbench}
+     */
+    public static XmppAccountStore workbenchStore() {
+        return new XmppAccountStore(workbenchNode(), defaultPasswordFile());
+    }
+
+    /** @return the preference node the workbench's account lives in (listen to it for changes) */
+    public static IEclipsePreferences workbenchNode() {
+        return InstanceScope.INSTANCE.getNode(NODE);
+    }
+
+    /** @return where the workbench keeps the password unless told otherwise */
+    public static Path defaultPasswordFile() {
+        String dir = System.getProperty(SECRETS_DIR_PROPERTY);
+        Path secrets = dir != null ? Paths.get(dir) : Paths.get(System.getProperty("user.home"), ".sabot",
+                "workbench");
+        return secrets.resolve("xmpp-password");
+    }
+
+    /**
+     * @return the robots to follow besides the roster's (fleet rule 12), as stored: bare JIDs in the order given;
+     *         empty when none
+     */
+    public List<String> loadRobots() {
+        List<String> robots = new ArrayList<>();
+        for (String item : preferences.get(KEY_ROBOTS, "").split(",")) {
+            if (!item.isBlank()) {
+                robots.add(item.strip());
+            }
+        }
+        return robots;
+    }
+
+    /**
+     * Stores the robots to follow.
+     *
+     * @throws IllegalArgumentException naming the first entry that is not a bare JID (nothing is stored then)
+     * @throws IOException              when the preferences cannot be written
+     */
+    public void saveRobots(List<String> robots) throws IOException {
+        for (String r : robots) {
+            String problem = new XmppAccount("server", XmppAccount.DEFAULT_PORT, r).problem();
+            if (problem != null) {
+                throw new IllegalArgumentException("robot '" + r + "': " + problem);
+            }
+        }
+        preferences.put(KEY_ROBOTS, String.join(",", robots));
+        flush();
+    }
+
+    private void flush() throws IOException {
+        try {
+            preferences.flush();
+        } catch (BackingStoreException e) {
+            throw new IOException("cannot save the XMPP account preferences: " + e.getMessage(), e);
+        }
     }
 
     /** @return the stored account; empty fields and the default port when nothing is stored */
@@ -63,11 +136,7 @@ public final class XmppAccountStore {
         preferences.put(KEY_SERVER, account.server());
         preferences.putInt(KEY_PORT, account.port());
         preferences.put(KEY_JID, account.jid());
-        try {
-            preferences.flush();
-        } catch (BackingStoreException e) {
-            throw new IOException("cannot save the XMPP account preferences: " + e.getMessage(), e);
-        }
+        flush();
     }
 
     /** @return true when a password has been stored */

@@ -1,4 +1,4 @@
-package sabot.system;
+package sabot.testsupport.robot;
 
 import java.io.BufferedReader;
 import java.io.IOException;
@@ -21,9 +21,9 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * configured for one simulated robot: the bus on the simulator's pty, the lab map, the ControlML account on a private
  * server. Its console is captured so that tests wait for log lines instead of sleeping.
  */
-final class OnboardProcess implements AutoCloseable {
+public final class OnboardProcess implements AutoCloseable {
 
-    static final long TIMEOUT_S = 60;
+    public static final long TIMEOUT_S = 60;
 
     private final Process process;
     private final List<String> lines = new ArrayList<>();
@@ -42,11 +42,11 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** The settings of one robot's configuration file. */
-    record Robot(String name, String pty, double[] start, int xmppPort, String operator) {
+    public record Robot(String name, String pty, double[] start, int xmppPort, String operator) {
     }
 
     /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
-    static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
+    public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
         return String.format(Locale.ROOT, """
                 robot.name = %s
@@ -69,7 +69,7 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** Writes the password file (mode 0600) and the configuration into {@code dir}, then starts the product. */
-    static OnboardProcess start(Path dir, Robot robot, String password, String extra) throws IOException {
+    public static OnboardProcess start(Path dir, Robot robot, String password, String extra) throws IOException {
         Path passwordFile = dir.resolve("xmpp-password");
         Files.writeString(passwordFile, password + "\n");
         Files.setPosixFilePermissions(passwordFile, PosixFilePermissions.fromString("rw-------"));
@@ -80,7 +80,7 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** Starts the product with a configuration file as it is. */
-    static OnboardProcess start(Path config) throws IOException {
+    public static OnboardProcess start(Path config) throws IOException {
         Path product = product();
         List<String> cmd = new ArrayList<>();
         cmd.add(Paths.get(System.getProperty("java.home"), "bin", "java").toString());
@@ -99,7 +99,7 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** @return the product's etc/jvm.options (as ./sabot onboard reads them): one option a line, # comments */
-    static List<String> jvmOptions(Path product) throws IOException {
+    public static List<String> jvmOptions(Path product) throws IOException {
         Path file = product.resolve("etc/jvm.options");
         if (!Files.isRegularFile(file)) {
             return List.of();
@@ -108,7 +108,7 @@ final class OnboardProcess implements AutoCloseable {
                 .isEmpty()).toList();
     }
 
-    static Path product() {
+    public static Path product() {
         Path p = PrivateXmppServer.repositoryRoot().resolve(
                 "product/sabot.onboard.product/target/products/sabot-onboard/linux/gtk/x86_64");
         if (!Files.isDirectory(p.resolve("plugins"))) {
@@ -164,11 +164,11 @@ final class OnboardProcess implements AutoCloseable {
      *
      * @param what for the failure message, e.g. "the robot's XMPP login"
      */
-    String await(Predicate<String> p, String what) throws InterruptedException {
+    public String await(Predicate<String> p, String what) throws InterruptedException {
         return await(p, what, TIMEOUT_S);
     }
 
-    String await(Predicate<String> p, String what, long seconds) throws InterruptedException {
+    public String await(Predicate<String> p, String what, long seconds) throws InterruptedException {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
         int seen = 0;
         synchronized (lines) {
@@ -190,7 +190,7 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** Waits until {@code count} console lines match {@code p} (e.g. the second login after a reconnection). */
-    void awaitCount(Predicate<String> p, int count, String what) throws InterruptedException {
+    public void awaitCount(Predicate<String> p, int count, String what) throws InterruptedException {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
         synchronized (lines) {
             while (lines.stream().filter(p).count() < count) {
@@ -205,19 +205,19 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** @return the console so far */
-    String output() {
+    public String output() {
         synchronized (lines) {
             return String.join("\n", lines);
         }
     }
 
     /** @return the configuration file */
-    Path config() {
+    public Path config() {
         return config;
     }
 
     /** SIGTERM, then wait for the exit status. */
-    int stop() throws InterruptedException {
+    public int stop() throws InterruptedException {
         process.destroy();
         if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
             process.destroyForcibly();
@@ -228,7 +228,7 @@ final class OnboardProcess implements AutoCloseable {
     }
 
     /** @return the exit status, waiting for the process to end */
-    int waitFor() throws InterruptedException {
+    public int waitFor() throws InterruptedException {
         if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
             throw new AssertionError("onboard product still running after " + TIMEOUT_S + " s:\n" + output());
         }

@@ -1,0 +1,106 @@
+package sabot.workbench.fleet;
+
+import java.util.List;
+import java.util.Optional;
+import java.util.concurrent.CompletableFuture;
+
+import org.osgi.annotation.versioning.ProviderType;
+
+import sabot.controlml.Resource;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.NoQuery;
+import sabot.model.geometry.Twist2D;
+
+/**
+ * The fleet the workbench follows, and the way to command it: the subject of thesis rule 1, published as an OSGi
+ * service by the faceless ControlML plug-in ({@code sabot.workbench.controlml}) and observed by the core's views and
+ * every other plug-in.
+ * <p>
+ * Robots are named by their bare JID ({@code sabot-01@sabot.local}). Reads return immutable snapshots at once.
+ * Commands never block: they return a future completed on the plug-in's own threads (never the UI thread) with the
+ * robot's answer, or exceptionally with a {@link FleetCommandException} carrying the ControlML condition and the
+ * robot's text (also for "not connected", "unknown robot", "robot offline" and timeouts). Units are SI: metres,
+ * radians, seconds, m/s, rad/s.
+ */
+@ProviderType
+public interface FleetState {
+
+    /** @return the state of the workbench's XMPP connection; never null */
+    ConnectionStatus connection();
+
+    /** @return the robots followed, sorted by JID; empty when none (or not connected yet) */
+    List<RobotState> robots();
+
+    /** @return the robot with this bare JID, if followed */
+    Optional<RobotState> robot(String jid);
+
+    /**
+     * Registers an observer. It first receives the present state (the connection, then every robot), then every
+     * change, on the fleet's notification thread. Adding the same listener twice has no effect.
+     */
+    void addListener(FleetListener listener);
+
+    /** Unregisters an observer; nothing happens when it was not registered. */
+    void removeListener(FleetListener listener);
+
+    /**
+     * Connects anew with the account stored in the preferences (after the operator changed it). The plug-in also
+     * does so by itself when the account's preferences change; this covers a new password alone.
+     */
+    void reconnect();
+
+    /**
+     * Sends the robot to a goal ({@code cm.goal} set): the robot plans, presence goes busy, and the mission's progress
+     * comes with its telemetry. The planned path is fetched once the robot has taken the goal.
+     *
+     * @param robot bare JID
+     * @param goal  target pose in the map frame (m, m, rad) and its tolerances (m, rad)
+     * @return completes when the robot took the goal (not when it arrives)
+     */
+    CompletableFuture<Void> goTo(String robot, Goal goal);
+
+    /**
+     * Stops the robot: aborts its mission when one is running or paused ({@code cm.mission} set aborted), otherwise
+     * commands a zero twist ({@code cm.velocity}).
+     *
+     * @param robot bare JID
+     */
+    CompletableFuture<Void> stop(String robot);
+
+    /**
+     * Drives the robot by hand ({@code cm.velocity} set, within {@code cm.limits}; the robot stops by itself when
+     * twists stop arriving).
+     *
+     * @param robot bare JID
+     * @param twist linear m/s, angular rad/s
+     */
+    CompletableFuture<Void> drive(String robot, Twist2D twist);
+
+    /**
+     * Fetches the robot's map ({@code cm.map}; a map too large for one payload comes from the robot's remote files
+     * instead, see the implementation). The result is cached per robot until the connection changes.
+     *
+     * @param robot bare JID
+     */
+    CompletableFuture<GridMap> map(String robot);
+
+    /**
+     * Reads any resource of a robot ({@code get}).
+     *
+     * @param robot    bare JID
+     * @param resource e.g. {@code Resources.PID}, or a plug-in's own resource
+     * @return the robot's value
+     */
+    <T> CompletableFuture<T> get(String robot, Resource<T, NoQuery> resource);
+
+    /** Reads a resource that takes a query ({@code get} with a payload, e.g. {@code cm.fs.list}). */
+    <T, Q> CompletableFuture<T> get(String robot, Resource<T, Q> resource, Q query);
+
+    /**
+     * Writes any resource of a robot ({@code set}).
+     *
+     * @return the robot's read-back when its answer carries one, else null
+     */
+    <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value);
+}

@@ -1,0 +1,8 @@
+/**
+ * The workbench's fleet as its core and plug-ins observe it (thesis rule 1: the ControlML plug-in is the subject,
+ * the core's views and the other plug-ins are its observers). {@link sabot.workbench.fleet.FleetState} is an OSGi
+ * service; its values are immutable snapshots in SI units (metres, radians, seconds) in the map frame. No XMPP or SWT
+ * type appears here: views never touch the connection.
+ */
+@org.osgi.annotation.versioning.Version("0.1.0")
+package sabot.workbench.fleet;

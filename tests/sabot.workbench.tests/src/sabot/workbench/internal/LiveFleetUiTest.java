@@ -1,0 +1,388 @@
+package sabot.workbench.internal;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.nio.file.StandardCopyOption;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+import java.util.function.BooleanSupplier;
+import java.util.function.Supplier;
+
+import org.eclipse.swt.SWT;
+import org.eclipse.swt.graphics.GC;
+import org.eclipse.swt.graphics.Image;
+import org.eclipse.swt.graphics.ImageData;
+import org.eclipse.swt.graphics.ImageLoader;
+import org.eclipse.swt.graphics.Point;
+import org.eclipse.swt.graphics.RGB;
+import org.eclipse.swt.graphics.Rectangle;
+import org.eclipse.swt.widgets.Control;
+import org.eclipse.swt.widgets.Display;
+import org.eclipse.ui.IWorkbenchPage;
+import org.eclipse.ui.PlatformUI;
+import org.junit.jupiter.api.AfterAll;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.MethodOrderer;
+import org.junit.jupiter.api.Order;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.TestMethodOrder;
+
+import sabot.controlml.payload.MissionState;
+import sabot.workbench.account.XmppAccount;
+import sabot.workbench.account.XmppAccountStore;
+import sabot.workbench.fleet.Availability;
+import sabot.workbench.fleet.RobotState;
+import sabot.workbench.map.MapViewport;
+import sabot.workbench.views.FleetView;
+import sabot.workbench.views.WorkspaceView;
+import sabot.testsupport.robot.OnboardProcess;
+import sabot.testsupport.robot.SimProcess;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * The real workbench against the real stack: a private Prosody, {@code sabot-sim} on the lab map and the onboard
+ * product as processes; the workbench's ControlML plug-in connects with the account typed into its preferences. Judged
+ * on the simulator's ground truth and on what the views show.
+ */
+@TestMethodOrder(MethodOrderer.OrderAnnotation.class)
+class LiveFleetUiTest {
+
+    static final String ROBOT = "sabot-01";
+    static final String ROBOT_JID = ROBOT + "@" + PrivateXmppServer.DOMAIN;
+    static final String OPERATOR = "operator";
+    /** The demo's start: the lab's east room, facing +x. */
+    static final double[] START = { 6.0, 2.8, 0.0 };
+    /** A goal 1.6 m north in the same room (the demo's third robot stands there), facing +y. */
+    static final double[] GOAL = { 6.0, 4.4, Math.PI / 2 };
+
+    static PrivateXmppServer xmpp;
+    static SimProcess sim;
+    static OnboardProcess onboard;
+    static long workbenchToLiveMs;
+
+    @BeforeAll
+    static void startStack() throws Exception {
+        xmpp = PrivateXmppServer.prosody().start();
+        xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
+        xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
+        Path dir = Files.createDirectories(Paths.get("target", "live-fleet").toAbsolutePath());
+        sim = SimProcess.start(dir, START);
+        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
+                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+        // the lab map where a robot keeps it for workbenches: too large for one cm.map payload
+        Path maps = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps");
+        Files.copy(maps.resolve("lab.yaml"), dir.resolve("fs/map.yaml"), StandardCopyOption.REPLACE_EXISTING);
+        Files.copy(maps.resolve("lab.pgm"), dir.resolve("fs/lab.pgm"), StandardCopyOption.REPLACE_EXISTING);
+        onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
+        onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
+    }
+
+    @AfterAll
+    static void stopStack() throws Exception {
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        store.forgetPassword();
+        store.saveRobots(List.of());
+        // without an account the plug-in drops the fleet: the other UI tests start from an empty workbench
+        waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "fleet not emptied: " + fleetView().rows());
+        if (onboard != null) {
+            onboard.close();
+        }
+        if (sim != null) {
+            sim.close();
+        }
+        if (xmpp != null) {
+            xmpp.close();
+        }
+    }
+
+    @Test
+    @Order(1)
+    void workbenchConnectsAndShowsTheRobotAtItsTruePose() throws Exception {
+        long t0 = System.nanoTime();
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        store.saveRobots(List.of(ROBOT_JID));
+        store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN), "operator-pw"
+                .toCharArray());
+        WorkspaceView workspace = workspace();
+        waitFor(() -> live(robotRow()) && workspace.map() != null, 60, () -> "robot not live on the map: "
+                + fleetView().rows() + ", map " + workspace.map() + ", " + workspace.lastMessage());
+        workbenchToLiveMs = TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0);
+        System.out.printf(Locale.ROOT, "[figure] account saved to robot live in Fleet and on the map: %d ms%n",
+                workbenchToLiveMs);
+
+        RobotState r = robotRow();
+        SimProcess.Truth truth = sim.truth();
+        double dx = r.pose().pose().x() - truth.x();
+        double dy = r.pose().pose().y() - truth.y();
+        assertTrue(Math.hypot(dx, dy) < 0.05, "shown pose " + r.pose().pose() + " vs " + truth);
+        assertEquals(truth.theta(), r.pose().pose().theta(), 0.05, "heading");
+        assertEquals(Availability.FREE, r.availability(), r.toString());
+        assertEquals(240, workspace.map().width(), "the lab map (240 x 180 cells)");
+
+        List<String> row = FleetView.texts(r, Instant.now());
+        assertTrue(row.get(0).startsWith(ROBOT), row.toString());
+        assertTrue(row.get(1).startsWith("Free"), row.toString());
+        assertTrue(row.get(2).startsWith(String.format(Locale.ROOT, "%.2f m, %.2f m", r.pose().pose().x(), r.pose()
+                .pose().y())), row.toString());
+        assertEquals(1, fleetView().table().getItemCount());
+
+        // on the map: the footprint's fill is drawn at the robot's true position
+        workspace.centreOn(ROBOT_JID);
+        flush();
+        MapViewport v = workspace.viewport();
+        // sampled half a radius behind the centre: the heading line runs from the centre forwards
+        double behind = 0.5 * WorkspaceView.FOOTPRINT_RADIUS_M;
+        RGB at = pixel(workspace.canvas(), sx(v, truth.x() - behind * Math.cos(truth.theta())), sy(v, truth.y() - behind
+                * Math.sin(truth.theta())));
+        assertTrue(at.blue > at.red + 40, "no robot drawn at its true pose: " + at);
+
+        assertTrue(statusLineText().contains("online"), statusLineText());
+
+        screenshot("workbench.png");
+        capture(fleetView().table(), "fleet.png");
+    }
+
+    @Test
+    @Order(2)
+    void clickToGoalDrivesTheRobotThereShowingPathAndProgress() throws Exception {
+        WorkspaceView workspace = workspace();
+        MapViewport v = workspace.viewport();
+        workspace.home();
+        flush();
+        RobotState r = robotRow();
+        // select the robot by clicking its footprint, then press at the goal and drag along +y for the heading
+        click(workspace.canvas(), sx(v, r.pose().pose().x()), sy(v, r.pose().pose().y()));
+        assertEquals(ROBOT_JID, workspace.selectedRobot());
+        int gx = sx(v, GOAL[0]);
+        int gy = sy(v, GOAL[1]);
+        mouse(workspace.canvas(), SWT.MouseDown, gx, gy);
+        mouse(workspace.canvas(), SWT.MouseMove, gx, gy - 40);
+        mouse(workspace.canvas(), SWT.MouseUp, gx, gy - 40);
+
+        List<String> progress = new ArrayList<>();
+        List<String> messages = new ArrayList<>();
+        boolean[] pathShown = { false };
+        boolean[] shot = { false };
+        waitFor(() -> {
+            RobotState now = robotRow();
+            if (workspace.lastMessage() != null && (messages.isEmpty() || !messages.get(messages.size() - 1).equals(
+                    workspace.lastMessage()))) {
+                messages.add(workspace.lastMessage());
+            }
+            if (now.mission() != null && now.mission().state() == MissionState.RUNNING) {
+                progress.add(FleetView.texts(now, Instant.now()).get(3));
+                if (now.path() != null && now.goal() != null) {
+                    pathShown[0] = true;
+                    if (!shot[0] && now.mission().progress() > 20) {
+                        shot[0] = true;
+                        try {
+                            screenshot("workbench-goal.png");
+                        } catch (Exception e) {
+                            throw new AssertionError("screenshot: " + e, e);
+                        }
+                    }
+                }
+            }
+            return now.mission() != null && now.mission().state() == MissionState.DONE;
+        }, 60, () -> "mission not done: " + robotRow() + "; " + workspace.lastMessage());
+        assertTrue(pathShown[0], "the planned path and goal never reached the workspace");
+        assertTrue(progress.stream().anyMatch(p -> p.matches("running [1-9][0-9]? %.*")), "no progress shown: "
+                + progress);
+        assertTrue(messages.stream().anyMatch(m -> m.matches(
+                ".*go to \\((5\\.9|6\\.0)\\d, 4\\.[34]\\d, 1\\.57 rad\\): done")) /* one pixel is 2-3 cm */, messages
+                .toString());
+
+        printFrameTimes(workspace.frameTimesNanos());
+
+        // the goal sent is the pressed pixel (about 3 cm a pixel at Home's zoom); the robot's tolerance is 0.1 m and
+        // its localisation on a busy 2-core machine adds up to ~0.1 m (as the system tests allow)
+        sabot.model.geometry.Pose2D sent = robotRow().goal().pose();
+        assertTrue(Math.hypot(sent.x() - GOAL[0], sent.y() - GOAL[1]) < 0.05, "goal sent " + sent);
+        SimProcess.Truth truth = sim.truth();
+        assertTrue(truth.distanceTo(sent.x(), sent.y()) < 0.2, "robot not at the goal " + sent + ": " + truth);
+        assertEquals(GOAL[2], truth.theta(), 0.3, "heading at the goal: " + truth);
+    }
+
+    @Test
+    @Order(3)
+    void aRefusedGoalShowsTheRobotsReason() {
+        WorkspaceView workspace = workspace();
+        // (3.25, 4.0) is inside the lab's partition: the robot refuses a goal in an obstacle
+        workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(3.25, 4.0, 0),
+                0.1, 0.2));
+        waitFor(() -> workspace.lastMessage().contains("3.25"), 20, workspace::lastMessage);
+        assertTrue(workspace.lastMessage().contains("obstacle") && workspace.lastMessage().contains("invalid-value"),
+                workspace.lastMessage());
+    }
+
+    // ------------------------------------------------------------------------------------------------ helpers
+
+    /** The figure of docs/WORKBENCH.md: paint time of the workspace (map, grid, robot, path, trail) while it drove. */
+    private static void printFrameTimes(long[] nanos) {
+        long[] sorted = nanos.clone();
+        java.util.Arrays.sort(sorted);
+        if (sorted.length == 0) {
+            return;
+        }
+        System.out.printf(Locale.ROOT, "[figure] workspace frame time, 1 live robot on the lab map: n=%d p50=%.2f ms "
+                + "p99=%.2f ms max=%.2f ms%n", sorted.length, sorted[sorted.length / 2] / 1e6, sorted[(int) Math.min(
+                        sorted.length - 1, Math.ceil(sorted.length * 0.99) - 1)] / 1e6, sorted[sorted.length - 1] / 1e6);
+    }
+
+    private static boolean live(RobotState r) {
+        return r != null && r.availability() != Availability.OFFLINE && r.pose() != null && !r.isStale(Instant.now());
+    }
+
+    private static RobotState robotRow() {
+        return fleetView().rows().stream().filter(r -> r.jid().equals(ROBOT_JID)).findFirst().orElse(null);
+    }
+
+    private static IWorkbenchPage page() {
+        return PlatformUI.getWorkbench().getActiveWorkbenchWindow().getActivePage();
+    }
+
+    private static WorkspaceView workspace() {
+        WorkspaceView w = (WorkspaceView) page().findView(WorkspaceView.ID);
+        assertNotNull(w, "workspace view not open");
+        return w;
+    }
+
+    private static FleetView fleetView() {
+        FleetView f = (FleetView) page().findView(FleetView.ID);
+        assertNotNull(f, "fleet view not open");
+        return f;
+    }
+
+    private static String statusLineText() {
+        // the item's label, found in the window's widgets (the status line manager is the window's own business)
+        List<String> texts = new ArrayList<>();
+        collectLabels(PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell(), texts);
+        return texts.stream().filter(t -> t.contains(OPERATOR + "@")).findFirst().orElse("no connection item in "
+                + texts);
+    }
+
+    private static void collectLabels(Control c, List<String> texts) {
+        if (c instanceof org.eclipse.swt.custom.CLabel l && l.getText() != null) {
+            texts.add(l.getText());
+        }
+        if (c instanceof org.eclipse.swt.widgets.Composite composite) {
+            for (Control child : composite.getChildren()) {
+                collectLabels(child, texts);
+            }
+        }
+    }
+
+    private static int sx(MapViewport v, double x) {
+        return (int) Math.round(v.toScreenX(x));
+    }
+
+    private static int sy(MapViewport v, double y) {
+        return (int) Math.round(v.toScreenY(y));
+    }
+
+    /**
+     * Runs the UI's event loop until {@code condition} holds. The robot and the server are other processes: a 20 ms
+     * timer wakes the loop to look again, up to the deadline.
+     */
+    static void waitFor(BooleanSupplier condition, double seconds, Supplier<String> what) {
+        Display d = Display.getCurrent();
+        long deadline = System.nanoTime() + (long) (seconds * 1e9);
+        while (!condition.getAsBoolean()) {
+            if (System.nanoTime() > deadline) {
+                throw new AssertionError("within " + seconds + " s: " + what.get() + "\nonboard console tail:\n"
+                        + tail(onboard == null ? "" : onboard.output()));
+            }
+            d.timerExec(20, () -> {
+            });
+            if (!d.readAndDispatch()) {
+                d.sleep();
+            }
+        }
+    }
+
+    private static String tail(String s) {
+        return s.length() > 3000 ? s.substring(s.length() - 3000) : s;
+    }
+
+    private static void flush() {
+        Display d = Display.getCurrent();
+        workspace().canvas().redraw();
+        fleetView().table().redraw();
+        PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell().update();
+        while (d.readAndDispatch()) {
+            // layout and paint
+        }
+    }
+
+    private static void click(Control c, int x, int y) {
+        mouse(c, SWT.MouseDown, x, y);
+        mouse(c, SWT.MouseUp, x, y);
+    }
+
+    private static void mouse(Control c, int type, int x, int y) {
+        WorkbenchUiTest.mouse(c, type, x, y);
+    }
+
+    private static RGB pixel(Control c, int x, int y) {
+        Display d = c.getDisplay();
+        Point p = c.toDisplay(x, y);
+        Image image = new Image(d, 1, 1);
+        GC gc = new GC(d);
+        try {
+            gc.copyArea(image, p.x, p.y);
+            ImageData data = image.getImageData();
+            return data.palette.getRGB(data.getPixel(0, 0));
+        } finally {
+            gc.dispose();
+            image.dispose();
+        }
+    }
+
+    private static void screenshot(String name) throws Exception {
+        flush();
+        Path png = screenshots().resolve(name);
+        SabotWindowAdvisor.saveScreenshot(PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell(), png);
+        toDocs(png);
+    }
+
+    /** Saves what the screen shows of one control (a view's area). */
+    private static void capture(Control c, String name) throws Exception {
+        flush();
+        Display d = c.getDisplay();
+        Rectangle b = c.getBounds();
+        Point origin = c.getParent().toDisplay(b.x, b.y);
+        Image image = new Image(d, b.width, b.height);
+        GC gc = new GC(d);
+        Path png = screenshots().resolve(name);
+        try {
+            gc.copyArea(image, origin.x, origin.y);
+            ImageLoader loader = new ImageLoader();
+            loader.data = new ImageData[] { image.getImageData() };
+            loader.save(png.toString(), SWT.IMAGE_PNG);
+        } finally {
+            gc.dispose();
+            image.dispose();
+        }
+        toDocs(png);
+    }
+
+    private static Path screenshots() throws Exception {
+        return Files.createDirectories(Paths.get(System.getProperty("sabot.screenshots", "target/screenshots")));
+    }
+
+    private static void toDocs(Path png) throws Exception {
+        String root = System.getProperty("sabot.root");
+        if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
+            Path docs = Files.createDirectories(Paths.get(root, "docs", "images"));
+            Files.copy(png, docs.resolve(png.getFileName()), StandardCopyOption.REPLACE_EXISTING);
+        }
+    }
+}
