@@ -65,7 +65,7 @@ public final class GradientDescent {
             double value = GridField.interpolate(potential, stride, x, y);
             boolean moved = false;
             if (gradient(potential, stride, x, y, gradient)) {
-                double norm = Math.hypot(gradient[0], gradient[1]);
+                double norm = Math.sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1]);
                 for (double length = STEP; norm > 0 && length >= STEP / 2; length /= 2) {
                     double nx = x - length * gradient[0] / norm;
                     double ny = y - length * gradient[1] / norm;
@@ -113,7 +113,9 @@ public final class GradientDescent {
                 continue;
             }
             double via = pendingCost + integrate(points, pending, next, cells);
-            double direct = Math.hypot(points.x(next) - points.x(anchor), points.y(next) - points.y(anchor)) <= MAX_SHORTCUT
+            double ax = points.x(next) - points.x(anchor);
+            double ay = points.y(next) - points.y(anchor);
+            double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
                     ? integrate(points, anchor, next, cells)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
@@ -225,7 +227,9 @@ public final class GradientDescent {
             }
             double dx = difference(value(potential, cell - 1), centre, value(potential, cell + 1));
             double dy = difference(value(potential, cell - stride), centre, value(potential, cell + stride));
-            double norm = Math.hypot(dx, dy);
+            // sqrt rather than Math.hypot: no overflow to guard against here, and hypot (a software routine) made
+            // the descent as costly as the navigation function on small grids
+            double norm = Math.sqrt(dx * dx + dy * dy);
             if (norm > 0) {
                 gx += weight * dx / norm;
                 gy += weight * dy / norm;
