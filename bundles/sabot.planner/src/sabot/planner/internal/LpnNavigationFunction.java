@@ -169,7 +169,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.inverseFocusBucketWidth = 1f / focusBucketWidth;
         int focusReach = (int) Math.ceil(SQRT2 * (costModel.maxDensity() + minDensity) / focusBucketWidth) + 2;
         // two rings in one array: the first 2^k slots serve N (16 at the standard cost model), all of them the
-        // focused keys (2048). The propagation of N must not cycle through the large ring: every bucket would be a
+        // focused keys (128). The propagation of N must not cycle through the large ring: every bucket would be a
         // fresh stretch of memory (cold cache lines for every push and pop, 25-30 % slower on 1000 x 1000)
         this.ringMask = (Integer.highestOneBit(reach + 1) << 1) - 1;
         this.focusRingMask = (Integer.highestOneBit(Math.max(reach, focusReach) + 1) << 1) - 1;
