@@ -12,13 +12,15 @@
 //                                          makeplan: as NavfnROS::makePlan calls it, setStart(G) setGoal(S)
 //                                                    calcNavFnDijkstra(true): propagation from the robot, stopped
 //                                                    once the goal cell has a value, then the path
-//                                          -> "times MS MS ..." then "result REACHED PATHLEN X Y X Y ..." (path in
-//                                          unpadded image cells, from where the path starts)
+//                                          -> "times MS MS ..." (wall clock), "cpu MS MS ..." (CPU time of the
+//                                          calling thread, the same calls) then "result REACHED PATHLEN X Y X Y
+//                                          ..." (path in unpadded image cells, from where the path starts)
 //   quit
 #include <navfn/navfn.h>
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -52,6 +54,13 @@ bool readPgm(const std::string &file, int &width, int &height, std::vector<unsig
     pixels.resize(static_cast<size_t>(width) * height);
     in.read(reinterpret_cast<char *>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
     return static_cast<bool>(in);
+}
+
+/** CPU time of the calling thread, ms: on a shared machine, the time the call itself took of a core. */
+double threadCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
 }
 
 }  // namespace
@@ -100,8 +109,11 @@ int main() {
             bool makePlan = mode == "makeplan";
             start[0]++, start[1]++, goal[0]++, goal[1]++;  // the lethal ring
             std::ostringstream times;
+            std::ostringstream cpu;
             times << "times";
+            cpu << "cpu";
             for (int i = 0; i < repeat; i++) {
+                double cpuBegin = threadCpuMs();
                 auto begin = std::chrono::steady_clock::now();
                 if (makePlan) {
                     planner->setStart(goal);
@@ -113,9 +125,11 @@ int main() {
                     planner->calcNavFnDijkstra(false);
                 }
                 auto end = std::chrono::steady_clock::now();
+                cpu << " " << threadCpuMs() - cpuBegin;
                 times << " " << std::chrono::duration<double, std::milli>(end - begin).count();
             }
             std::cout << times.str() << std::endl;
+            std::cout << cpu.str() << std::endl;
             long reached = 0;
             for (int i = 0; i < planner->ns; i++) {
                 if (planner->potarr[i] < POT_HIGH) {

@@ -27,9 +27,8 @@ public final class Planners {
     }
 
     /**
-     * @param threads 1, or 2 to compute the navigation function of large grids (from 2^18 cells) on the calling
-     *                thread and a helper thread that the planner's {@link Planner#close} ends: about 1.4 times as
-     *                fast on 1000 x 1000, while both cores are busy
+     * @param threads 1 or 2; both compute on the calling thread (the two-thread propagation, whose helper thread
+     *                spun, was removed in issue 17; 2 is accepted so that existing configurations keep working)
      * @return the LPN navigation-function planner over the whole reachable grid
      */
     public static Planner lpn(CostModel costModel, int threads) {
@@ -63,7 +62,7 @@ public final class Planners {
         return lpnIncremental(costModel, 1);
     }
 
-    /** @return {@link #lpnIncremental(CostModel)} whose full computations use {@code threads} (1 or 2) */
+    /** @return {@link #lpnIncremental(CostModel)}; {@code threads} 1 or 2, both on the calling thread (see {@link #lpn(CostModel, int)}) */
     public static Planner lpnIncremental(CostModel costModel, int threads) {
         return new LpnPlanner(costModel, true, true, threads);
     }
@@ -89,7 +88,7 @@ public final class Planners {
     }
 
     /**
-     * @param threads 1 or 2: threads of {@code lpn} and {@code lpn-incremental}; the others use the calling thread
+     * @param threads 1 or 2 (both compute on the calling thread, see {@link #lpn(CostModel, int)})
      * @return the planner of that name (see {@link #NAMES}), if any
      */
     public static Optional<Planner> byName(String name, CostModel costModel, int threads) {

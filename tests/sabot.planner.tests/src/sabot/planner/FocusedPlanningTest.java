@@ -21,7 +21,7 @@ class FocusedPlanningTest {
     /**
      * Relative difference allowed between the focused and the exhaustive N(start), and how much dearer the focused
      * path may be: the order of expansion changes which diagonal steps the interpolated update takes (the class
-     * comment of LpnNavigationFunction), as it does between one and two threads; measured worst case below 0.1 %.
+     * comment of LpnNavigationFunction); measured worst case below 0.1 %.
      */
     private static final double TOLERANCE = 2e-3;
 

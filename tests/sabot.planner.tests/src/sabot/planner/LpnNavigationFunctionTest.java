@@ -70,4 +70,34 @@ class LpnNavigationFunctionTest {
             assertTrue(b.field().reachedCells() <= f.field().reachedCells());
         }
     }
+
+    /**
+     * A planner reused for many requests answers each exactly as a fresh one: the reset between computations (a list
+     * of the cells a small computation reached, popped or still queued when a bounded one stops; a whole copy of the
+     * initial values after a large one) leaves no value behind. Requests alternate near and far goals so that both
+     * resets occur, on every LPN planner.
+     */
+    @Test
+    void aReusedPlannerAnswersEveryRequestAsAFreshOne() {
+        Costmap costmap = TestGrids.random(11, 160, 120, 0.2);
+        java.util.Random random = new java.util.Random(11);
+        for (String name : java.util.List.of("lpn", "lpn-bounded", "lpn-focused", "lpn-incremental")) {
+            Planner reused = Planners.byName(name, CostModel.standard()).orElseThrow();
+            int found = 0;
+            for (int i = 0; i < 40; i++) {
+                Point2D start = TestGrids.randomFreePoint(random, costmap);
+                Point2D goal = i % 2 == 0 ? TestGrids.randomFreePoint(random, costmap)
+                        : new Point2D(Math.min(159.5, start.x() + 3), start.y());
+                PlanResult again = reused.plan(costmap, start, goal);
+                PlanResult fresh = Planners.byName(name, CostModel.standard()).orElseThrow().plan(costmap, start, goal);
+                assertEquals(fresh.isFound(), again.isFound(), name + " request " + i);
+                if (fresh instanceof PlanResult.Found f && again instanceof PlanResult.Found a) {
+                    found++;
+                    assertEquals(f.path().cost(), a.path().cost(), 0, name + " request " + i);
+                    assertEquals(f.field().reachedCells(), a.field().reachedCells(), name + " request " + i);
+                }
+            }
+            assertTrue(found >= 10, name + ": only " + found + " requests had a path");
+        }
+    }
 }

@@ -14,8 +14,6 @@ import org.junit.jupiter.params.provider.MethodSource;
 
 import sabot.model.geometry.Point2D;
 import sabot.model.map.Costmap;
-import sabot.planner.internal.LpnNavigationFunction;
-import sabot.planner.internal.LpnPlanner;
 
 /**
  * Property-based completeness on random grids with fixed seeds: LPN finds a path exactly when the reference does,
@@ -28,15 +26,12 @@ class PlannerCompletenessPropertyTest {
     private static final double COST_TOLERANCE = 1.01;
     private static final double COST_SLACK = 2 * CostModel.COST_NEUTRAL;
 
-    /** LPN on one thread, focused (lpn-focused), and on two with bands of a few rows so that most cells lie near a band boundary. */
+    /** LPN over the whole grid, stopped at the start (lpn-bounded) and focused (lpn-focused). */
     static Stream<Arguments> lpnPlanners() {
         return Stream.of(
-                Arguments.of("one thread", (Supplier<Planner>) Planners::lpn),
-                Arguments.of("focused", (Supplier<Planner>) () -> Planners.lpnFocused(CostModel.standard())),
-                Arguments.of("two threads, small bands",
-                        (Supplier<Planner>) () -> new LpnPlanner(
-                                CostModel.standard(), true, false, new LpnNavigationFunction(
-                                        CostModel.standard(), 2, 8, 0))));
+                Arguments.of("whole grid", (Supplier<Planner>) Planners::lpn),
+                Arguments.of("bounded", (Supplier<Planner>) () -> Planners.lpnBounded(CostModel.standard())),
+                Arguments.of("focused", (Supplier<Planner>) () -> Planners.lpnFocused(CostModel.standard())));
     }
 
     @ParameterizedTest(name = "{0}")

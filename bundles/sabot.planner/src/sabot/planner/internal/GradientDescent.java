@@ -65,7 +65,7 @@ public final class GradientDescent {
             double value = GridField.interpolate(potential, stride, x, y);
             boolean moved = false;
             if (gradient(potential, stride, x, y, gradient)) {
-                double norm = Math.hypot(gradient[0], gradient[1]);
+                double norm = Math.sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1]);
                 for (double length = STEP; norm > 0 && length >= STEP / 2; length /= 2) {
                     double nx = x - length * gradient[0] / norm;
                     double ny = y - length * gradient[1] / norm;
@@ -113,7 +113,9 @@ public final class GradientDescent {
                 continue;
             }
             double via = pendingCost + integrate(points, pending, next, cells);
-            double direct = Math.hypot(points.x(next) - points.x(anchor), points.y(next) - points.y(anchor)) <= MAX_SHORTCUT
+            double ax = points.x(next) - points.x(anchor);
+            double ay = points.y(next) - points.y(anchor);
+            double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
                     ? integrate(points, anchor, next, cells)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
@@ -225,7 +227,9 @@ public final class GradientDescent {
             }
             double dx = difference(value(potential, cell - 1), centre, value(potential, cell + 1));
             double dy = difference(value(potential, cell - stride), centre, value(potential, cell + stride));
-            double norm = Math.hypot(dx, dy);
+            // sqrt rather than Math.hypot: no overflow to guard against here, and hypot (a software routine) made
+            // the descent as costly as the navigation function on small grids
+            double norm = Math.sqrt(dx * dx + dy * dy);
             if (norm > 0) {
                 gx += weight * dx / norm;
                 gy += weight * dy / norm;
@@ -285,6 +289,27 @@ public final class GradientDescent {
 
     /** True when the segment crosses only passable cells (touching a corner does not count). */
     static boolean passable(PlanningGrid grid, float[] density, double x0, double y0, double x1, double y1) {
+        int c0 = (int) Math.floor(Math.min(x0, x1));
+        int r0 = (int) Math.floor(Math.min(y0, y1));
+        int c1 = (int) Math.floor(Math.max(x0, x1));
+        int r1 = (int) Math.floor(Math.max(y0, y1));
+        if (c1 - c0 <= 1 && r1 - r0 <= 1 && c0 >= -1 && r0 >= -1 && c1 <= grid.geometry().width()
+                && r1 <= grid.geometry().height()) {
+            // a short segment (a descent step) lies in the 2 x 2 cells of its bounding box: when all of them are
+            // passable, so is the segment, without the traversal (the common case away from obstacles)
+            byte[] costs = grid.costs();
+            int stride = grid.stride();
+            int i00 = (r0 + 1) * stride + c0 + 1;
+            int i11 = (r1 + 1) * stride + c1 + 1;
+            int i01 = (r1 + 1) * stride + c0 + 1;
+            int i10 = (r0 + 1) * stride + c1 + 1;
+            if (density[costs[i00] & 0xFF] != Float.POSITIVE_INFINITY
+                    && density[costs[i11] & 0xFF] != Float.POSITIVE_INFINITY
+                    && density[costs[i01] & 0xFF] != Float.POSITIVE_INFINITY
+                    && density[costs[i10] & 0xFF] != Float.POSITIVE_INFINITY) {
+                return true;
+            }
+        }
         return GridTraversal.integrate(x0, y0, x1, y1,
                 (column, row) -> cellDensity(grid, density, column, row)) != Double.POSITIVE_INFINITY;
     }

@@ -26,7 +26,7 @@ public final class GridTraversal {
     public static double integrate(double x0, double y0, double x1, double y1, CellDensity density) {
         double dx = x1 - x0;
         double dy = y1 - y0;
-        double length = Math.hypot(dx, dy);
+        double length = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a software routine, no overflow to guard
         int column = (int) Math.floor(x0);
         int row = (int) Math.floor(y0);
         int lastColumn = (int) Math.floor(x1);

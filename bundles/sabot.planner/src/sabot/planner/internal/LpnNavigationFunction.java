@@ -58,12 +58,14 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     private static final int RETRACTED = 0x7F7FFFFF;
     static final int FINAL = 0x80000000;
+
     static final int VALUE = 0x7FFFFFFF;
 
     private static final float SQRT2 = (float) Math.sqrt(2);
     private static final float INV_SQRT2 = (float) (1 / Math.sqrt(2));
     /** Bucket width as a fraction of the least increment, a margin for float rounding. */
     private static final float BUCKET_MARGIN = 0.99f;
+
     private static final int INITIAL_BUCKET_CAPACITY = 1024;
     /**
      * Bucket width of the focused propagation, in units of c_min: keys N + h need not rise by a fixed amount per
@@ -83,13 +85,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
     private static final int TOUCHED_FRACTION = 8;
-    /**
-     * Ownership bands of the two-thread propagation: 2^16 padded cells (65 rows of a 1000-wide grid), or more where
-     * rows are so long that a band would not hold two of them.
-     */
-    private static final int MIN_OWNER_BAND_LOG2 = 16;
-    /** Grids from this many padded cells are propagated on two threads when two are configured (4 bands or more). */
-    private static final int MIN_PARALLEL_CELLS = 1 << 18;
 
     private final float[] density;
     /** Half of {@link #density}: the edge density between two cells is the sum of their halves. */
@@ -97,8 +92,21 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private final float maxDensity;
     private final float bucketWidth;
     private final float inverseBucketWidth;
-    private final int bucketMask;
-    private final int[][] buckets;
+    /**
+     * Old values are capped here before {@link #relax} computes their bucket: the start of bucket 2^30, so that the
+     * conversion stays in int range (N stays below it unless a grid holds some 10^8 cells).
+     */
+    private final float bucketCap;
+    /** Mask of the bucket ring in use: {@link #ringMask} for N, {@link #focusRingMask} for the focused keys. */
+    private int bucketMask;
+    private final int ringMask;
+    private final int focusRingMask;
+    /**
+     * The bucket ring, flat: bucket slot s holds its cells at {@code [s << bucketShift, s << bucketShift + size)} (one
+     * array rather than one per bucket: one load less per push and per pop in the hot loop); all buckets grow together.
+     */
+    private int[] buckets;
+    private int bucketShift;
     private final int[] bucketSizes;
     private final float minDensity;
     private final float focusBucketWidth;
@@ -129,10 +137,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int bandShift;
     private int[] bandCounts = new int[2];
     private int[] sortBuffer = new int[0];
-    private final int threads;
-    private final int ownerBandLog2;
-    private final int minParallelCells;
-    private BandedPropagation banded;
 
     /** A navigation function computed on the calling thread. */
     public LpnNavigationFunction(CostModel costModel) {
@@ -140,26 +144,15 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
-     * @param threads 1, or 2 to compute whole-grid navigation functions of large grids (from 2^18 cells) on the
-     *                calling thread and a helper thread ({@link BandedPropagation}); {@link #close} ends the helper
+     * @param threads 1 or 2, both computed on the calling thread: the two-thread propagation was removed in issue
+     *                17 (its helper spun at every bucket hand-over, 7-11 times slower at the median whenever another
+     *                process shared the CPU; blocking instead would cost a wake-up per bucket, some 2,000 per
+     *                computation on 1000 x 1000); 2 is still accepted so that existing configurations keep working
      */
     public LpnNavigationFunction(CostModel costModel, int threads) {
-        this(costModel, threads, MIN_OWNER_BAND_LOG2, MIN_PARALLEL_CELLS);
-    }
-
-    /**
-     * For tests: two threads on small grids.
-     *
-     * @param ownerBandLog2    log2 of the ownership bands' size in padded cells, raised to hold more than four rows
-     * @param minParallelCells the least padded grid size computed on two threads
-     */
-    public LpnNavigationFunction(CostModel costModel, int threads, int ownerBandLog2, int minParallelCells) {
         if (threads < 1 || threads > 2) {
             throw new IllegalArgumentException("threads must be 1 or 2, not " + threads);
         }
-        this.threads = threads;
-        this.ownerBandLog2 = ownerBandLog2;
-        this.minParallelCells = minParallelCells;
         this.density = costModel.densityTable();
         this.halfDensity = new float[density.length];
         for (int i = 0; i < density.length; i++) {
@@ -168,30 +161,28 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.maxDensity = costModel.maxDensity();
         this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
         this.inverseBucketWidth = 1f / bucketWidth;
+        this.bucketCap = (1 << 30) * bucketWidth;
         int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
-        // at least reach + 2 buckets: a worker of the two-thread propagation may queue reach buckets ahead of its own
-        // while the other still expands the bucket before it (BandedPropagation, "Overlap")
         // the focused propagation's keys rise by at most sqrt(2) * (c_max + c_min) per update
         this.minDensity = costModel.minDensity();
         this.focusBucketWidth = FOCUS_BUCKET * minDensity;
         this.inverseFocusBucketWidth = 1f / focusBucketWidth;
         int focusReach = (int) Math.ceil(SQRT2 * (costModel.maxDensity() + minDensity) / focusBucketWidth) + 2;
-        int ring = Integer.highestOneBit(Math.max(reach, focusReach) + 1) << 1;
-        this.bucketMask = ring - 1;
-        this.buckets = new int[ring][];
-        for (int i = 0; i < ring; i++) {
-            buckets[i] = new int[Math.max(64, INITIAL_BUCKET_CAPACITY * 16 / ring)];
-        }
+        // two rings in one array: the first 2^k slots serve N (16 at the standard cost model), all of them the
+        // focused keys (128). The propagation of N must not cycle through the large ring: every bucket would be a
+        // fresh stretch of memory (cold cache lines for every push and pop, 25-30 % slower on 1000 x 1000)
+        this.ringMask = (Integer.highestOneBit(reach + 1) << 1) - 1;
+        this.focusRingMask = (Integer.highestOneBit(Math.max(reach, focusReach) + 1) << 1) - 1;
+        int ring = focusRingMask + 1;
+        this.bucketMask = ringMask;
+        this.bucketShift = Integer.numberOfTrailingZeros(Math.max(64, INITIAL_BUCKET_CAPACITY * 16 / (ringMask + 1)));
+        this.buckets = new int[ring << bucketShift];
         this.bucketSizes = new int[ring];
     }
 
-    /** Ends the helper thread of a two-thread navigation function, if one was started. */
+    /** Nothing to end: computations run on the calling thread (kept so that callers may close every planner). */
     @Override
     public void close() {
-        if (banded != null) {
-            banded.close();
-            banded = null;
-        }
     }
 
     /** @return the value of stored bits: N in cost units, {@code +infinity} for unreached or impassable cells */
@@ -264,19 +255,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
         checkSize = 0;
         resetTouched();
         finalizedCount = 0;
-        if (threads == 2 && stopAtCell < 0 && potential.length >= minParallelCells) {
-            if (banded == null) {
-                banded = new BandedPropagation(halfDensity, inverseBucketWidth, bucketMask, ownerBandLog2);
-            }
-            touchedCount = touched.length + 1; // not recorded: the next reset copies the initial values whole
-            completeGoals = null; // until the computation has succeeded: a repair must not build on a partial one
-            finalizedCount = banded.propagate(potential, grid.costs(), grid.stride(), goals, bandShift);
-            completeGoals = goals.clone();
-            return;
-        }
         queued = 0;
         currentBucket = 0;
         Arrays.fill(bucketSizes, 0);
+        bucketMask = ringMask;
         for (int goal : goals) {
             if (potential[goal] == UNREACHED) {
                 if (touchedCount < touched.length) {
@@ -315,6 +297,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         queued = 0;
         currentBucket = 0;
         Arrays.fill(bucketSizes, 0);
+        bucketMask = focusRingMask;
         int stride = grid.stride();
         int startRow = startCell / stride;
         int startColumn = startCell - startRow * stride;
@@ -432,6 +415,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
         queued = 0;
         Arrays.fill(bucketSizes, 0);
+        bucketMask = ringMask;
         currentBucket = Integer.MAX_VALUE;
         for (int i = 0; i < invalidCount; i++) {
             int cell = invalid[i];
@@ -601,15 +585,24 @@ public final class LpnNavigationFunction implements AutoCloseable {
             if (bucketSizes[slot] >= bandCounts.length >> 3) {
                 sortByMemoryBand(slot);
             }
-            for (int head = 0; head < bucketSizes[slot]; head++) {
-                int cell = buckets[slot][head];
-                queued--;
+            // counters in locals, written back after the bucket: fields would be loaded and stored on every update
+            // (C2 keeps no field in a register across a loop), a chain of store-to-load forwarding through the loop
+            int pushed = 0;
+            int record = touchedCount;
+            final int[] touched = this.touched;
+            int head = 0;
+            for (; head < bucketSizes[slot]; head++) {
+                int cell = buckets[(slot << bucketShift) + head];
                 int bits = potential[cell];
                 if (bits < 0) {
                     continue;
                 }
                 potential[cell] = bits | FINAL;
                 finalized++;
+                if (record < touched.length) {
+                    touched[record] = cell;
+                }
+                record++;
                 float value = Float.intBitsToFloat(bits);
                 if (cell == stopAtCell) {
                     stopAbove = value + 2 * SQRT2 * maxDensity;
@@ -627,30 +620,42 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 float northSouthCorner = northValue < southValue ? northValue : southValue;
                 float eastWestCorner = eastValue < westValue ? eastValue : westValue;
                 if (eastBits >= 0) {
-                    relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+                    pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
                 }
                 if (westBits >= 0) {
-                    relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+                    pushed += relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
                 }
                 if (northBits >= 0) {
-                    relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+                    pushed += relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
                 }
                 if (southBits >= 0) {
-                    relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+                    pushed += relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
                 }
                 if (repairing) {
                     // a repaired cell is also the corner of triangles through its final axis neighbours, which a
                     // fresh computation would expand after it: let them see its new value
-                    reexpand(cell + 1, value, potential, costs, stride);
-                    reexpand(cell - 1, value, potential, costs, stride);
-                    reexpand(cell + stride, value, potential, costs, stride);
-                    reexpand(cell - stride, value, potential, costs, stride);
+                    pushed += reexpand(cell + 1, value, potential, costs, stride);
+                    pushed += reexpand(cell - 1, value, potential, costs, stride);
+                    pushed += reexpand(cell + stride, value, potential, costs, stride);
+                    pushed += reexpand(cell - stride, value, potential, costs, stride);
                 }
             }
+            queued += pushed - head;
+            touchedCount = record;
             bucketSizes[slot] = 0;
             currentBucket++;
         }
         finalizedCount += finalized;
+        // cells reached but not final when a bounded computation stops are still queued: record them for the reset
+        for (int slot = 0; queued > 0 && slot <= bucketMask; slot++) {
+            for (int i = 0; i < bucketSizes[slot]; i++) {
+                if (touchedCount < touched.length) {
+                    touched[touchedCount] = buckets[(slot << bucketShift) + i];
+                }
+                touchedCount++;
+            }
+            queued -= bucketSizes[slot];
+        }
     }
 
     /**
@@ -678,7 +683,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 sortByMemoryBand(slot);
             }
             for (int head = 0; head < bucketSizes[slot]; head++) {
-                int cell = buckets[slot][head];
+                int cell = buckets[(slot << bucketShift) + head];
                 queued--;
                 int bits = potential[cell];
                 if (bits < 0) {
@@ -810,51 +815,52 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * within a band: one counting pass. All cells of the bucket are final, so any order is valid.
      */
     private void sortByMemoryBand(int slot) {
-        int[] items = buckets[slot];
-        if (sortBuffer.length < items.length) {
-            sortBuffer = new int[items.length];
+        int size = bucketSizes[slot];
+        if (sortBuffer.length < size) {
+            sortBuffer = new int[1 << bucketShift];
         }
-        buckets[slot] = sortByMemoryBand(items, bucketSizes[slot], sortBuffer, bandCounts, bandShift);
-        sortBuffer = items;
+        int from = slot << bucketShift;
+        sortByMemoryBand(buckets, from, size, sortBuffer, bandCounts, bandShift);
+        System.arraycopy(sortBuffer, 0, buckets, from, size);
     }
 
     /**
-     * Counting sort of {@code size} cells by memory band ({@code cell >>> shift}), stable within a band.
+     * Counting sort of the {@code size} cells {@code items[from, from + size)} by memory band ({@code cell >>> shift}), stable within a band.
      *
      * @param buffer receives the sorted cells (at least {@code size} long)
      * @param counts scratch, one more than the number of bands plus one
      * @return {@code buffer}
      */
-    static int[] sortByMemoryBand(int[] items, int size, int[] buffer, int[] counts, int shift) {
+    static int[] sortByMemoryBand(int[] items, int from, int size, int[] buffer, int[] counts, int shift) {
         // only the bands the front spans are cleared and summed: a bucket often covers a fraction of the grid
         int low = Integer.MAX_VALUE;
         int high = 0;
-        for (int i = 0; i < size; i++) {
+        for (int i = from; i < from + size; i++) {
             int band = items[i] >>> shift;
             low = Math.min(low, band);
             high = Math.max(high, band);
         }
         Arrays.fill(counts, low, high + 2, 0);
-        for (int i = 0; i < size; i++) {
+        for (int i = from; i < from + size; i++) {
             counts[(items[i] >>> shift) + 1]++;
         }
         for (int band = low + 1; band <= high + 1; band++) {
             counts[band] += counts[band - 1];
         }
-        for (int i = 0; i < size; i++) {
+        for (int i = from; i < from + size; i++) {
             int item = items[i];
             buffer[counts[item >>> shift]++] = item;
         }
         return buffer;
     }
 
-    /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}. */
-    private void reexpand(int axis, float value, int[] potential, byte[] costs, int stride) {
+    /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}; returns the cells queued. */
+    private int reexpand(int axis, float value, int[] potential, byte[] costs, int stride) {
         int bits = potential[axis];
         if (bits >= 0 || bits == IMPASSABLE || decode(bits) <= value) {
-            return;
+            return 0;
         }
-        expand(axis, decode(bits), halfDensity[costs[axis] & 0xFF], potential, halfDensity, costs, stride);
+        return expand(axis, decode(bits), halfDensity[costs[axis] & 0xFF], potential, halfDensity, costs, stride);
     }
 
     /**
@@ -864,9 +870,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * Reading a corner before a sibling update lowered it gives the same result: a value this expansion writes lies
      * above {@code value}, and a corner above {@code value} gives the axis step whichever it is. The propagation loop
      * writes this method out in place (see there); this copy serves the repair's re-expansions.
+     *
+     * @return the number of cells queued
      */
-    private void expand(int cell, float value, float ownHalfDensity, int[] potential, float[] halfDensity,
+    private int expand(int cell, float value, float ownHalfDensity, int[] potential, float[] halfDensity,
             byte[] costs, int stride) {
+        int pushed = 0;
         int east = cell + 1;
         int west = cell - 1;
         int north = cell + stride;
@@ -882,29 +891,54 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float northSouthCorner = northValue < southValue ? northValue : southValue;
         float eastWestCorner = eastValue < westValue ? eastValue : westValue;
         if (eastBits >= 0) {
-            relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
         }
         if (westBits >= 0) {
-            relax(west, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(west, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
         }
         if (northBits >= 0) {
-            relax(north, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(north, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
         }
         if (southBits >= 0) {
-            relax(south, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(south, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
         }
+        return pushed;
     }
 
     /**
      * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
+     * Written without branches on the data (C2 compiles the selections to conditional moves): whether the update
+     * improves the target, whether the target is reached for the first time and whether it changes bucket are each
+     * close to a coin toss, and a mispredicted branch costs more than the arithmetic. The lower value is stored
+     * whatever happens ({@code min} of the bits: the old value when the update does not improve it), the target is
+     * written to the end of its bucket and the bucket's size advanced only when it must be queued (improved and
+     * reached for the first time or moved to another bucket: a lowered cell that stays in its bucket is popped with
+     * its new value).
+     *
+     * @return 1 when the target was queued (the caller counts it in {@link #queued}), else 0. Reached cells are recorded for the reset by {@link #propagate} (when popped, and those still
+     * queued when it stops), not here.
      */
-    private void relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
+    private int relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
             float[] halfDensity, byte[] costs) {
         float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
-        if (Float.floatToRawIntBits(best) < targetBits) {
-            lower(target, targetBits, best);
+        int bestBits = Float.floatToRawIntBits(best);
+        boolean improved = bestBits < targetBits;
+        boolean first = targetBits == UNREACHED;
+        int bucket = (int) (best * inverseBucketWidth);
+        // the old value capped so that the conversion stays in int range (an unreached +infinity or a retracted cell
+        // would overflow, which C2 handles in an out-of-line stub); both are queued by `first` or the bucket change
+        int oldBucket = (int) (Math.min(Float.intBitsToFloat(targetBits), bucketCap) * inverseBucketWidth);
+        int queue = improved & (first | bucket != oldBucket) ? 1 : 0;
+        potential[target] = Math.min(targetBits, bestBits);
+        int slot = Math.max(bucket, currentBucket) & bucketMask;
+        int size = bucketSizes[slot];
+        if (size == 1 << bucketShift) {
+            growBuckets();
         }
+        buckets[(slot << bucketShift) + size] = target;
+        bucketSizes[slot] = size + queue;
+        return queue;
     }
 
     /**
@@ -924,20 +958,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
         return interior < straight ? interior : straight;
     }
 
-    private void lower(int target, int oldBits, float newValue) {
-        potential[target] = Float.floatToRawIntBits(newValue);
-        if (oldBits == UNREACHED) {
-            if (touchedCount < touched.length) {
-                touched[touchedCount] = target;
-            }
-            touchedCount++;
-        } else if ((int) (Float.intBitsToFloat(oldBits) * inverseBucketWidth) == (int) (newValue * inverseBucketWidth)) {
-            // already queued in the same bucket: that entry will read the lower value when it is popped
-            return;
-        }
-        push(target, newValue);
-    }
-
     private void push(int cell, float value) {
         push(cell, value, inverseBucketWidth);
     }
@@ -950,13 +970,21 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
         int slot = bucket & bucketMask;
         int size = bucketSizes[slot];
-        int[] items = buckets[slot];
-        if (size == items.length) {
-            items = Arrays.copyOf(items, size * 2);
-            buckets[slot] = items;
+        if (size == 1 << bucketShift) {
+            growBuckets();
         }
-        items[size] = cell;
+        buckets[(slot << bucketShift) + size] = cell;
         bucketSizes[slot] = size + 1;
         queued++;
+    }
+
+    /** Doubles the capacity of every bucket of the ring. */
+    private void growBuckets() {
+        int[] grown = new int[buckets.length * 2];
+        for (int slot = 0; slot < bucketSizes.length; slot++) {
+            System.arraycopy(buckets, slot << bucketShift, grown, slot << (bucketShift + 1), bucketSizes[slot]);
+        }
+        buckets = grown;
+        bucketShift++;
     }
 }

@@ -47,16 +47,12 @@ public final class LpnPlanner implements Planner {
         this(costModel, wholeGrid, incremental, 1);
     }
 
-    /**
-     * @param threads 1, or 2 to compute whole-grid navigation functions of large grids on two threads (see
-     *                {@link LpnNavigationFunction#LpnNavigationFunction(CostModel, int)}); bounded computations and
-     *                repairs run on the calling thread
-     */
+    /** @param threads 1 or 2, both on the calling thread (see {@link LpnNavigationFunction#LpnNavigationFunction(CostModel, int)}) */
     public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental, int threads) {
         this(costModel, wholeGrid, incremental, new LpnNavigationFunction(costModel, threads));
     }
 
-    /** With a navigation function made for it (same cost model), e.g. two threads on small grids in tests. */
+    /** With a navigation function made for it (same cost model). */
     public LpnPlanner(CostModel costModel, boolean wholeGrid, boolean incremental,
             LpnNavigationFunction navigationFunction) {
         if (incremental && !wholeGrid) {

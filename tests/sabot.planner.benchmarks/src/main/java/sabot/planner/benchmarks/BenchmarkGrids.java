@@ -15,13 +15,17 @@ import sabot.planner.costmap.MovingObstacleModel;
 import sabot.planner.costmap.UnknownCellPolicy;
 
 /**
- * The fixed-seed grids the planner figures are measured on. Every grid has 0.05 m cells and is inflated for a robot
- * of inscribed radius 0.10 m (2 cells) with cost spreading to 0.30 m (6 cells), decay 10 per metre.
+ * The fixed-seed grids the planner figures are measured on. Every grid has 0.05 m cells; the random grids are
+ * inflated for a robot of inscribed radius 0.10 m (2 cells) with cost spreading to 0.30 m (6 cells), decay 10 per
+ * metre.
  * <ul>
  * <li>{@code random-N}: N x N cells, about 20 % of them in random rectangles (2 to 2 + N/25 cells a side); start near
  * the lower-left corner, goal near the upper-right one, in the same free region;</li>
- * <li>{@code maze-N}: a perfect maze (randomised depth-first search) of 8-cell corridors between 2-cell walls: long
- * winding corridors; start and goal in opposite corners;</li>
+ * <li>{@code maze-N}: a perfect maze (randomised depth-first search) of 8-cell corridors between 2-cell walls, not
+ * inflated: lethal walls, free corridors (the kind of maze of issue 17's held-back grids; inflated, every corridor
+ * cell had a graded cost, and navfn's 100-unit threshold bands then re-update cells hundreds of times, 1.4 s instead
+ * of tens of milliseconds: no test of the propagation order); long winding corridors; start and goal in opposite
+ * corners;</li>
  * <li>{@code enclosed-N}: {@code random-N} with the goal at the centre inside a closed lethal ring.</li>
  * </ul>
  */
@@ -31,6 +35,9 @@ public final class BenchmarkGrids {
     public static final long SEED = 20001;
     static final double RESOLUTION = 0.05;
     static final InflationParameters INFLATION = new InflationParameters(0.10, 0.30, 10.0, 100,
+            UnknownCellPolicy.KEEP_UNKNOWN);
+    /** The maze's: none, occupied cells lethal and free cells free. */
+    static final InflationParameters NO_INFLATION = new InflationParameters(0, 0, 10.0, 100,
             UnknownCellPolicy.KEEP_UNKNOWN);
 
     /** A grid to plan on, with the layers that produced it (for local changes) and start and goal in metres. */
@@ -142,7 +149,7 @@ public final class BenchmarkGrids {
             carve(grid, nx, ny, x, y, pitch, wall, corridor);
             stack.push(y * nodes + x);
         }
-        CostmapLayers layers = CostmapLayers.fromOccupancy(grid, INFLATION, MovingObstacleModel.defaults());
+        CostmapLayers layers = CostmapLayers.fromOccupancy(grid, NO_INFLATION, MovingObstacleModel.defaults());
         Costmap costmap = layers.costmap();
         int half = wall + corridor / 2;
         Cell start = new Cell(half, half);

@@ -4,6 +4,8 @@ import java.io.BufferedReader;
 import java.io.IOException;
 import java.io.InputStreamReader;
 import java.io.PrintWriter;
+import java.lang.management.ManagementFactory;
+import java.lang.management.ThreadMXBean;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -36,8 +38,10 @@ import sabot.planner.Planners;
  * </ul>
  * Each round runs a batch of calls per grid and question, navfn then Sabot in odd rounds and the other way round in
  * even ones; the first round warms both up and is not counted. Reported: the best round's median per call (best of
- * rounds) and the median of all counted calls; path costs are Sabot's cost integral ({@link CostModel#pathCost}) of
- * both paths.
+ * rounds) and the median of all counted calls, of the wall-clock time and of the CPU time of the calling thread (on a
+ * shared machine the wall clock also counts the time other processes held the core; both sides measure the same
+ * calls the same way: {@code clock_gettime(CLOCK_THREAD_CPUTIME_ID)} in the driver, {@link ThreadMXBean} here); path
+ * costs are Sabot's cost integral ({@link CostModel#pathCost}) of both paths.
  */
 public final class NavfnComparison {
 
@@ -66,6 +70,8 @@ public final class NavfnComparison {
 
     private record Outcome(long reached, double pathCost, double pathLength) {
     }
+
+    private static final ThreadMXBean THREAD = ManagementFactory.getThreadMXBean();
 
     private NavfnComparison() {
     }
@@ -98,10 +104,12 @@ public final class NavfnComparison {
         Process process = new ProcessBuilder(navfn.toString()).redirectError(ProcessBuilder.Redirect.INHERIT).start();
         try (PrintWriter toNavfn = new PrintWriter(process.getOutputStream(), true, StandardCharsets.US_ASCII);
                 BufferedReader fromNavfn = new BufferedReader(
-                        new InputStreamReader(process.getInputStream(), StandardCharsets.US_ASCII));
-                Planner whole = Planners.byName(wholePlanner, CostModel.standard()).orElseThrow();
-                Planner plan = Planners.byName(planPlanner, CostModel.standard()).orElseThrow()) {
+                        new InputStreamReader(process.getInputStream(), StandardCharsets.US_ASCII))) {
+            // one pair of planners per grid, as the driver makes a NavFn per grid: a robot's planner keeps its map,
+            // and one planner shared by grids of different sizes would reallocate its arrays at every switch
+            Map<String, Planner> planners = new LinkedHashMap<>();
             Map<String, Sample> samples = new LinkedHashMap<>();
+            Map<String, Sample> cpuSamples = new LinkedHashMap<>();
             Map<String, Outcome> outcomes = new LinkedHashMap<>();
             Map<String, BenchmarkGrids.Scenario> scenarios = new LinkedHashMap<>();
             for (String name : grids) {
@@ -124,39 +132,49 @@ public final class NavfnComparison {
                     String cells = s.column() + " " + (g.height() - 1 - s.row()) + " " + t.column() + " "
                             + (g.height() - 1 - t.row());
                     for (String question : List.of("whole", "plan")) {
-                        Planner sabot = question.equals("whole") ? whole : plan;
+                        String plannerName = question.equals("whole") ? wholePlanner : planPlanner;
+                        Planner sabot = planners.computeIfAbsent(name + "/" + question,
+                                k -> Planners.byName(plannerName, CostModel.standard()).orElseThrow());
                         String navfnMode = question.equals("whole") ? "whole" : "makeplan";
                         boolean navfnFirst = round % 2 == 1;
                         for (int side = 0; side < 2; side++) {
                             boolean runNavfn = (side == 0) == navfnFirst;
                             String key = name + "/" + question + "/" + (runNavfn ? "navfn" : "sabot");
                             double[] times;
+                            double[] cpu;
                             if (runNavfn) {
                                 String answer = send(toNavfn, fromNavfn,
                                         "time " + navfnMode + " " + cells + " " + calls, "times");
-                                times = Arrays.stream(answer.substring("times".length()).trim().split(" "))
-                                        .mapToDouble(Double::parseDouble).toArray();
+                                times = numbers(answer, "times");
+                                cpu = numbers(receive(fromNavfn, "cpu"), "cpu");
                                 String result = receive(fromNavfn, "result");
                                 outcomes.putIfAbsent(key, navfnOutcome(scenario, result));
                             } else {
                                 times = new double[calls];
+                                cpu = new double[calls];
                                 PlanResult last = null;
                                 for (int i = 0; i < calls; i++) {
+                                    long cpuBegin = THREAD.getCurrentThreadCpuTime();
                                     long begin = System.nanoTime();
                                     last = sabot.plan(scenario.costmap(), scenario.start(), scenario.goal());
                                     times[i] = (System.nanoTime() - begin) / 1e6;
+                                    cpu[i] = (THREAD.getCurrentThreadCpuTime() - cpuBegin) / 1e6;
                                 }
                                 outcomes.putIfAbsent(key, sabotOutcome(last));
                             }
                             if (round > 0) {
                                 samples.computeIfAbsent(key, k -> new Sample()).add(times);
+                                cpuSamples.computeIfAbsent(key, k -> new Sample()).add(cpu);
                             }
                         }
                     }
                 }
             }
+            planners.values().forEach(Planner::close);
             toNavfn.println("quit");
-            print(grids, samples, outcomes, rounds, wholePlanner, planPlanner);
+            printTimes("wall-clock time", grids, samples, rounds, wholePlanner, planPlanner);
+            printTimes("CPU time of the calling thread", grids, cpuSamples, rounds, wholePlanner, planPlanner);
+            printOutcomes(grids, outcomes);
         } finally {
             process.waitFor();
             for (String name : grids) {
@@ -166,10 +184,10 @@ public final class NavfnComparison {
         }
     }
 
-    private static void print(List<String> grids, Map<String, Sample> samples, Map<String, Outcome> outcomes,
-            int rounds, String wholePlanner, String planPlanner) {
-        System.out.printf(Locale.ROOT, "%d rounds after one warm-up round; per cell: best round's median / median "
-                + "of all calls, ms; ratio Sabot / navfn of each%n%n", rounds);
+    private static void printTimes(String what, List<String> grids, Map<String, Sample> samples, int rounds,
+            String wholePlanner, String planPlanner) {
+        System.out.printf(Locale.ROOT, "%s, %d rounds after one warm-up round; per cell: best round's median / median "
+                + "of all calls, ms; ratio Sabot / navfn of each%n%n", what, rounds);
         System.out.println("| grid | navfn whole grid (`calcNavFnDijkstra(false)`) | Sabot `" + wholePlanner
                 + "`, 1 thread | ratio | navfn `makePlan` (`calcNavFnDijkstra(true)`) | Sabot `" + planPlanner
                 + "` | ratio |");
@@ -185,6 +203,9 @@ public final class NavfnComparison {
             System.out.println(row);
         }
         System.out.println();
+    }
+
+    private static void printOutcomes(List<String> grids, Map<String, Outcome> outcomes) {
         System.out.println("| grid | question | navfn reached cells | navfn path cost | Sabot reached cells | Sabot path cost "
                 + "| cost ratio Sabot / navfn |");
         System.out.println("|---|---|---|---|---|---|---|");
@@ -225,6 +246,10 @@ public final class NavfnComparison {
             path.add(g.toMap(x + 0.5, g.height() - 0.5 - y));
         }
         return new Outcome(reached, CostModel.standard().pathCost(scenario.costmap(), path), CostModel.length(path));
+    }
+
+    private static double[] numbers(String line, String verb) {
+        return Arrays.stream(line.substring(verb.length()).trim().split(" ")).mapToDouble(Double::parseDouble).toArray();
     }
 
     private static String send(PrintWriter out, BufferedReader in, String command, String expected)

@@ -12,7 +12,6 @@ import org.openjdk.jmh.annotations.OutputTimeUnit;
 import org.openjdk.jmh.annotations.Param;
 import org.openjdk.jmh.annotations.Scope;
 import org.openjdk.jmh.annotations.Setup;
-import org.openjdk.jmh.annotations.TearDown;
 import org.openjdk.jmh.annotations.State;
 import org.openjdk.jmh.annotations.Warmup;
 
@@ -27,8 +26,7 @@ import sabot.planner.internal.PlanningGrid;
 
 /**
  * Planner figures on the {@link BenchmarkGrids}: the LPN navigation function alone, LPN's full plan (navigation
- * function plus path extraction, what {@code sabot plan} times), and the A* reference; the LPN figures also on two
- * threads (grids from 2^18 cells; smaller ones run on one). Sample-time mode: JMH reports the median (p0.50) per
+ * function plus path extraction, what {@code sabot plan} times), and the A* reference. Sample-time mode: JMH reports the median (p0.50) per
  * operation.
  */
 @State(Scope.Benchmark)
@@ -45,23 +43,17 @@ public class PlannerBenchmark {
     private BenchmarkGrids.Scenario scenario;
     private Planner lpn;
     private Planner reference;
-    private Planner lpnTwoThreads;
     private LpnNavigationFunction navigationFunction;
-    private LpnNavigationFunction twoThreadNavigationFunction;
     private int[] goalCells;
 
     @Setup
     public void setUp() {
         scenario = BenchmarkGrids.scenario(grid);
         lpn = Planners.lpn();
-        lpnTwoThreads = Planners.lpn(CostModel.standard(), 2);
         reference = Planners.reference();
         PlanningGrid planningGrid = new PlanningGrid();
         navigationFunction = new LpnNavigationFunction(CostModel.standard());
         navigationFunction.gridChanged(planningGrid, planningGrid.sync(scenario.costmap()));
-        PlanningGrid twoThreadGrid = new PlanningGrid();
-        twoThreadNavigationFunction = new LpnNavigationFunction(CostModel.standard(), 2);
-        twoThreadNavigationFunction.gridChanged(twoThreadGrid, twoThreadGrid.sync(scenario.costmap()));
         GridGeometry geometry = scenario.costmap().geometry();
         Cell goal = geometry.cellAt(scenario.goal()).orElseThrow();
         goalCells = new int[] { planningGrid.index(goal.column(), goal.row()) };
@@ -76,25 +68,6 @@ public class PlannerBenchmark {
     public int lpnNavigationFunction() {
         navigationFunction.compute(goalCells, -1);
         return navigationFunction.finalizedCount();
-    }
-
-    @TearDown
-    public void tearDown() {
-        lpnTwoThreads.close();
-        twoThreadNavigationFunction.close();
-    }
-
-    /** The navigation function over the whole reachable grid, on two threads. */
-    @Benchmark
-    public int lpnNavigationFunctionTwoThreads() {
-        twoThreadNavigationFunction.compute(goalCells, -1);
-        return twoThreadNavigationFunction.finalizedCount();
-    }
-
-    /** {@link #lpnPlan} on two threads ({@code sabot plan --threads 2}). */
-    @Benchmark
-    public PlanResult lpnPlanTwoThreads() {
-        return lpnTwoThreads.plan(scenario.costmap(), scenario.start(), List.of(scenario.goal()));
     }
 
     /** Navigation function plus gradient-descent path (the figure {@code sabot plan} reports). */
