@@ -30,7 +30,10 @@ public final class PlannerTask implements OnboardTask {
         /** @return planner name: lpn, lpn-bounded, lpn-incremental, reference, dijkstra */
         String algorithm() default "lpn";
 
-        /** @return threads of the navigation function (1 on a robot whose CPU also runs the control loop) */
+        /**
+         * @return threads of the navigation function; every planner now computes on the calling thread (the former
+         *         two-thread mode spun a helper thread), so 2 is accepted for old configurations and means 1
+         */
         int threads() default 1;
 
         /** @return the robot's radius (footprint disc), m: cells closer to an obstacle are impassable */
