@@ -31,8 +31,8 @@ public final class PlannerTask implements OnboardTask {
         String algorithm() default "lpn";
 
         /**
-         * @return threads of the navigation function; every planner now computes on the calling thread (the former
-         *         two-thread mode spun a helper thread), so 2 is accepted for old configurations and means 1
+         * @return threads of the navigation function: 1 or 2 accepted, every planner computes on the calling thread
+         *         (no helper thread competes with the control loop for the robot's CPU)
          */
         int threads() default 1;
 
