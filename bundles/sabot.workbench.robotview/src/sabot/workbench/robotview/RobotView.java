@@ -49,6 +49,7 @@ public abstract class RobotView extends ViewPart {
     private FleetBinding binding;
     private Combo chooser;
     private CLabel messageLine;
+    private Composite content;
     private List<String> shownJids = List.of();
     private String robot;
     private volatile String message = "";
@@ -67,7 +68,7 @@ public abstract class RobotView extends ViewPart {
             int i = chooser.getSelectionIndex();
             choose(i < 0 ? null : shownJids.get(i));
         });
-        Composite content = new Composite(parent, SWT.NONE);
+        content = new Composite(parent, SWT.NONE);
         content.setLayoutData(new GridData(SWT.FILL, SWT.FILL, true, true));
         createContent(content);
         messageLine = new CLabel(parent, SWT.NONE);
@@ -92,6 +93,11 @@ public abstract class RobotView extends ViewPart {
      * @param newRobot true when another robot was chosen
      */
     protected abstract void robotChanged(RobotState state, boolean newRobot);
+
+    /** @return the composite holding the plug-in's controls (its parent is the whole view, for screenshots) */
+    public final Composite content() {
+        return content;
+    }
 
     /** @return the chosen robot's bare JID, or null */
     public final String robot() {

@@ -96,6 +96,11 @@ public final class IdentityView extends RobotView {
         request("identity", (fleet, jid) -> fleet.identity(jid), this::show);
     }
 
+    /** Shows an identity as a fetched one is shown (null clears the view). */
+    public void display(RobotIdentity id) {
+        show(id);
+    }
+
     private void show(RobotIdentity id) {
         shown = id;
         Map<String, String> text = texts(id);

@@ -44,6 +44,7 @@ public final class JoystickView extends RobotView {
     private Canvas pad;
     private Label readout;
     private volatile MotionLimits limits;
+    private Job limitsRead;
     /** Knob deflection: x to the right, y up, each -1..1 (inside the unit circle). */
     private double knobX;
     private double knobY;
@@ -98,15 +99,22 @@ public final class JoystickView extends RobotView {
         if (newRobot) {
             releaseAll("another robot chosen");
             limits = null;
-            if (state != null) {
-                request("read limits", (fleet, jid) -> fleet.get(jid, Resources.LIMITS), l -> {
-                    limits = l;
-                    showMessage(String.format(Locale.ROOT, "%s: limits %.2f m/s, %.2f rad/s", robot(), l
-                            .maxLinearSpeed(), l.maxAngularSpeed()), false);
-                });
-            }
+            limitsRead = null;
         } else if (held && (state == null || state.availability() == Availability.OFFLINE)) {
             releaseAll("robot offline");
+        }
+        // the pad is scaled to the robot's limits: read them once it is online (again after a failed read, e.g.
+        // while the workbench was reconnecting)
+        if (state != null && limits == null && state.availability() != Availability.OFFLINE && (limitsRead == null
+                || limitsRead.getResult() != null)) {
+            String jid = state.jid();
+            limitsRead = request("read limits", (fleet, robot) -> fleet.get(robot, Resources.LIMITS), l -> {
+                if (jid.equals(robot())) {
+                    limits = l;
+                    showMessage(String.format(Locale.ROOT, "%s: limits %.2f m/s, %.2f rad/s", jid, l
+                            .maxLinearSpeed(), l.maxAngularSpeed()), false);
+                }
+            });
         }
     }
 
