@@ -154,7 +154,7 @@ class PluginViewsLiveTest {
         assertTrue(rate >= 8 && rate <= 12, "twists sent in one second held: " + rate);
         SimProcess.Truth stillDriving = truth();
         assertTrue(stillDriving.v() > 0.9 * expected, "stopped while held (deadman not fed?): " + stillDriving);
-        capture(joystick.content().getParent(), "joystick.png");
+        shot(joystick, "joystick.png");
 
         mouse(pad, SWT.MouseUp, x, y);
         SimProcess.Truth atRelease = truth();
@@ -194,7 +194,7 @@ class PluginViewsLiveTest {
         waitFor(() -> files.listed("plugin-test") != null, 20, files::message);
         files.viewer().expandToLevel(2);
         assertEquals(List.of(new FileEntry("payload.bin", content.length, false)), files.listed("plugin-test"));
-        capture(files.content().getParent(), "remote-files.png");
+        shot(files, "remote-files.png");
 
         Path back = dir.resolve("downloaded.bin");
         Files.deleteIfExists(back);
@@ -236,7 +236,7 @@ class PluginViewsLiveTest {
             waitFor(() -> pid.message().contains("read gains: done"), 20, pid::message);
             assertGains(changed, pid.gains());
             waitFor(() -> pid.plotted() > 3, 20, () -> "no telemetry plotted: " + pid.plotted());
-            capture(pid.content().getParent(), "pid.png");
+            shot(pid, "pid.png");
         } finally {
             pid.writeGains(original);
             waitFor(() -> pid.message().contains("write gains"), 20, pid::message);
@@ -278,7 +278,7 @@ class PluginViewsLiveTest {
         assertEquals(card.uid(), shown.get("UUID"));
         assertTrue(shown.get("UUID").startsWith("urn:uuid:"), shown.toString());
         assertTrue(shown.get("Inventory").contains("board"), "QR code not decoded: " + shown);
-        capture(identity.content().getParent(), "identity.png");
+        shot(identity, "identity.png");
 
         Path saved = dir.resolve("qr.png");
         identity.saveQr(saved);
@@ -361,6 +361,18 @@ class PluginViewsLiveTest {
         e.y = y;
         e.button = 1;
         c.notifyListeners(type, e);
+    }
+
+    /** Saves a screenshot of a view, maximised for the picture, then restored. */
+    private static void shot(RobotView view, String name) throws Exception {
+        IWorkbenchPage page = page();
+        org.eclipse.ui.IWorkbenchPartReference ref = page.getReference(view);
+        page.setPartState(ref, IWorkbenchPage.STATE_MAXIMIZED);
+        try {
+            capture(view.content().getParent(), name);
+        } finally {
+            page.setPartState(ref, IWorkbenchPage.STATE_RESTORED);
+        }
     }
 
     /** Saves what the screen shows of a control (a view's area) to target/screenshots and docs/images. */
