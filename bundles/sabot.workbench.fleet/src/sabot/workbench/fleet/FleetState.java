@@ -103,4 +103,18 @@ public interface FleetState {
      * @return the robot's read-back when its answer carries one, else null
      */
     <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value);
+
+    /**
+     * Fetches the robot's identity from its vCard (JID, nickname, URL, location, UUID, the QR-code inventory image).
+     * A default for providers written before this method: it refuses with
+     * {@link sabot.controlml.ControlMlCondition#UNSUPPORTED_OPERATION}.
+     *
+     * @param robot bare JID
+     * @return the robot's identity; exceptionally a {@link FleetCommandException} (no vCard, not connected, timeout)
+     */
+    default CompletableFuture<RobotIdentity> identity(String robot) {
+        return CompletableFuture.failedFuture(new FleetCommandException(
+                sabot.controlml.ControlMlCondition.UNSUPPORTED_OPERATION,
+                "this workbench's ControlML plug-in cannot fetch vCards yet"));
+    }
 }

@@ -99,7 +99,8 @@ class PluginInstallTest {
                 "-sabot.exit"));
     }
 
-    private static Path copy(Path from, Path to) throws IOException {
+    /** Copies a materialized product (installs change it). */
+    static Path copy(Path from, Path to) throws IOException {
         try (Stream<Path> files = Files.walk(from)) {
             for (Path p : (Iterable<Path>) files::iterator) {
                 Path target = to.resolve(from.relativize(p).toString());

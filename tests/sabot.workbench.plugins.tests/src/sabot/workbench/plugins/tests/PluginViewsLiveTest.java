@@ -1,0 +1,405 @@
+package sabot.workbench.plugins.tests;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.nio.file.StandardCopyOption;
+import java.time.Instant;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
+import java.util.Random;
+import java.util.function.BooleanSupplier;
+import java.util.function.Supplier;
+
+import org.eclipse.core.runtime.jobs.Job;
+import org.eclipse.swt.SWT;
+import org.eclipse.swt.graphics.GC;
+import org.eclipse.swt.graphics.Image;
+import org.eclipse.swt.graphics.ImageData;
+import org.eclipse.swt.graphics.ImageLoader;
+import org.eclipse.swt.graphics.Point;
+import org.eclipse.swt.graphics.Rectangle;
+import org.eclipse.swt.widgets.Control;
+import org.eclipse.swt.widgets.Display;
+import org.eclipse.swt.widgets.Event;
+import org.eclipse.ui.IViewPart;
+import org.eclipse.ui.IWorkbenchPage;
+import org.eclipse.ui.PlatformUI;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jxmpp.jid.impl.JidCreate;
+import org.junit.jupiter.api.AfterAll;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.MethodOrderer;
+import org.junit.jupiter.api.Order;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.TestMethodOrder;
+
+import sabot.controlml.payload.FileEntry;
+import sabot.controlml.payload.MotorGains;
+import sabot.controlml.payload.PidGains;
+import sabot.identity.DeviceCard;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.DeviceProfile;
+import sabot.identity.IdentityResult;
+import sabot.identity.QrInventory;
+import sabot.testsupport.robot.OnboardProcess;
+import sabot.testsupport.robot.SimProcess;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.workbench.account.XmppAccount;
+import sabot.workbench.account.XmppAccountStore;
+import sabot.workbench.fleet.Availability;
+import sabot.workbench.fleet.RobotIdentity;
+import sabot.workbench.fleet.RobotState;
+import sabot.workbench.identity.internal.IdentityView;
+import sabot.workbench.joystick.internal.JoystickView;
+import sabot.workbench.pid.internal.PidView;
+import sabot.workbench.remotefs.internal.RemoteFilesView;
+import sabot.workbench.robotview.RobotView;
+
+/**
+ * The plug-ins' views in the real workbench against the real stack: a private Prosody, {@code sabot-sim} on the lab
+ * map and the onboard product as processes; the workbench's ControlML plug-in logs in with the account stored in its
+ * preferences, and each view observes its FleetState. Judged on the simulator's ground truth, the robot's remote-FS
+ * directory on disk and the robot's own answers. One stack for all tests (each robot start costs ~10 s).
+ */
+@TestMethodOrder(MethodOrderer.OrderAnnotation.class)
+class PluginViewsLiveTest {
+
+    static final String ROBOT = "sabot-01";
+    static final String ROBOT_JID = ROBOT + "@" + PrivateXmppServer.DOMAIN;
+    static final String OPERATOR = "operator";
+    /** The lab's east room, facing +x: free space ahead for a short joystick drive. */
+    static final double[] START = { 6.0, 2.8, 0.0 };
+    /** The simulated robot's linear acceleration limit, m/s² (docs/sabot-robot.properties). */
+    static final double A_MAX = 0.5;
+    /** Pad deflection forward: a quarter of the robot's top speed, so that braking alone takes ~0.25 s. */
+    static final double DEFLECTION = 0.25;
+
+    static PrivateXmppServer xmpp;
+    static SimProcess sim;
+    static OnboardProcess onboard;
+    static Path dir;
+
+    @BeforeAll
+    static void startStack() throws Exception {
+        xmpp = PrivateXmppServer.prosody().start();
+        xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
+        xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
+        dir = Files.createDirectories(Paths.get("target", "live-plugins").toAbsolutePath());
+        sim = SimProcess.start(dir, START);
+        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
+                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+        onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
+        onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        store.saveRobots(List.of(ROBOT_JID));
+        store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+                "operator-pw".toCharArray());
+    }
+
+    @AfterAll
+    static void stopStack() throws Exception {
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        store.forgetPassword();
+        store.saveRobots(List.of());
+        if (onboard != null) {
+            onboard.close();
+        }
+        if (sim != null) {
+            sim.close();
+        }
+        if (xmpp != null) {
+            xmpp.close();
+        }
+    }
+
+    @Test
+    @Order(1)
+    void joystickHeldDrivesTheRobotAndReleasedStopsItWithinHalfASecond() throws Exception {
+        JoystickView joystick = open(JoystickView.ID, JoystickView.class);
+        awaitLive(joystick);
+        waitFor(() -> joystick.limits() != null, 20, () -> "limits not read: " + joystick.message());
+        SimProcess.Truth before = sim.truth();
+
+        Control pad = joystick.pad();
+        Point size = pad.getSize();
+        double radius = Math.max(10, Math.min(size.x, size.y) / 2.0 - 12); // as the pad computes it
+        int x = size.x / 2;
+        int y = (int) Math.round(size.y / 2.0 - DEFLECTION * radius);
+        mouse(pad, SWT.MouseDown, x, y);
+        assertTrue(joystick.held(), joystick.message());
+        // the pad quantises to its pixels: within one pixel of the deflection aimed at
+        double max = joystick.limits().maxLinearSpeed();
+        double expected = joystick.twist().linear();
+        assertEquals(DEFLECTION * max, expected, max / radius, "pad of " + size);
+        assertEquals(0, joystick.twist().angular(), 1e-9);
+        // held: the robot accelerates to the pad's speed and keeps it while twists arrive at 10 Hz
+        SimProcess.Truth[] driving = new SimProcess.Truth[1];
+        waitFor(() -> {
+            driving[0] = truth();
+            return driving[0].v() > 0.9 * expected && driving[0].distanceTo(before.x(), before.y()) > 0.1;
+        }, 15, () -> "robot not driving at " + expected + " m/s: " + driving[0] + "; " + joystick.message());
+        int sentBefore = joystick.sentCount();
+        long t0 = System.nanoTime();
+        waitFor(() -> System.nanoTime() - t0 > 1_000_000_000L, 5, () -> "one second held");
+        int rate = joystick.sentCount() - sentBefore;
+        assertTrue(rate >= 8 && rate <= 12, "twists sent in one second held: " + rate);
+        SimProcess.Truth stillDriving = truth();
+        assertTrue(stillDriving.v() > 0.9 * expected, "stopped while held (deadman not fed?): " + stillDriving);
+        shot(joystick, "joystick.png");
+
+        mouse(pad, SWT.MouseUp, x, y);
+        SimProcess.Truth atRelease = truth();
+        assertFalse(joystick.held());
+        SimProcess.Truth[] stopped = new SimProcess.Truth[1];
+        waitFor(() -> {
+            stopped[0] = truth();
+            return Math.abs(stopped[0].v()) < 0.005 && Math.abs(stopped[0].omega()) < 0.01;
+        }, 5, () -> "robot still moving after release: " + stopped[0]);
+        double stopTime = stopped[0].t() - atRelease.t();
+        System.out.printf(Locale.ROOT, "[figure] joystick release to standstill (simulator clock): %.3f s from %.3f m/s%n",
+                stopTime, atRelease.v());
+        assertTrue(stopTime <= 0.5, "stopped " + stopTime + " s after the release (" + atRelease + " -> "
+                + stopped[0] + ")");
+        assertFalse(joystick.messageIsError(), joystick.message());
+    }
+
+    @Test
+    @Order(2)
+    void remoteFilesUploadListDownloadDeleteAndRefusalsShowTheirReason() throws Exception {
+        RemoteFilesView files = open(RemoteFilesView.ID, RemoteFilesView.class);
+        awaitLive(files);
+        byte[] content = new byte[100_000]; // four chunks of 32 KiB
+        new Random(15).nextBytes(content);
+        Path local = Files.write(dir.resolve("payload.bin"), content);
+        Path onRobot = dir.resolve("fs/plugin-test/payload.bin");
+        Files.deleteIfExists(onRobot);
+
+        finish(files, files.upload(List.of(local), "plugin-test"), "upload");
+        assertArrayEquals(content, Files.readAllBytes(onRobot), "the robot's file differs from the uploaded one");
+
+        files.refresh();
+        waitFor(() -> files.listed("") != null, 20, files::message);
+        assertTrue(files.listed("").stream().anyMatch(e -> e.name().equals("plugin-test") && e.directory()), files
+                .listed("").toString());
+        files.viewer().expandToLevel(2);
+        waitFor(() -> files.listed("plugin-test") != null, 20, files::message);
+        files.viewer().expandToLevel(2);
+        assertEquals(List.of(new FileEntry("payload.bin", content.length, false)), files.listed("plugin-test"));
+        shot(files, "remote-files.png");
+
+        Path back = dir.resolve("downloaded.bin");
+        Files.deleteIfExists(back);
+        finish(files, files.download("plugin-test/payload.bin", back), "download");
+        assertArrayEquals(content, Files.readAllBytes(back), "downloaded bytes differ");
+
+        // refused by the robot: a directory that is not empty; by the path rule: '..'
+        finish(files, files.delete("plugin-test"), "delete");
+        assertTrue(files.messageIsError() && files.message().contains("invalid-state"), files.message());
+        assertTrue(Files.exists(onRobot), "a refused delete changed the disk");
+        finish(files, files.upload(List.of(local), "../outside"), "upload");
+        assertTrue(files.messageIsError() && files.message().contains("invalid-value"), files.message());
+        assertFalse(Files.exists(dir.resolve("outside")), "a refused upload wrote outside the root");
+
+        finish(files, files.delete("plugin-test/payload.bin"), "delete");
+        assertFalse(files.messageIsError(), files.message());
+        assertFalse(Files.exists(onRobot), "not deleted on the robot");
+        waitFor(() -> files.listed("plugin-test") != null && files.listed("plugin-test").isEmpty(), 20, () -> "listing "
+                + "after delete: " + files.listed("plugin-test"));
+    }
+
+    @Test
+    @Order(3)
+    void pidGainsWrittenAreReadBackFromTheBoard() throws Exception {
+        PidView pid = open(PidView.ID, PidView.class);
+        awaitLive(pid);
+        waitFor(() -> pid.gains() != null, 20, pid::message);
+        PidGains original = pid.gains();
+        assertFalse(original.motors().isEmpty());
+        // the SACT board holds whole numbers (its own units, 0..32767): new whole gains
+        PidGains changed = new PidGains(original.motors().stream().map(m -> new MotorGains(m.motor(), Math.round(m
+                .kp()) + 17, Math.round(m.ki()) + 3, Math.round(m.kd()) + 1)).toList());
+        try {
+            pid.type(changed);
+            pid.writeTyped();
+            waitFor(() -> pid.message().contains("write gains: done"), 20, pid::message);
+            // a fresh read from the robot: what its motor board holds now
+            pid.readGains();
+            waitFor(() -> pid.message().contains("read gains: done"), 20, pid::message);
+            assertGains(changed, pid.gains());
+            waitFor(() -> pid.plotted() > 3, 20, () -> "no telemetry plotted: " + pid.plotted());
+            shot(pid, "pid.png");
+        } finally {
+            pid.writeGains(original);
+            waitFor(() -> pid.message().contains("write gains"), 20, pid::message);
+        }
+        assertFalse(pid.messageIsError(), pid.message());
+    }
+
+    @Test
+    @Order(4)
+    void identityShowsTheRobotsVCardAndSavesItsQrCodeAsPng() throws Exception {
+        IdentityView identity = open(IdentityView.ID, IdentityView.class);
+        awaitLive(identity);
+        // FleetState.identity(robot) is new API the ControlML plug-in does not implement yet: its default refusal
+        // must reach the operator with its condition
+        identity.load();
+        waitFor(() -> identity.message().contains("identity:"), 20, identity::message);
+        assertTrue(identity.messageIsError() && identity.message().contains("unsupported-operation"), identity
+                .message());
+
+        // the robot's real vCard, as any XMPP client reads it, shown by the view
+        XMPPTCPConnection auditor = xmpp.login("auditor");
+        RobotIdentity card;
+        try {
+            IdentityResult<DeviceCard> fetched = DeviceIdentityManager.getInstanceFor(auditor).fetch(JidCreate
+                    .entityBareFrom(ROBOT_JID));
+            DeviceCard d = fetched.orElseThrow();
+            assertNotNull(d.inventory(), "the robot's vCard has no readable QR code: " + d.inventoryProblem());
+            DeviceProfile p = d.profile();
+            byte[] png = VCardManager.getInstanceFor(auditor).loadVCard(JidCreate.entityBareFrom(ROBOT_JID))
+                    .getAvatar();
+            card = new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(), p
+                    .latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), png);
+        } finally {
+            auditor.instantShutdown();
+        }
+        identity.display(card);
+        Map<String, String> shown = identity.shownTexts();
+        assertEquals(ROBOT_JID, shown.get("JID"));
+        assertEquals(card.uid(), shown.get("UUID"));
+        assertTrue(shown.get("UUID").startsWith("urn:uuid:"), shown.toString());
+        assertTrue(shown.get("Inventory").contains("board"), "QR code not decoded: " + shown);
+        shot(identity, "identity.png");
+
+        Path saved = dir.resolve("qr.png");
+        identity.saveQr(saved);
+        assertArrayEquals(card.qrPng(), Files.readAllBytes(saved));
+        assertEquals(card.uid(), QrInventory.decode(Files.readAllBytes(saved)).orElseThrow().uid());
+    }
+
+    // ------------------------------------------------------------------------------------------------ helpers
+
+    /** Gains as the board holds them. */
+    private static void assertGains(PidGains expected, PidGains actual) {
+        assertNotNull(actual);
+        assertEquals(expected.motors().size(), actual.motors().size(), actual.toString());
+        for (int i = 0; i < expected.motors().size(); i++) {
+            MotorGains e = expected.motors().get(i);
+            MotorGains a = actual.motors().get(i);
+            assertEquals(e.motor(), a.motor());
+            assertEquals(e.kp(), a.kp(), 0, actual.toString());
+            assertEquals(e.ki(), a.ki(), 0, actual.toString());
+            assertEquals(e.kd(), a.kd(), 0, actual.toString());
+        }
+    }
+
+    private static SimProcess.Truth truth() {
+        try {
+            return sim.truth();
+        } catch (java.io.IOException e) {
+            throw new AssertionError("simulator truth: " + e, e);
+        }
+    }
+
+    private static IWorkbenchPage page() {
+        return PlatformUI.getWorkbench().getActiveWorkbenchWindow().getActivePage();
+    }
+
+    private static <T extends IViewPart> T open(String id, Class<T> type) throws Exception {
+        return type.cast(page().showView(id));
+    }
+
+    /** Waits until the view has chosen the robot and the robot is live (present, telemetry fresh). */
+    private static void awaitLive(RobotView view) {
+        waitFor(() -> {
+            RobotState r = view.robotState();
+            return ROBOT_JID.equals(view.robot()) && r != null && r.availability() != Availability.OFFLINE && r
+                    .pose() != null && !r.isStale(Instant.now());
+        }, 60, () -> "robot not live in the view: " + view.robotState() + "; " + view.message());
+    }
+
+    /** Waits for a job and for its outcome on the view's message line. */
+    private static void finish(RobotView view, Job job, String what) {
+        assertNotNull(job, view.message());
+        waitFor(() -> job.getResult() != null && view.message().contains(what), 60, () -> what + " not finished: "
+                + view.message());
+    }
+
+    /**
+     * Runs the UI's event loop until {@code condition} holds: the robot, the server and the jobs live on other threads
+     * and processes, so a 20 ms timer wakes the loop to look again, up to the deadline.
+     */
+    static void waitFor(BooleanSupplier condition, double seconds, Supplier<String> what) {
+        Display d = Display.getCurrent();
+        long deadline = System.nanoTime() + (long) (seconds * 1e9);
+        while (!condition.getAsBoolean()) {
+            if (System.nanoTime() > deadline) {
+                String console = onboard == null ? "" : onboard.output();
+                throw new AssertionError("within " + seconds + " s: " + what.get() + "\nonboard console tail:\n"
+                        + console.substring(Math.max(0, console.length() - 3000)));
+            }
+            d.timerExec(20, () -> {
+            });
+            if (!d.readAndDispatch()) {
+                d.sleep();
+            }
+        }
+    }
+
+    private static void mouse(Control c, int type, int x, int y) {
+        Event e = new Event();
+        e.x = x;
+        e.y = y;
+        e.button = 1;
+        c.notifyListeners(type, e);
+    }
+
+    /** Saves a screenshot of a view, maximised for the picture, then restored. */
+    private static void shot(RobotView view, String name) throws Exception {
+        IWorkbenchPage page = page();
+        org.eclipse.ui.IWorkbenchPartReference ref = page.getReference(view);
+        page.setPartState(ref, IWorkbenchPage.STATE_MAXIMIZED);
+        try {
+            capture(view.content().getParent(), name);
+        } finally {
+            page.setPartState(ref, IWorkbenchPage.STATE_RESTORED);
+        }
+    }
+
+    /** Saves what the screen shows of a control (a view's area) to target/screenshots and docs/images. */
+    private static void capture(Control c, String name) throws Exception {
+        Display d = c.getDisplay();
+        while (d.readAndDispatch()) {
+            // layout and paint
+        }
+        Rectangle b = c.getBounds();
+        Point origin = c.getParent().toDisplay(b.x, b.y);
+        Image image = new Image(d, b.width, b.height);
+        GC gc = new GC(d);
+        Path png = Files.createDirectories(Paths.get(System.getProperty("sabot.screenshots", "target/screenshots")))
+                .resolve(name);
+        try {
+            gc.copyArea(image, origin.x, origin.y);
+            ImageLoader loader = new ImageLoader();
+            loader.data = new ImageData[] { image.getImageData() };
+            loader.save(png.toString(), SWT.IMAGE_PNG);
+        } finally {
+            gc.dispose();
+            image.dispose();
+        }
+        String root = System.getProperty("sabot.root");
+        if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
+            Files.copy(png, Files.createDirectories(Paths.get(root, "docs", "images")).resolve(name),
+                    StandardCopyOption.REPLACE_EXISTING);
+        }
+    }
+}
