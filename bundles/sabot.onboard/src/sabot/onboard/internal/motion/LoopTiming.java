@@ -58,6 +58,15 @@ final class LoopTiming {
         return lastEnd;
     }
 
+    /**
+     * Anchors the schedule: the first period is due at {@code firstStart} (System.nanoTime), as the executor computed
+     * it. Without an anchor the first period's actual start is taken, and its own lateness would offset every later
+     * measurement.
+     */
+    void anchor(long firstStart) {
+        expected = firstStart;
+    }
+
     void started(long now) {
         if (expected == Long.MIN_VALUE) {
             expected = now;

@@ -166,6 +166,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         if (c.realtimePriority() > 0) {
             loopThread.execute(() -> realtime(c.realtimePriority()));
         }
+        // the executor's first start is its scheduling time plus the delay; later ones follow one period apart
+        loop.timing().anchor(System.nanoTime() + periodNanos);
         loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
         LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}; bus time per period: encoder read "
                 + "{} ms + wheel write {} ms, then an optional read of {} ms when it fits (wire times, each after a "
