@@ -57,10 +57,11 @@ import sabot.onboard.task.OnboardTask;
 
 /**
  * Task {@code motion}: the robot's fixed-rate control loop and the {@link RobotMotion} service. Each period, on the
- * thread {@code sabot-control-loop}: commands queued by other threads are applied, the encoders are read, the
- * estimate updated, the safety checks run, the mode's controller computes a twist, the velocity smoother bounds it,
- * and the wheel speeds are written; the time left in the period then reads the inertial board or one sonar sensor
- * (their wire time is budgeted, so the loop never overruns on optional reads). Nothing in the loop waits on the
+ * thread {@code sabot-control-loop}: commands queued by other threads are applied, the encoders are read (every
+ * other period), the estimate updated, the safety checks run, the mode's controller computes a twist, the velocity
+ * smoother bounds it, and the wheel speeds are written; in the periods without an encoder read, the inertial board,
+ * one sonar sensor or the landmark board is read after the write (its wire time is budgeted, so the loop does not
+ * overrun on it). Nothing in the loop waits on the
  * network; planning runs on the thread {@code sabot-planner}. Settings: OSGI-INF/metatype/motion.xml.
  */
 @Component(name = "sabot.task.motion", configurationPolicy = ConfigurationPolicy.REQUIRE,
@@ -169,10 +170,10 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         // the executor's first start is its scheduling time plus the delay; later ones follow one period apart
         loop.timing().anchor(System.nanoTime() + periodNanos);
         loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
-        LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}; bus time per period: encoder read "
-                + "{} ms + wheel write {} ms, then an optional read of {} ms when it fits (wire times, each after a "
-                + "{} ms inter-frame silence)", c.rate(), plannerTask.planner().algorithm(),
-                trackerTask.config().controller(), ms(boards.encoderReadWireTime()), ms(boards.wheelWriteWireTime()),
+        LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}; bus time per period: wheel "
+                + "write {} ms and, in turn, the encoder read {} ms or a sensor read of up to {} ms (wire times, "
+                + "each after a {} ms inter-frame silence)", c.rate(), plannerTask.planner().algorithm(),
+                trackerTask.config().controller(), ms(boards.wheelWriteWireTime()), ms(boards.encoderReadWireTime()),
                 ms(boards.optionalReadWireTime()), ms(boards.interFrameDelay()));
     }
 
