@@ -62,9 +62,7 @@ class SafetyTest extends RigTest {
     void robotBrakesAndReportsWhenTheMotorBoardStopsAnswering(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
             PresenceWatch presence = PresenceWatch.subscribe(rig.operatorConnection, rig.robot.asBareJid());
-            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
-                    .isSuccess(), rig.onboard.output());
-            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
+            SimProcess.Truth moving = sendEastAndAwaitSpeed(rig);
             presence.await(p -> p.getMode() == Presence.Mode.dnd, "busy while driving");
             rig.sim.command("board 1 sact off");
             SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
@@ -88,9 +86,7 @@ class SafetyTest extends RigTest {
     void aJammedWheelIsAMotorFaultThatStopsTheRobotUntilANewCommand(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
             PresenceWatch presence = PresenceWatch.subscribe(rig.operatorConnection, rig.robot.asBareJid());
-            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
-                    .isSuccess(), rig.onboard.output());
-            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
+            SimProcess.Truth moving = sendEastAndAwaitSpeed(rig);
             rig.sim.command("wheel 1 left jam");
             SimProcess.Truth stopped = awaitStandstill(rig.sim, 5);
             // the firmware latches a following error within a fraction of a second; the loop sees it at its next
@@ -106,10 +102,15 @@ class SafetyTest extends RigTest {
             rig.sim.command("wheel 1 left free");
             SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
             assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved again without a command: " + later);
-            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
-                    .isSuccess(), rig.onboard.output());
-            awaitSpeed(rig.sim, 0.2, 20); // a new goal acknowledges the fault and drives again
+            sendEastAndAwaitSpeed(rig); // a new goal acknowledges the fault and drives again
         }
+    }
+
+    /** Sends the robot east along the corridor (8.0, 1.0) and waits until its true speed passes 0.2 m/s. */
+    private static SimProcess.Truth sendEastAndAwaitSpeed(RobotRig rig) throws Exception {
+        assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.1, 0.3))
+                .isSuccess(), rig.onboard.output());
+        return awaitSpeed(rig.sim, 0.2, 20);
     }
 
     @Test
