@@ -95,12 +95,16 @@ final class Localizer {
      * up to 0.05 m and turns up to 0.2 rad in a 100 ms old measurement), so that the EKF, which takes measurements in
      * time order, can apply it now.
      *
-     * @return the EKF's verdict, or null when the id is not on the map or there is no estimate yet
+     * @return the EKF's verdict ({@code REJECTED_OUT_OF_ORDER} before the first encoder reading starts the
+     *         estimate), or null when the id is not on the map
      */
     MeasurementResult landmark(double time, int id, double range, double bearing, double age) {
         Landmark l = landmarks.get(id);
-        if (l == null || Double.isNaN(ekf.time())) {
+        if (l == null) {
             return null;
+        }
+        if (Double.isNaN(ekf.time())) {
+            return MeasurementResult.REJECTED_OUT_OF_ORDER;
         }
         double v = ekf.state(PoseEkf.V);
         double w = ekf.state(PoseEkf.OMEGA);
