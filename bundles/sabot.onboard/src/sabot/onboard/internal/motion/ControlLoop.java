@@ -253,7 +253,11 @@ final class ControlLoop {
             return "the " + board + " board does not answer";
         }
         if (localizer.isStale(t)) {
-            return "no odometry for " + localizerTask.config().odometryTimeout() + " s";
+            // odometry goes stale before the bus calls the motor board faulted (its encoders are read every other
+            // period): name the board when it is the reason
+            double timeout = localizerTask.config().odometryTimeout();
+            return boards.motorBoardSilentFor(timeout / 2) ? "the sact board does not answer (no odometry for "
+                    + timeout + " s)" : "no odometry for " + timeout + " s";
         }
         double sigma = localizer.positionSigma();
         if (sigma > localizerTask.config().maxPositionSigma()) {

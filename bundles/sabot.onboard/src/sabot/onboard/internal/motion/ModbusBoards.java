@@ -2,6 +2,7 @@ package sabot.onboard.internal.motion;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 
@@ -174,6 +175,12 @@ final class ModbusBoards implements RobotBoards {
             }
         }
         return null;
+    }
+
+    @Override
+    public boolean motorBoardSilentFor(double seconds) {
+        Instant last = bus.sact().counters().lastGoodAnswer();
+        return last == null || last.isBefore(Instant.now().minusNanos(Math.round(seconds * 1e9)));
     }
 
     @Override

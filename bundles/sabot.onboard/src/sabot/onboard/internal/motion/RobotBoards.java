@@ -87,6 +87,9 @@ public interface RobotBoards {
     /** Writes the gains (validated before anything is written) and returns them read back. */
     PidGains writeGains(PidGains gains) throws IOException;
 
+    /** @return whether the motor board's last good answer is older than {@code seconds} (or it never answered) */
+    boolean motorBoardSilentFor(double seconds);
+
     /** @return the name of the first board that has not answered for longer than the bus's fault time, or null */
     String faultedBoard();
 
