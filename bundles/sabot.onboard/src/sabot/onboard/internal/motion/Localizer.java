@@ -16,7 +16,8 @@ import sabot.model.robot.RobotDescription;
 
 /**
  * The robot's pose estimate: wheel odometry (RK2 on encoder counts) fused with the inertial board's yaw rate and
- * longitudinal acceleration, and with sightings of the map's ceiling landmarks (absolute fixes), in an EKF. Used by the control loop's thread only (not thread-safe).
+ * longitudinal acceleration, and with sightings of the map's ceiling landmarks (absolute fixes), in an EKF. Used by
+ * the control loop's thread only (not thread-safe).
  */
 final class Localizer {
 

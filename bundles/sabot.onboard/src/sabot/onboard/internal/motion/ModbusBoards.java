@@ -50,7 +50,7 @@ final class ModbusBoards implements RobotBoards {
         }
     }
 
-    /** @return which motors have a latched fault and why, e.g. "left motor: following error" */
+    /** @return which motors have a latched fault and why, e.g. "left motor fault: following error (...)" */
     private String latchedFaults() {
         Wheels w;
         try {
