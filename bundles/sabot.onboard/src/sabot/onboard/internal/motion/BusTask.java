@@ -28,7 +28,8 @@ import sabot.onboard.task.OnboardTask;
 /**
  * Task {@code bus}: the robot's RS-485 line (Modbus RTU master on a serial device, or RTU framing over TCP) and the
  * board clients on it, registered as services ({@link SactClient}, {@link InsClient}, {@link SonarClient},
- * {@link LandmarkClient}: the landmark board is optional) and as the control loop's {@link RobotBoards}. Settings: OSGI-INF/metatype/bus.xml.
+ * {@link LandmarkClient}: the landmark board is optional) and as the control loop's {@link RobotBoards}. Settings:
+ * OSGI-INF/metatype/bus.xml.
  */
 @Component(name = "sabot.task.bus", configurationPolicy = ConfigurationPolicy.REQUIRE, service = OnboardTask.class)
 public final class BusTask implements OnboardTask {

@@ -269,8 +269,9 @@ final class ControlLoop {
 
     /**
      * Reads the inertial board, one sonar sensor or the landmark board when the rest of the period leaves the time for
-     * it (in the periods without an encoder read). Not while a joystick drives: the spare bus time is kept for writing its twists as they arrive (odometry alone estimates the
-     * pose meanwhile, and the sonar guards missions, not teleop).
+     * it (in the periods without an encoder read). Not while a joystick drives: the spare bus time is kept for
+     * writing its twists as they arrive (odometry alone estimates the pose meanwhile, and the sonar guards missions,
+     * not teleop).
      */
     private void optionalReads(double t) {
         if (mode == Mode.TELEOP) {
