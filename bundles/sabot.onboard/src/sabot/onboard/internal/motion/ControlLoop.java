@@ -463,7 +463,9 @@ final class ControlLoop {
         double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
         double positionTolerance = goal == null ? config.goalTolerance() : goal.positionTolerance();
         double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
-        if (goalChecker.isGoalReached(pose, target) && Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1) {
+        // at rest first: the checker latches the position once within tolerance, and a robot passing through the
+        // tolerance at speed must not have it latched (it would then be done wherever it comes to rest)
+        if (Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1 && goalChecker.isGoalReached(pose, target)) {
             brake();
             complete(t);
             return Twist2D.ZERO;
