@@ -175,6 +175,8 @@ void robot_step(robot_t *r)
         r->body.collisions++;
     }
     r->now_us += SACT_TS_US;
+    if (r->frame_end_us && r->now_us >= r->frame_end_us)
+        r->frame_end_us = 0;   /* the boards' main loops below see the silence in this step */
 
     ins_update(&r->ins, &r->body, r->now_us);
     sonar_update(&r->sonar, &r->body, r->now_us, arena_raycast, r);
@@ -206,8 +208,10 @@ size_t robot_bus_write(robot_t *r, int port, const uint8_t *bytes, size_t len)
         r->rx_head = next;
     }
     r->line_free_us = t;
-    if (n > 0)
+    if (n > 0) {
         r->master_port = port;
+        r->frame_end_us = t + r->sact.modbus.t35_us;
+    }
     return n;
 }
 
@@ -231,4 +235,10 @@ uint64_t robot_bus_next_due(const robot_t *r)
         if (r->tx[i].due_us < next)
             next = r->tx[i].due_us;
     return next;
+}
+
+uint64_t robot_bus_next_event(const robot_t *r)
+{
+    uint64_t next = robot_bus_next_due(r);
+    return r->frame_end_us && r->frame_end_us < next ? r->frame_end_us : next;
 }

@@ -84,6 +84,7 @@ struct robot {
     uint64_t rx_time[BUS_RX_QUEUE];
     unsigned rx_head, rx_tail;
     uint64_t line_free_us;   /* when the last queued byte has been received */
+    uint64_t frame_end_us;   /* when the boards see the end of the frame on the line (0: none pending) */
     int master_port;         /* transport that sent the last request */
     bus_frame_t tx[BUS_TX_QUEUE];
     unsigned tx_count;
@@ -106,5 +107,9 @@ bool robot_bus_take(robot_t *r, bus_frame_t *out);
 
 /* Time until the next answer is due (UINT64_MAX when none). */
 uint64_t robot_bus_next_due(const robot_t *r);
+
+/* The next simulated time at which the bus needs a step: the end of a request (3.5 characters of silence
+ * after its last byte, when the boards answer) or an answer due (UINT64_MAX when the line is idle). */
+uint64_t robot_bus_next_event(const robot_t *r);
 
 #endif

@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <termios.h>
 #include <time.h>
@@ -29,7 +30,8 @@
 
 #define MAX_ROBOTS 16
 #define MAX_CLIENTS 8          /* TCP connections per robot */
-#define SLICE_STEPS 20         /* 1 ms of simulated time between I/O checks */
+#define SLICE_STEPS 20         /* 1 ms: the longest simulated time between I/O checks on an idle bus */
+#define CATCH_UP_SLICE_S 0.005 /* the longest stretch of stepping without I/O when behind */
 #define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
 
 typedef struct {
@@ -389,6 +391,53 @@ static void read_requests(robot_t *r, transports_t *t, struct pollfd *pfd)
     }
 }
 
+/* Simulated time follows the wall clock (times the speed factor) in control periods. */
+typedef struct {
+    robot_t *robots;
+    transports_t *tr;
+    int n_robots;
+    scene_t *scene;
+    FILE *truth;                /* NULL: no ground-truth log */
+    uint64_t sim_us, next_truth_us;
+    double start, speed;        /* wall clock at simulated time 0; simulated seconds per wall second */
+} sim_run_t;
+
+static void step_all(sim_run_t *run)
+{
+    for (int i = 0; i < run->n_robots; i++)
+        robot_step(&run->robots[i]);
+    scene_step(run->scene, SACT_TS_US * 1e-6);
+    run->sim_us += SACT_TS_US;
+    if (run->truth && run->sim_us >= run->next_truth_us) {
+        run->next_truth_us += TRUTH_PERIOD_US;
+        for (int i = 0; i < run->n_robots; i++) {
+            const body_state_t *b = &run->robots[i].body;
+            fprintf(run->truth, "%.3f,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%llu\n",
+                    run->sim_us * 1e-6, i + 1, b->x, b->y, b->theta, b->v, b->omega, b->wheel[0].omega,
+                    b->wheel[1].omega, b->wheel[0].current, b->wheel[1].current,
+                    (unsigned long long)b->collisions);
+        }
+    }
+    /* Each answer leaves at the period its last byte is on the line, not at the end of a slice. */
+    for (int i = 0; i < run->n_robots; i++)
+        flush_answers(&run->robots[i], &run->tr[i]);
+}
+
+/* Steps the simulation up to the wall clock's time. When far behind (a high speed factor, a starved
+ * CPU) it stops after CATCH_UP_SLICE_S of work so that the bus and the control channel stay served. */
+static void catch_up(sim_run_t *run, uint64_t end_us)
+{
+    double began = wall_seconds();
+    uint64_t target_us = (uint64_t)((began - run->start) * run->speed * 1e6);
+    if (target_us > end_us)
+        target_us = end_us;
+    for (unsigned k = 1; run->sim_us + SACT_TS_US <= target_us && !stop_requested; k++) {
+        step_all(run);
+        if (k % SLICE_STEPS == 0 && wall_seconds() - began > CATCH_UP_SLICE_S)
+            break;
+    }
+}
+
 static int run_bench(const options_t *o, const world_t *world, robot_config_t *cfg)
 {
     robot_t *r = calloc(1, sizeof *r);
@@ -482,9 +531,9 @@ int main(int argc, char **argv)
         }
     }
 
-    uint64_t sim_us = 0, next_truth_us = 0;
+    sim_run_t run = { robots, tr, o.robots, &scene, NULL, 0, 0, 0.0, o.speed };
     control_server_t control = { .listen_fd = -1 };
-    control_target_t target = { &scene, robots, o.robots, &sim_us };
+    control_target_t target = { &scene, robots, o.robots, &run.sim_us };
     if (o.control_port >= 0 && control_open(&control, o.control_port)) {
         fprintf(stderr, "sabot-sim: control port %d: %s\n", o.control_port, strerror(errno));
         return 1;
@@ -522,39 +571,20 @@ int main(int argc, char **argv)
     fflush(stdout);
 
 
-    double start = wall_seconds();
+    run.truth = truth;
+    /* Wake for a bus event when it is due, not up to 50 µs later (the default timer slack). */
+    prctl(PR_SET_TIMERSLACK, 1UL);
+    run.start = wall_seconds();
     uint64_t end_us = o.duration > 0 ? (uint64_t)(o.duration * 1e6) : UINT64_MAX;
-    while (!stop_requested && sim_us < end_us) {
-        uint64_t target_us = (uint64_t)((wall_seconds() - start) * o.speed * 1e6);
-        /* Catch up in 1 ms slices, answering between slices. */
-        while (sim_us + SLICE_STEPS * SACT_TS_US <= target_us && sim_us < end_us && !stop_requested) {
-            for (int s = 0; s < SLICE_STEPS; s++) {
-                for (int i = 0; i < o.robots; i++)
-                    robot_step(&robots[i]);
-                scene_step(&scene, SACT_TS_US * 1e-6);
-                sim_us += SACT_TS_US;
-                if (truth && sim_us >= next_truth_us) {
-                    next_truth_us += TRUTH_PERIOD_US;
-                    for (int i = 0; i < o.robots; i++) {
-                        const body_state_t *b = &robots[i].body;
-                        fprintf(truth, "%.3f,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%llu\n",
-                                sim_us * 1e-6, i + 1, b->x, b->y, b->theta, b->v, b->omega, b->wheel[0].omega,
-                                b->wheel[1].omega, b->wheel[0].current, b->wheel[1].current,
-                                (unsigned long long)b->collisions);
-                    }
-                }
-            }
-            for (int i = 0; i < o.robots; i++)
-                flush_answers(&robots[i], &tr[i]);
-            /* Keep I/O responsive when far behind (e.g. a high speed factor). */
-            if (wall_seconds() - start > (double)target_us * 1e-6 / o.speed + 0.005)
-                break;
-        }
+    while (!stop_requested && run.sim_us < end_us) {
+        catch_up(&run, end_us);
 
-        /* Wait for bytes, at most until the next slice is due in wall time. */
+        /* Sleep until the bus needs a step (a request's end, an answer due) or the next
+         * physics slice, whichever is first; a master's bytes or a control command wake it sooner. */
         struct pollfd pfd[MAX_ROBOTS][2 + MAX_CLIENTS];
         struct pollfd flat[MAX_ROBOTS * (2 + MAX_CLIENTS) + CONTROL_POLLFDS];
         int nfds = 0;
+        uint64_t wake_us = run.sim_us + SLICE_STEPS * SACT_TS_US;
         for (int i = 0; i < o.robots; i++) {
             pfd[i][0] = (struct pollfd){ tr[i].pty_master, POLLIN, 0 };
             pfd[i][1] = (struct pollfd){ tr[i].listen_fd, POLLIN, 0 };
@@ -562,15 +592,22 @@ int main(int argc, char **argv)
                 pfd[i][2 + k] = (struct pollfd){ tr[i].client[k], POLLIN, 0 };
             for (int k = 0; k < 2 + MAX_CLIENTS; k++)
                 flat[nfds++] = pfd[i][k];
+            uint64_t event = robot_bus_next_event(&robots[i]);
+            if (event < wake_us)
+                wake_us = event;
         }
         struct pollfd *control_pfd = &flat[nfds];
         control_pollfds(&control, control_pfd);
         nfds += CONTROL_POLLFDS;
-        double next_slice_wall = start + (double)(sim_us + SLICE_STEPS * SACT_TS_US) * 1e-6 / o.speed;
-        int timeout_ms = (int)ceil((next_slice_wall - wall_seconds()) * 1000.0);
-        if (timeout_ms < 0)
-            timeout_ms = 0;
-        if (poll(flat, (nfds_t)nfds, timeout_ms) > 0) {
+        /* The step that reaches an event ends at the first period boundary at or after it. */
+        wake_us = (wake_us + SACT_TS_US - 1) / SACT_TS_US * SACT_TS_US;
+        double wait_s = run.start + (double)wake_us * 1e-6 / run.speed - wall_seconds();
+        if (wait_s < 0)
+            wait_s = 0;
+        struct timespec timeout = { (time_t)wait_s, (long)((wait_s - floor(wait_s)) * 1e9) };
+        if (ppoll(flat, (nfds_t)nfds, &timeout, NULL) > 0) {
+            /* Bring the simulation to now first: a request's bytes reach the line when they came. */
+            catch_up(&run, end_us);
             for (int i = 0; i < o.robots; i++) {
                 for (int k = 0; k < 2 + MAX_CLIENTS; k++)
                     pfd[i][k].revents = flat[i * (2 + MAX_CLIENTS) + k].revents;

@@ -173,9 +173,14 @@ final class ControlLoop {
 
     // --------------------------------------------------------------------------------------------- one period
 
-    MotionTask.Snapshot tick() {
-        long start = System.nanoTime();
-        timing.started(start);
+    /**
+     * One period of the loop.
+     *
+     * @param start     System.nanoTime when the period's run began
+     * @param scheduled when the schedule had it due (System.nanoTime)
+     */
+    MotionTask.Snapshot tick(long start, long scheduled) {
+        timing.started(start, scheduled);
         double t = (start - t0) * 1e-9;
         // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
         // that read's wire time to its latency

@@ -59,19 +59,14 @@ final class LoopTiming {
     }
 
     /**
-     * Anchors the schedule: the first period is due at {@code firstStart} (System.nanoTime), as the executor computed
-     * it. Without an anchor the first period's actual start is taken, and its own lateness would offset every later
-     * measurement.
+     * A period started.
+     *
+     * @param now       System.nanoTime at its start
+     * @param scheduled when the executor had it due (System.nanoTime): its own schedule, read inside the period, so
+     *                  that the measurement carries no offset of its own
      */
-    void anchor(long firstStart) {
-        expected = firstStart;
-    }
-
-    void started(long now) {
-        if (expected == Long.MIN_VALUE) {
-            expected = now;
-        }
-        long late = Math.abs(now - expected);
+    void started(long now, long scheduled) {
+        long late = Math.abs(now - scheduled);
         jitter.add(late);
         if (late > LATE_NANOS && lastLate <= LATE_NANOS) {
             LOG.info("control loop period started {} ms late (the previous period's work took {} ms)",
@@ -81,7 +76,7 @@ final class LoopTiming {
         lastLate = late;
         // a fixed-rate schedule runs a missed period late rather than skipping it: each start is due one period after
         // the previous start was due
-        expected += periodNanos;
+        expected = scheduled + periodNanos;
         started = now;
     }
 

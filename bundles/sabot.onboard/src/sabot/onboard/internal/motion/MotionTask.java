@@ -12,6 +12,7 @@ import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
 
@@ -136,6 +137,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private MotionLimits physicalLimits;
     private volatile MotionLimits limits;
     private ScheduledExecutorService loopThread;
+    private volatile ScheduledFuture<?> schedule;
     private ExecutorService plannerThread;
     private ExecutorService notifier;
     private ControlLoop loop;
@@ -167,9 +169,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         if (c.realtimePriority() > 0) {
             loopThread.execute(() -> realtime(c.realtimePriority()));
         }
-        // the executor's first start is its scheduling time plus the delay; later ones follow one period apart
-        loop.timing().anchor(System.nanoTime() + periodNanos);
-        loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
+        schedule = loopThread.scheduleAtFixedRate(this::tick, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
         LOG.info("motion task started: control loop {} Hz, planner {}, tracker {}; bus time per period: wheel "
                 + "write {} ms and, in turn, the encoder read {} ms or a sensor read of up to {} ms (wire times, "
                 + "each after a {} ms inter-frame silence)", c.rate(), plannerTask.planner().algorithm(),
@@ -248,9 +248,14 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     private void tick() {
+        long start = System.nanoTime();
+        // inside its run a periodic task's delay is the time since it was due (negative or zero): the executor's own
+        // schedule, which the loop's jitter is measured against (the first run may come before the assignment)
+        ScheduledFuture<?> s = schedule;
+        long scheduled = s == null ? start : start + s.getDelay(TimeUnit.NANOSECONDS);
         try {
             applyCommands();
-            snapshot = loop.tick();
+            snapshot = loop.tick(start, scheduled);
         } catch (RuntimeException e) {
             // A bug must not stop the loop's thread (scheduleAtFixedRate would end silently): brake and say why.
             LOG.error("control loop error, braking", e);
