@@ -2,13 +2,15 @@ package sabot.onboard.internal;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 
+import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.atomic.AtomicReference;
 
 import org.junit.jupiter.api.Test;
 
-/** The control loop's real-time policy: applied to the calling thread only, or refused with the reason. */
+/** The control loop's real-time policy and timer slack: applied to the calling thread only, or refused with the reason. */
 class RealtimeSchedulingTest {
 
     @Test
@@ -28,6 +30,23 @@ class RealtimeSchedulingTest {
             assertEquals("0", policy.get(), "refused (" + refused.get() + "): the ordinary policy stays");
         }
         assertEquals("0", RealtimeScheduling.currentPolicy(), "other threads keep the ordinary policy");
+    }
+
+    @Test
+    void timerSlackIsSetForTheCallingThreadOnly() throws InterruptedException {
+        long before = RealtimeScheduling.currentTimerSlack();
+        AtomicReference<String> refused = new AtomicReference<>();
+        AtomicLong slack = new AtomicLong();
+        Thread t = new Thread(() -> {
+            refused.set(RealtimeScheduling.applyTimerSlackToCurrentThread(1_000));
+            slack.set(RealtimeScheduling.currentTimerSlack());
+        }, "slack-test");
+        t.start();
+        t.join();
+        assertNull(refused.get(), "a thread may set its own timer slack");
+        assertEquals(1_000, slack.get());
+        assertEquals(before, RealtimeScheduling.currentTimerSlack(), "other threads keep theirs");
+        assertThrows(IllegalArgumentException.class, () -> RealtimeScheduling.applyTimerSlackToCurrentThread(0));
     }
 
     @Test

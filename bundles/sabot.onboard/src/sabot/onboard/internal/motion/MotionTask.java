@@ -100,6 +100,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
          *         privilege the loop runs at the ordinary policy and the log says why
          */
         int realtimePriority() default 0;
+
+        /**
+         * @return timer slack of the control loop's thread, µs: how late the kernel may wake it after a period's
+         *         timed wait (and each wait for a board's answer) to group wake-ups; Linux gives ordinary threads 50
+         */
+        double timerSlack() default 1;
     }
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
@@ -166,6 +172,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
                 Thread.MAX_PRIORITY));
         long periodNanos = Math.round(1e9 / c.rate());
+        loopThread.execute(() -> timerSlack(c.timerSlack()));
         if (c.realtimePriority() > 0) {
             loopThread.execute(() -> realtime(c.realtimePriority()));
         }
@@ -188,6 +195,14 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         } else {
             LOG.warn("control loop thread left at the ordinary scheduling policy (motion.realtimePriority = {}): {}",
                     priority, refused);
+        }
+    }
+
+    private static void timerSlack(double micros) {
+        String refused = RealtimeScheduling.applyTimerSlackToCurrentThread(Math.max(1, Math.round(micros * 1000)));
+        if (refused != null) {
+            LOG.warn("control loop thread keeps its timer slack of {} ns (motion.timerSlack = {} µs): {}",
+                    RealtimeScheduling.currentTimerSlack(), micros, refused);
         }
     }
 
