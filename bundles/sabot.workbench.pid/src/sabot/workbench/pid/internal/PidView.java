@@ -85,6 +85,7 @@ public final class PidView extends RobotView {
         });
         Composite step = new Composite(parent, SWT.NONE);
         step.setLayout(new GridLayout(6, false));
+        step.setLayoutData(new GridData(SWT.FILL, SWT.TOP, true, false));
         new Label(step, SWT.NONE).setText("Wheel");
         wheel = new org.eclipse.swt.widgets.Combo(step, SWT.READ_ONLY);
         wheel.setItems(WHEELS);
@@ -104,7 +105,8 @@ public final class PidView extends RobotView {
         });
         figuresLabel = new Label(step, SWT.NONE);
         figuresLabel.setText("in maintenance only: the robot moves one wheel by the step");
-        figuresLabel.setLayoutData(new GridData(SWT.FILL, SWT.CENTER, true, false));
+        // a line of its own: two tests' figures side by side are wider than the controls
+        figuresLabel.setLayoutData(new GridData(SWT.FILL, SWT.CENTER, true, false, 6, 1));
         stepChart = new Chart(parent, SWT.NONE);
         GridData sg = new GridData(SWT.FILL, SWT.FILL, true, true);
         sg.heightHint = 220;
