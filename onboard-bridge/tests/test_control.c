@@ -331,6 +331,58 @@ static void gearRatioOf66IsHonoured(void)
     CHECK(abs(r->sact.max_velocity_setpoint - 1836) <= 1, "limit %d", r->sact.max_velocity_setpoint);
 }
 
+/* The board's own recording of a step (map file step_capture) is the measured position
+ * every `decimation` periods from the period after the step, relative to the step's. */
+static void stepCaptureRecordsTheResponseAtTheControlRate(void)
+{
+    robot_t *r = fresh();
+    run(r, 0.1);
+    sact_board_t *b = &r->sact;
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_MOTOR,
+                              MB_SACT_FILE_MOTOR_RIGHT) == MB_OK, "motor");
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_DECIMATION, 8) == MB_OK, "dec");
+    int32_t start = position_of(r, 1), left = position_of(r, 0);
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_STEP, 300) == MB_OK, "step");
+    CHECK(sact_read_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_STEP) == 0, "step reads 0");
+    int16_t expected[SACT_CAPTURE_SAMPLES];
+    for (int i = 0; i < SACT_CAPTURE_SAMPLES * 8; i++) {
+        robot_step(r);   /* the board samples at the end of its control period */
+        if (i % 8 == 0)
+            expected[i / 8] = (int16_t)(position_of(r, 1) - start);
+    }
+    CHECK(sact_read_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_RECORDED) ==
+          SACT_CAPTURE_SAMPLES, "recorded %u", sact_read_register(b, MB_SACT_FILE_STEP_CAPTURE,
+                                                                   MB_SACT_STEP_CAPTURE_RECORDED));
+    int mismatches = 0;
+    for (int k = 0; k < SACT_CAPTURE_SAMPLES; k++)
+        mismatches += (int16_t)sact_read_register(b, MB_SACT_FILE_STEP_CAPTURE,
+                                                  (uint16_t)(MB_SACT_STEP_CAPTURE_RESPONSE + k)) != expected[k];
+    CHECK(mismatches == 0, "%d samples differ from the positions measured", mismatches);
+    CHECK(expected[0] == 0 && abs(expected[SACT_CAPTURE_SAMPLES - 1] - 300) <= 6, "from 0 to within 2 %% of the step: %d..%d",
+          expected[0], expected[SACT_CAPTURE_SAMPLES - 1]);
+    printf("    figure: 300-count step recorded by the board: sample 10 (4 ms) = %d counts\n", expected[10]);
+    CHECK(abs(position_of(r, 0) - left) <= 20, "the other wheel held (moved %d counts)", position_of(r, 0) - left);
+    /* more periods: the recording stays as it was */
+    run(r, 0.01);
+    CHECK(sact_read_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_RESPONSE) == 0, "kept");
+}
+
+static void stepCaptureIsRefusedOnABrakedOrFaultedMotor(void)
+{
+    robot_t *r = fresh();
+    sact_board_t *b = &r->sact;
+    sact_write_register(b, MB_SACT_FILE_MOTOR_LEFT, MB_SACT_MOTOR_BRAKE, 1);
+    run(r, 0.01);
+    uint32_t before = b->motor[0].commanded;
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_STEP, 100) ==
+          MB_SERVER_DEVICE_FAILURE, "braked: exception 4");
+    CHECK(b->motor[0].commanded == before && !b->capture.active, "nothing changed");
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_STEP, 2049) ==
+          MB_ILLEGAL_DATA_VALUE, "over the map's bound: exception 3");
+    CHECK(sact_write_register(b, MB_SACT_FILE_STEP_CAPTURE, MB_SACT_STEP_CAPTURE_MOTOR, 3) ==
+          MB_ILLEGAL_DATA_VALUE, "motor 3: exception 3");
+}
+
 int main(void)
 {
     printf("test_control\n");
@@ -346,6 +398,8 @@ int main(void)
     RUN(deadmanStopsTheRobotWhenCommandsStop);
     RUN(tighterSpeedLimitClampsTheCurrentSetPoint);
     RUN(gearRatioOf66IsHonoured);
+    RUN(stepCaptureRecordsTheResponseAtTheControlRate);
+    RUN(stepCaptureIsRefusedOnABrakedOrFaultedMotor);
     free(slot);
     return REPORT("test_control");
 }

@@ -69,6 +69,19 @@ typedef struct {
     uint16_t max_speed_mm_s, max_accel_mm_s2, command_timeout_ms;
 } sact_robot_config_t;
 
+/* Step-response recording (map file step_capture): written in the main loop under the
+ * Modbus lock, filled by the control interrupt. */
+#define SACT_CAPTURE_SAMPLES MB_SACT_STEP_CAPTURE_RECORDED_MAX
+typedef struct {
+    uint8_t motor;                  /* index 0/1 */
+    uint16_t decimation;            /* control periods per sample */
+    uint16_t phase;                 /* periods until the next sample */
+    uint16_t recorded;
+    bool active;
+    uint32_t start;                 /* position_counts at the step */
+    int16_t response[SACT_CAPTURE_SAMPLES];  /* counts relative to start */
+} sact_capture_t;
+
 typedef struct {
     hal_port_t *hal;
     sact_motor_t motor[HAL_MOTORS];
@@ -79,13 +92,14 @@ typedef struct {
     int32_t feedforward_gain;       /* PWM LSB per 8.8 velocity LSB, 16.16 */
     uint32_t last_command_us;
     bool deadman_tripped;
+    sact_capture_t capture;
     uint32_t irq_state;             /* saved by the Modbus lock */
     mb_slave_t modbus;
 } sact_board_t;
 
 void sact_init(sact_board_t *b, hal_port_t *hal, uint32_t baud);
 
-/* Timer interrupt, every Ts: both motors. */
+/* Timer interrupt, every Ts: both motors, then the step-response recording. */
 void sact_control_isr(sact_board_t *b);
 
 /* One control step of one motor (exposed for the callgrind measurement). */

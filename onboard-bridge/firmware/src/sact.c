@@ -149,10 +149,27 @@ void sact_motor_step(sact_board_t *b, unsigned m)
     M->window_index = (uint8_t)((k + 1u) & (SACT_WINDOW - 1u));
 }
 
+/* One sample of a step response every `decimation` periods, from the period after the
+ * step on: the position measured at the start of this period, relative to the step's. */
+static void capture_sample(sact_board_t *b)
+{
+    sact_capture_t *c = &b->capture;
+    if (!c->active)
+        return;
+    if (c->phase == 0) {
+        c->response[c->recorded++] = sat16(mod_diff(b->motor[c->motor].position_counts, c->start));
+        if (c->recorded == SACT_CAPTURE_SAMPLES)
+            c->active = false;
+        c->phase = c->decimation;
+    }
+    c->phase--;
+}
+
 void sact_control_isr(sact_board_t *b)
 {
     for (unsigned m = 0; m < HAL_MOTORS; m++)
         sact_motor_step(b, m);
+    capture_sample(b);
 }
 
 void sact_uart_rx_isr(sact_board_t *b, uint8_t byte)
@@ -254,6 +271,20 @@ uint16_t sact_read_register(sact_board_t *b, uint16_t file, uint16_t record)
         default: return 0;
         }
     }
+    if (file == MB_SACT_FILE_STEP_CAPTURE) {
+        const sact_capture_t *c = &b->capture;
+        switch (record) {
+        case MB_SACT_STEP_CAPTURE_MOTOR: return (uint16_t)(c->motor == 0 ? MB_SACT_FILE_MOTOR_LEFT
+                                                                         : MB_SACT_FILE_MOTOR_RIGHT);
+        case MB_SACT_STEP_CAPTURE_DECIMATION: return c->decimation;
+        case MB_SACT_STEP_CAPTURE_RECORDED: return c->recorded;
+        default:
+            if (record >= MB_SACT_STEP_CAPTURE_RESPONSE &&
+                record < MB_SACT_STEP_CAPTURE_RESPONSE + SACT_CAPTURE_SAMPLES)
+                return (uint16_t)c->response[record - MB_SACT_STEP_CAPTURE_RESPONSE];
+            return 0;   /* step reads 0 */
+        }
+    }
     if (!motor_file(file, &m))
         return 0;
     const sact_motor_t *M = &b->motor[m];
@@ -302,8 +333,14 @@ static mb_exception_t sact_check_write(void *board, uint16_t file, uint16_t reco
     unsigned m;
     if (file == MB_SACT_FILE_DRIVE)
         return check_velocity(b, record == MB_SACT_DRIVE_VELOCITY_SETPOINT_RIGHT, value);
+    if (file == MB_SACT_FILE_STEP_CAPTURE && record == MB_SACT_STEP_CAPTURE_STEP && value != 0) {
+        /* A braked or faulted loop holds the commanded position on the measured one: the
+         * step would vanish and the recording show nothing. */
+        const sact_motor_t *M = &b->motor[b->capture.motor];
+        return (M->status & ST_FAULT) || M->brake ? MB_SERVER_DEVICE_FAILURE : MB_OK;
+    }
     if (!motor_file(file, &m))
-        return MB_OK;   /* config: the static bounds of the map are the rule */
+        return MB_OK;   /* config, capture: the static bounds of the map are the rule */
     switch (record) {
     case MB_SACT_MOTOR_VELOCITY_SETPOINT:
         return check_velocity(b, m, value);
@@ -344,6 +381,32 @@ static void sact_apply_write(void *board, uint16_t file, uint16_t record, uint16
         default: return;
         }
         derive_limits(b);
+        return;
+    }
+    if (file == MB_SACT_FILE_STEP_CAPTURE) {
+        sact_capture_t *c = &b->capture;
+        switch (record) {
+        case MB_SACT_STEP_CAPTURE_MOTOR:
+            c->motor = value == MB_SACT_FILE_MOTOR_LEFT ? 0u : 1u;
+            c->active = false;   /* a recording in progress would mix two motors */
+            break;
+        case MB_SACT_STEP_CAPTURE_DECIMATION:
+            c->decimation = value;
+            c->active = false;   /* ... or two sample periods */
+            break;
+        case MB_SACT_STEP_CAPTURE_STEP:
+            if (value == 0)
+                break;
+            /* Called with the control interrupt masked: the step and the start of the
+             * recording land in the same control period. */
+            b->motor[c->motor].commanded += (uint32_t)((int32_t)(int16_t)value * (1 << SACT_POS_FRAC_BITS));
+            c->start = b->motor[c->motor].position_counts;
+            c->recorded = 0;
+            c->phase = 0;
+            c->active = true;
+            break;
+        default: break;
+        }
         return;
     }
     if (!motor_file(file, &m))
@@ -416,7 +479,8 @@ void sact_init(sact_board_t *b, hal_port_t *hal, uint32_t baud)
     memset(b, 0, sizeof *b);
     b->hal = hal;
     /* Reset values are the map's defaults: config first, since it bounds the rest. */
-    static const uint16_t order[] = { MB_SACT_FILE_CONFIG, MB_SACT_FILE_MOTOR_LEFT, MB_SACT_FILE_MOTOR_RIGHT };
+    static const uint16_t order[] = { MB_SACT_FILE_CONFIG, MB_SACT_FILE_MOTOR_LEFT, MB_SACT_FILE_MOTOR_RIGHT,
+                                      MB_SACT_FILE_STEP_CAPTURE };
     for (unsigned i = 0; i < sizeof order / sizeof order[0]; i++) {
         for (unsigned f = 0; f < mb_sact_board.n_files; f++) {
             const mb_file_desc_t *fd = &mb_sact_board.files[f];

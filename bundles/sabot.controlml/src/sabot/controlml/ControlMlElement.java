@@ -102,6 +102,8 @@ public final class ControlMlElement implements ExtensionElement {
     public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
         Object decoded = null;
+        // Section 4's resources only: Smack's reader is process-wide and knows no connection's registry. A result of
+        // a registered resource of another bundle is decoded by value() on the thread that asked for it.
         Resource<?, ?> resource = type == ControlMlType.RESULT && defect == null && payload != null ? Resources.byName(
                 res) : null;
         if (resource != null) {

@@ -125,7 +125,7 @@ public final class ControlMlManager extends Manager {
     private ControlMlManager(XMPPConnection connection, Clock clock) {
         super(connection);
         this.ids = new RequestIdGenerator(clock);
-        this.endpoint = new Endpoint(clock);
+        this.endpoint = new Endpoint(clock, new ResourceRegistry());
         ServiceDiscoveryManager.getInstanceFor(connection).addFeature(ControlMl.FEATURE);
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.get));
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.set));
@@ -141,6 +141,15 @@ public final class ControlMlManager extends Manager {
 
 
     // ---------------------------------------------------------------------------------------------- settings
+
+    /**
+     * @return the resources this connection serves and reads: section 4's, and those other bundles
+     *         {@link ResourceRegistry#register register} (e.g. a robot's {@code cm.pid.step}); a request for any other
+     *         is answered {@code unknown-resource}
+     */
+    public ResourceRegistry resources() {
+        return endpoint.resources();
+    }
 
     /** @param policy who may get and set on this device; the default is {@link AccessPolicy#CLOSED} */
     public void setAccessPolicy(AccessPolicy policy) {
@@ -383,12 +392,21 @@ public final class ControlMlManager extends Manager {
 
     // ---------------------------------------------------------------------------------------------- endpoint
 
-    /** Serves gets of a resource on this device (replaces an earlier handler). */
+    /**
+     * Serves gets of a resource on this device (replaces an earlier handler).
+     *
+     * @throws IllegalArgumentException when the resource is not in {@link #resources()} (register a resource of
+     *                                  another bundle first) or has no get
+     */
     public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
         endpoint.onGet(resource, handler);
     }
 
-    /** Applies sets of a resource on this device (replaces an earlier handler). */
+    /**
+     * Applies sets of a resource on this device (replaces an earlier handler).
+     *
+     * @throws IllegalArgumentException when the resource is not in {@link #resources()} or has no set
+     */
     public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
         endpoint.onSet(resource, handler);
     }

@@ -8,8 +8,9 @@ import sabot.controlml.swe.DataRecord;
 import sabot.controlml.swe.RecordTemplate;
 
 /**
- * A ControlML resource: its name ({@code res}), the operations it allows, and the schema of its payloads.
- * The catalogue is {@link Resources}.
+ * A ControlML resource: its name ({@code res}), the operations it allows, and the schema of its payloads (its
+ * codecs). The protocol's resources are {@link Resources}; a bundle makes its own with {@link #builder} and adds it to
+ * a {@link ResourceRegistry} ({@link ControlMlManager#resources()}).
  *
  * @param <T> the resource's value: the payload of a set and of a get's result
  * @param <Q> the payload of a get (a query, e.g. which file to read), {@link NoQuery} when a get carries none
@@ -38,6 +39,86 @@ public final class Resource<T, Q> {
         this.settable = settable;
         this.description = description;
         this.recordHref = ControlMl.RECORD_STRUCTURE_PREFIX + name;
+    }
+
+    /**
+     * Starts a resource of another bundle than this one (section 4's are {@link Resources}). Its values always travel
+     * in the XML form: the text form's record structures are section 4's, known to every reader.
+     *
+     * @param name  the {@code res} value, {@code cm} and one to four dot-separated names
+     *              ({@link ControlMlElement#RESOURCE_SYNTAX}), e.g. {@code cm.pid.step}
+     * @param codec the codec of the resource's value (the payload of a set and of a result)
+     * @return a builder; the resource allows neither get nor set until told
+     * @throws IllegalArgumentException when the name is not of the syntax
+     */
+    public static <T> Builder<T, NoQuery> builder(String name, PayloadCodec<T> codec) {
+        if (name == null || !ControlMlElement.RESOURCE_SYNTAX.matcher(name).matches()) {
+            throw new IllegalArgumentException("'" + name + "' is not a resource name (cm.<name>, one to four names of"
+                    + " a lower-case letter and up to 30 lower-case letters, digits or '-')");
+        }
+        return new Builder<>(name, Objects.requireNonNull(codec, "codec"), null);
+    }
+
+    /**
+     * Builds a {@link Resource}.
+     *
+     * @param <T> the value
+     * @param <Q> the query of a get
+     */
+    public static final class Builder<T, Q> {
+        private final String name;
+        private final PayloadCodec<T> codec;
+        private final PayloadCodec<Q> queryCodec;
+        private boolean get;
+        private boolean set;
+        private String description = "";
+
+        private Builder(String name, PayloadCodec<T> codec, PayloadCodec<Q> queryCodec) {
+            this.name = name;
+            this.codec = codec;
+            this.queryCodec = queryCodec;
+        }
+
+        /** @return this builder; gets are allowed */
+        public Builder<T, Q> gettable() {
+            this.get = true;
+            return this;
+        }
+
+        /** @return this builder; sets are allowed */
+        public Builder<T, Q> settable() {
+            this.set = true;
+            return this;
+        }
+
+        /**
+         * @param query the codec of a get's payload (e.g. which file to read)
+         * @return a builder of a resource whose get carries that query (and is allowed)
+         */
+        public <R> Builder<T, R> query(PayloadCodec<R> query) {
+            Builder<T, R> b = new Builder<>(name, codec, Objects.requireNonNull(query, "query"));
+            b.get = true;
+            b.set = set;
+            b.description = description;
+            return b;
+        }
+
+        /** @param text one line for people (logs, the resource's documentation); never null */
+        public Builder<T, Q> description(String text) {
+            this.description = Objects.requireNonNull(text);
+            return this;
+        }
+
+        /**
+         * @return the resource
+         * @throws IllegalStateException when it allows neither get nor set
+         */
+        public Resource<T, Q> build() {
+            if (!get && !set) {
+                throw new IllegalStateException(name + " allows neither get nor set");
+            }
+            return new Resource<>(name, codec, queryCodec, get, set, description);
+        }
     }
 
     /** @return the {@code res} attribute value, e.g. {@code cm.position} */

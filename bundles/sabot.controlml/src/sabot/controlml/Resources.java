@@ -42,8 +42,10 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 
 /**
- * The resource catalogue. Each resource's payload schema (field names, SWE component types, canonical UCUM units,
- * ranges) is written here once, in its codec, and described in {@code docs/CONTROLML.md}.
+ * The resources of the protocol (section 4 of {@code docs/CONTROLML.md}): constant, the same in every process. Each
+ * resource's payload schema (field names, SWE component types, canonical UCUM units, ranges) is written once, in its
+ * codec. Every {@link ResourceRegistry} starts with these; other bundles add their own resources to a connection's
+ * registry ({@link ControlMlManager#resources()}), never to this list.
  */
 public final class Resources {
 
@@ -108,12 +110,15 @@ public final class Resources {
     private Resources() {
     }
 
-    /** @return the resource of a {@code res} value, or null when it is not in the catalogue */
+    /**
+     * @return the section 4 resource of a {@code res} value, or null when it is none of them (a connection's own
+     *         resources are in its {@link ControlMlManager#resources() registry})
+     */
     public static Resource<?, ?> byName(String name) {
         return BY_NAME.get(name);
     }
 
-    /** @return every resource, in catalogue order */
+    /** @return section 4's resources, in its order */
     public static Collection<Resource<?, ?>> all() {
         return BY_NAME.values();
     }

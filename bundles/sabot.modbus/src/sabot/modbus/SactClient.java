@@ -83,6 +83,22 @@ public interface SactClient extends Board {
      */
     void positionStep(Motor motor, int counts) throws IOException;
 
+    /**
+     * Steps one motor's commanded position by {@code counts} and starts the board's recording of the response (file
+     * {@code step_capture}, two transactions: which motor and how often, then the step). The board refuses the step
+     * (exception 4, {@link BoardException}) while that motor is braked or its fault is latched.
+     *
+     * @param decimation control periods between two samples, within the map's bounds
+     * @throws IllegalArgumentException counts or decimation outside the map's bounds (nothing sent)
+     */
+    void startStepCapture(Motor motor, int counts, int decimation) throws IOException;
+
+    /**
+     * @return the recording started by the last {@link #startStepCapture}, as far as it has got (one transaction for
+     *         its progress, then enough to read the samples: each answer must fit one PDU)
+     */
+    StepCapture readStepCapture() throws IOException;
+
     /** @return the wire time of {@link #readWheels()} */
     Duration readWheelsWireTime();
 

@@ -28,6 +28,7 @@ import sabot.controlml.GetHandler;
 import sabot.controlml.Outcome;
 import sabot.controlml.Request;
 import sabot.controlml.Resource;
+import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
 import sabot.controlml.SetHandler;
 import sabot.controlml.StaleCommandPolicy;
@@ -47,6 +48,7 @@ public final class Endpoint {
     private static final Logger LOGGER = Logger.getLogger(Endpoint.class.getName());
 
     private final Clock clock;
+    private final ResourceRegistry resources;
     private final Map<String, GetHandler<?, ?>> getHandlers = new ConcurrentHashMap<>();
     private final Map<String, SetHandler<?>> setHandlers = new ConcurrentHashMap<>();
     private final ReplayCache replayCache = new ReplayCache(ReplayCache.CAPACITY);
@@ -59,13 +61,30 @@ public final class Endpoint {
     private final AtomicLong errorsAnswered = new AtomicLong();
     private final AtomicLong duplicatesReplayed = new AtomicLong();
 
-    /** @param clock the device's clock (request ages are measured with it) */
-    public Endpoint(Clock clock) {
+    /**
+     * @param clock     the device's clock (request ages are measured with it)
+     * @param resources the resources this device knows; a request for any other is {@code unknown-resource}
+     */
+    public Endpoint(Clock clock, ResourceRegistry resources) {
         this.clock = Objects.requireNonNull(clock);
+        this.resources = Objects.requireNonNull(resources);
+    }
+
+    /** @return the resources this device knows */
+    public ResourceRegistry resources() {
+        return resources;
+    }
+
+    private void checkRegistered(Resource<?, ?> resource) {
+        if (resources.byName(resource.name()) != resource) {
+            throw new IllegalArgumentException(resource + " is not in this device's resource registry: register it"
+                    + " first (ControlMlManager.resources().register)");
+        }
     }
 
     /** Serves gets of a resource (replaces an earlier handler). */
     public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
+        checkRegistered(resource);
         if (!resource.isGettable()) {
             throw new IllegalArgumentException(resource + " has no get");
         }
@@ -74,6 +93,7 @@ public final class Endpoint {
 
     /** Applies sets of a resource (replaces an earlier handler). */
     public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
+        checkRegistered(resource);
         if (!resource.isSettable()) {
             throw new IllegalArgumentException(resource + " has no set");
         }
@@ -238,7 +258,7 @@ public final class Endpoint {
 
     @SuppressWarnings("unchecked")
     private Answer serveGet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
-        Resource<Object, Object> resource = (Resource<Object, Object>) Resources.byName(request.res());
+        Resource<Object, Object> resource = (Resource<Object, Object>) resources.byName(request.res());
         if (resource == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
                     + request.res()));
@@ -279,7 +299,7 @@ public final class Endpoint {
 
     @SuppressWarnings("unchecked")
     private Answer serveSet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
-        Resource<Object, Object> resource = (Resource<Object, Object>) Resources.byName(request.res());
+        Resource<Object, Object> resource = (Resource<Object, Object>) resources.byName(request.res());
         if (resource == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
                     + request.res()));

@@ -162,7 +162,11 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
         return ControlMlElement.received(type, id, res, payload, failure, defect);
     }
 
-    /** The record structure a text-form payload of {@code res} may refer to: that resource's own, by its href. */
+    /**
+     * The record structure a text-form payload of {@code res} may refer to: that resource's own, by its href. Only
+     * section 4's resources have one (resources of other bundles always travel in the XML form), so this reader, which
+     * Smack shares between all connections of the process, needs no connection's registry.
+     */
     private static RecordTemplate structureOf(String res, String href) {
         Resource<?, ?> resource = res == null ? null : Resources.byName(res);
         return resource != null && href.equals(resource.recordHref()) ? resource.recordTemplate() : null;

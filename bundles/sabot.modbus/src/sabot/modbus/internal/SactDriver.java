@@ -9,6 +9,7 @@ import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
 import sabot.modbus.SactClient;
 import sabot.modbus.SactConfig;
+import sabot.modbus.StepCapture;
 import sabot.modbus.WheelCounts;
 import sabot.modbus.WheelState;
 import sabot.modbus.Wheels;
@@ -215,6 +216,55 @@ final class SactDriver extends BoardDriver implements SactClient {
         Field f = motor(motor, "position_step");
         f.checkBounds(motor + " position step", counts);
         bus.write(counters, new Bus.Write(f.file(), f.record(), f.encode(counts)));
+    }
+
+    private static final String CAPTURE = "step_capture";
+    /** Registers per read of the recording: 120 × 2 bytes + headers fit one 253-byte PDU. */
+    private static final int CAPTURE_CHUNK = 120;
+
+    @Override
+    public void startStepCapture(Motor motor, int counts, int decimation) throws IOException {
+        Field which = map.field(BOARD, CAPTURE, "motor");
+        Field every = map.field(BOARD, CAPTURE, "decimation");
+        Field step = map.field(BOARD, CAPTURE, "step");
+        int file = motor(motor, "kp").file();
+        step.checkBounds(motor + " position step", counts);
+        every.checkBounds("capture decimation", decimation);
+        which.checkBounds("capture motor", file);
+        Field following = motor(motor, "following_error_limit");
+        Span f = Span.of(following);
+        long limit = f.raw(following, bus.read(counters, f)[0]);
+        if (Math.abs(counts) >= limit) {
+            throw new IllegalArgumentException(motor + " position step of " + counts + " counts would trip the "
+                    + "motor's following-error limit (" + limit + " counts): the board would brake and latch a fault");
+        }
+        // the step in a request of its own: the board validates a request before applying any of it, and judges the
+        // step against the motor in force
+        bus.write(counters, new Bus.Write(which.file(), which.record(), which.encode(file)), new Bus.Write(every
+                .file(), every.record(), every.encode(decimation)));
+        bus.write(counters, new Bus.Write(step.file(), step.record(), step.encode(counts)));
+    }
+
+    @Override
+    public StepCapture readStepCapture() throws IOException {
+        Span head = Span.of(map.field(BOARD, CAPTURE, "motor"), map.field(BOARD, CAPTURE, "decimation"), map.field(
+                BOARD, CAPTURE, "recorded"));
+        short[] h = bus.read(counters, head)[0];
+        Field recordedField = map.field(BOARD, CAPTURE, "recorded");
+        int recorded = (int) head.raw(recordedField, h);
+        Motor motor = head.raw(map.field(BOARD, CAPTURE, "motor"), h) == motor(Motor.LEFT, "kp").file() ? Motor.LEFT
+                : Motor.RIGHT;
+        Duration period = seconds(head.si(map.field(BOARD, CAPTURE, "decimation"), h));
+        Field response = map.field(BOARD, CAPTURE, "response");
+        int[] counts = new int[Math.min(recorded, response.count())];
+        for (int from = 0; from < counts.length; from += CAPTURE_CHUNK) {
+            int n = Math.min(CAPTURE_CHUNK, counts.length - from);
+            short[] r = bus.read(counters, new Span(response.file(), response.record() + from, n))[0];
+            for (int i = 0; i < n; i++) {
+                counts[from + i] = r[i];
+            }
+        }
+        return new StepCapture(motor, period, counts, (int) recordedField.max());
     }
 
     @Override

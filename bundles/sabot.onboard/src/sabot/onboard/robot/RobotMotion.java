@@ -14,6 +14,7 @@ import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.Trajectory;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
+import sabot.pidstep.controlml.StepTest;
 import sabot.model.geometry.Twist2D;
 
 /**
@@ -83,6 +84,24 @@ public interface RobotMotion {
 
     /** Writes the motor gains and reads them back; bad gains are refused with nothing written. */
     PidGains setGains(PidGains gains) throws CommandRefused;
+
+    /**
+     * The PID step test ({@code cm.pid.step}): in maintenance mode only, releases the brakes, steps one motor's
+     * position loop by {@code step} metres of wheel travel with the gains on the motor board, lets the board record
+     * the response at its control rate, and brakes again (also when the test fails). Bounded: the step is limited by
+     * the board (and kept under its following-error limit), the wait by the recording's length.
+     *
+     * @param motor the motor, numbered as in {@code cm.pid}
+     * @param step  m of wheel travel, non-zero
+     * @return the request with the samples (t s, set-point m, measured m)
+     * @throws CommandRefused INVALID_STATE when not in maintenance; INVALID_VALUE for an unknown motor or a step over
+     *                        the limit (nothing moved); DEVICE_FAULT when the board refuses or does not answer;
+     *                        UNSUPPORTED_OPERATION on a robot without a step test (this default)
+     */
+    default StepTest stepTest(int motor, double step) throws CommandRefused {
+        throw new CommandRefused(sabot.controlml.ControlMlCondition.UNSUPPORTED_OPERATION,
+                "this robot has no PID step test");
+    }
 
     /** @return the mission's state, progress and detail (the reason of a failure or fault); never null */
     MissionStatus mission();

@@ -113,6 +113,30 @@ abstract class ControlMlOnServerTest {
         assertEquals(NEW_GOAL, client.get(robot.jid(), Resources.GOAL).orElseThrow());
     }
 
+    @Test
+    void aRegisteredResourceOfAnotherBundleTravels(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+        ResourceRegistryTest.Counter seven = new ResourceRegistryTest.Counter(7);
+        assertEquals(sabot.controlml.ControlMlCondition.UNKNOWN_RESOURCE, client.set(robot.jid(),
+                ResourceRegistryTest.COUNTER, seven).errorOrNull().cmCondition(), "not registered on the robot yet");
+
+        robot.manager().resources().register(ResourceRegistryTest.COUNTER);
+        java.util.concurrent.atomic.AtomicReference<ResourceRegistryTest.Counter> state =
+                new java.util.concurrent.atomic.AtomicReference<>(new ResourceRegistryTest.Counter(0));
+        robot.manager().onSet(ResourceRegistryTest.COUNTER, (r, c) -> {
+            state.set(c);
+            return Outcome.success(c);
+        });
+        // the requester needs the resource object only, not a registration of its own
+        assertEquals(seven, client.set(robot.jid(), ResourceRegistryTest.COUNTER, seven).orElseThrow());
+        assertEquals(seven, state.get());
+        assertEquals(sabot.controlml.ControlMlCondition.UNSUPPORTED_OPERATION, client.get(robot.jid(),
+                ResourceRegistryTest.COUNTER).errorOrNull()
+                .cmCondition(), "registered, but this robot serves no get of it");
+    }
+
     @SuppressWarnings("unchecked")
     private static <T, Q> Outcome<T> getAny(ControlMlManager client, Jid robot, Resource<T, Q> r) {
         return r.queryCodec() == null ? client.get(robot, (Resource<T, NoQuery>) r) : client.get(robot, r,

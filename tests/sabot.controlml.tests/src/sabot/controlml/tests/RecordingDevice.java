@@ -31,7 +31,7 @@ final class RecordingDevice {
     }
 
     static Endpoint endpoint(Clock clock, RecordingDevice device) {
-        Endpoint e = new Endpoint(clock);
+        Endpoint e = new Endpoint(clock, new sabot.controlml.ResourceRegistry());
         device.registerOn(new Registry() {
             @Override
             public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {

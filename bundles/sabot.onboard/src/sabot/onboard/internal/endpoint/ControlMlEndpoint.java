@@ -28,7 +28,9 @@ import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.Resource;
+import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
+import sabot.pidstep.controlml.PidStep;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
@@ -101,6 +103,8 @@ public final class ControlMlEndpoint {
     private final List<TelemetryPublication> publications = new ArrayList<>();
     private final MotionListener presence = this::missionChanged;
     private volatile ControlMlManager manager;
+    /** {@code cm.pid.step} in the session's registry: not a resource of the protocol, this robot adds it. */
+    private ResourceRegistry.Registration stepTestRegistration;
     private PresenceLevel shownLevel;
     private String shownReason;
 
@@ -132,6 +136,7 @@ public final class ControlMlEndpoint {
     @Activate
     void activate() {
         manager = session.controlMl();
+        stepTestRegistration = manager.resources().register(PidStep.RESOURCE);
         registerHandlers(manager);
         synchronized (publications) {
             publish(Resources.POSITION, motion::pose, config.positionRate());
@@ -153,6 +158,8 @@ public final class ControlMlEndpoint {
         for (Resource<?, ?> r : SERVED) {
             manager.removeHandlers(r);
         }
+        manager.removeHandlers(PidStep.RESOURCE);
+        stepTestRegistration.close();
         synchronized (publications) {
             publications.forEach(TelemetryPublication::stop);
             publications.clear();
@@ -193,6 +200,7 @@ public final class ControlMlEndpoint {
         m.onGet(Resources.MISSION, (request, none) -> Outcome.success(motion.mission()));
         m.onSet(Resources.MISSION, (request, command) -> commandMission(command));
         m.onGet(Resources.TASKS, (request, none) -> Outcome.success(taskList()));
+        m.onSet(PidStep.RESOURCE, (request, test) -> read(() -> motion.stepTest(test.motor(), test.step())));
     }
 
     /** A robot command without a value to answer. */

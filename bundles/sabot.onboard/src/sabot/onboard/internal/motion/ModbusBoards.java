@@ -14,7 +14,9 @@ import sabot.modbus.InsMotion;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
+import sabot.modbus.SactConfig;
 import sabot.modbus.SonarReading;
+import sabot.modbus.StepCapture;
 import sabot.modbus.WheelState;
 import sabot.modbus.Wheels;
 
@@ -25,6 +27,13 @@ final class ModbusBoards implements RobotBoards {
     private static final Motor[] MOTORS = { Motor.LEFT, Motor.RIGHT };
     /** The SACT gain registers are uint16 limited to 0..32767 (docs/SACT-MODBUS.md, files 1 and 2). */
     private static final int MAX_GAIN = 32767;
+    /**
+     * Control periods per sample of a step test: 8 x 50 us = 0.4 ms, so the board's 256 samples span 102 ms, three
+     * times the settling of the default gains (test_control.c: 30 ms for 200 counts) and 50 samples in the rise.
+     */
+    static final int STEP_DECIMATION = 8;
+    /** How long past the recording's length a step test waits for the board to finish it. */
+    private static final Duration STEP_GRACE = Duration.ofSeconds(1);
 
     private final ModbusBus bus;
 
@@ -157,6 +166,49 @@ final class ModbusBoards implements RobotBoards {
             }
         }
         return readGains();
+    }
+
+    @Override
+    public StepRecording stepTest(int motor, double step) throws IOException {
+        if (motor < 0 || motor >= MOTORS.length) {
+            throw new IllegalArgumentException("motor " + motor + ": this robot has motors 0 (left) and 1 (right)");
+        }
+        SactConfig c = bus.sact().config();
+        double countsPerMetre = c.countsPerMetre();
+        double requested = step * countsPerMetre;
+        if (!(Math.abs(requested) >= 0.5)) {
+            throw new IllegalArgumentException("a step of " + step + " m is less than one encoder count (" + 1
+                    / countsPerMetre + " m)");
+        }
+        // bounded before the int cast: the board's bound (checked with the map) is far smaller
+        int counts = (int) Math.max(-Integer.MAX_VALUE, Math.min(Integer.MAX_VALUE, Math.round(requested)));
+        bus.sact().brake(false);
+        try {
+            bus.sact().startStepCapture(MOTORS[motor], counts, STEP_DECIMATION);
+            StepCapture capture = bus.sact().readStepCapture();
+            // The board records in real time: wait out the recording's length (a physical duration, not a guess at
+            // another thread's progress), then read until it is complete or the grace time is over.
+            Duration length = capture.samplePeriod().multipliedBy(capture.capacity());
+            java.util.concurrent.locks.LockSupport.parkNanos(length.toNanos());
+            long deadline = System.nanoTime() + STEP_GRACE.toNanos();
+            capture = bus.sact().readStepCapture();
+            while (!capture.complete() && System.nanoTime() < deadline) {
+                java.util.concurrent.locks.LockSupport.parkNanos(capture.samplePeriod().multipliedBy(capture
+                        .capacity() - capture.counts().length).toNanos());
+                capture = bus.sact().readStepCapture();
+            }
+            if (!capture.complete()) {
+                throw new IOException("the motor board recorded " + capture.counts().length + " of " + capture
+                        .capacity() + " samples within " + length.plus(STEP_GRACE).toMillis() + " ms");
+            }
+            double[] measured = new double[capture.counts().length];
+            for (int i = 0; i < measured.length; i++) {
+                measured[i] = capture.counts()[i] / countsPerMetre;
+            }
+            return new StepRecording(counts / countsPerMetre, capture.samplePeriod().toNanos() * 1e-9, measured);
+        } finally {
+            bus.sact().brake(true);
+        }
     }
 
     private static int gain(String name, int motor, double value) {

@@ -35,6 +35,9 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
+import sabot.pidstep.StepFigures;
+import sabot.pidstep.StepSample;
+import sabot.pidstep.controlml.StepTest;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.Trajectory;
@@ -109,6 +112,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
+    /** One step test at a time: two would release and apply the brakes under each other. */
+    private final Object stepTestLock = new Object();
 
     @Reference
     private RobotBoards boards;
@@ -504,6 +509,33 @@ public final class MotionTask implements OnboardTask, RobotMotion {
             return boards.readGains();
         } catch (IOException e) {
             throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
+        }
+    }
+
+    @Override
+    public StepTest stepTest(int motor, double step) throws CommandRefused {
+        synchronized (stepTestLock) {
+            MissionStatus now = mission();
+            if (!now.maintenance()) {
+                throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the step test moves a wheel on its own: "
+                        + "switch the robot to maintenance first (cm.mission maintenance=true); the mission is "
+                        + now.state().code());
+            }
+            RobotBoards.StepRecording r;
+            try {
+                r = boards.stepTest(motor, step);
+            } catch (IllegalArgumentException e) {
+                throw new CommandRefused(ControlMlCondition.INVALID_VALUE, e.getMessage());
+            } catch (IOException e) {
+                throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
+            }
+            List<StepSample> samples = new ArrayList<>(r.measured().length);
+            for (int i = 0; i < r.measured().length; i++) {
+                samples.add(new StepSample(i * r.samplePeriod(), r.step(), r.measured()[i]));
+            }
+            LOG.info("step test of motor {}: {} m, {} samples, {}", motor, r.step(), samples.size(), StepFigures.of(
+                    samples));
+            return new StepTest(motor, r.step(), samples);
         }
     }
 

@@ -87,6 +87,25 @@ public interface RobotBoards {
     /** Writes the gains (validated before anything is written) and returns them read back. */
     PidGains writeGains(PidGains gains) throws IOException;
 
+    /**
+     * A position step of one motor recorded by the motor board.
+     *
+     * @param step         the step applied, m of wheel travel (the requested one rounded to whole counts)
+     * @param samplePeriod s between two samples
+     * @param measured     m of wheel travel from the position at the step, one per sample
+     */
+    record StepRecording(double step, double samplePeriod, double[] measured) {
+    }
+
+    /**
+     * Releases the brakes, steps one motor's position loop by {@code step} metres, waits for the board's recording,
+     * reads it, and brakes again whatever happened.
+     *
+     * @throws IllegalArgumentException an unknown motor, or a step the board cannot take (over its bound, or one that
+     *                                  would trip its following-error limit): nothing moved
+     */
+    StepRecording stepTest(int motor, double step) throws IOException;
+
     /** @return whether the motor board's last good answer is older than {@code seconds} (or it never answered) */
     boolean motorBoardSilentFor(double seconds);
 

@@ -23,14 +23,22 @@ import org.eclipse.swtchart.ISeries;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
+import sabot.pidstep.StepFigures;
+import sabot.pidstep.StepSample;
+import sabot.pidstep.controlml.PidStep;
+import sabot.pidstep.controlml.StepTest;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.robotview.RobotView;
 
 /**
  * PID tuning of a robot's wheel speed loops: the gains of each motor read and written with {@code cm.pid} (the robot
  * writes them to its motor board and answers with what the board holds), and a live plot (Eclipse SWTChart) of the
- * twist the robot executes, from its {@code cm.velocity} telemetry, over the last {@link #WINDOW}. The step test of the
- * issue needs a robot-side resource that does not exist yet (a step on one wheel sampled on the robot): not here.
+ * twist the robot executes, from its {@code cm.velocity} telemetry, over the last {@link #WINDOW}.
+ * <p>
+ * <b>Step test</b> ({@code cm.pid.step}, a resource the robot adds to ControlML, {@link PidStep}): the robot, in
+ * maintenance, steps the position loop of the chosen wheel and its motor board records the response; the view plots
+ * measured position and set-point against time and shows rise time, overshoot and settling ({@link StepFigures}). The
+ * previous test stays on the plot, dashed, so two gain sets are compared by writing the second set and testing again.
  */
 public final class PidView extends RobotView {
 
@@ -44,6 +52,14 @@ public final class PidView extends RobotView {
     private final List<Integer> motors = new ArrayList<>();
     private PidGains read;
     private Chart chart;
+    private Chart stepChart;
+    private org.eclipse.swt.widgets.Combo wheel;
+    private Text stepSize;
+    private Label figuresLabel;
+    private StepTest lastStep;
+    private StepTest previousStep;
+    /** Wheels as {@code cm.pid} numbers them on a SabotOne. */
+    static final String[] WHEELS = { "0 (left)", "1 (right)" };
     private final Deque<double[]> samples = new ArrayDeque<>();
     private Instant lastSample;
 
@@ -67,9 +83,40 @@ public final class PidView extends RobotView {
                 showMessage(bad.getMessage(), true);
             }
         });
+        Composite step = new Composite(parent, SWT.NONE);
+        step.setLayout(new GridLayout(6, false));
+        step.setLayoutData(new GridData(SWT.FILL, SWT.TOP, true, false));
+        new Label(step, SWT.NONE).setText("Wheel");
+        wheel = new org.eclipse.swt.widgets.Combo(step, SWT.READ_ONLY);
+        wheel.setItems(WHEELS);
+        wheel.select(0);
+        new Label(step, SWT.NONE).setText("Step (mm)");
+        stepSize = new Text(step, SWT.BORDER | SWT.RIGHT);
+        stepSize.setText("2");
+        stepSize.setLayoutData(new GridData(60, SWT.DEFAULT));
+        Button stepButton = new Button(step, SWT.PUSH);
+        stepButton.setText("Step test");
+        stepButton.addListener(SWT.Selection, e -> {
+            try {
+                stepTest(wheel.getSelectionIndex(), millimetres(stepSize) / 1000);
+            } catch (IllegalArgumentException bad) {
+                showMessage(bad.getMessage(), true);
+            }
+        });
+        figuresLabel = new Label(step, SWT.NONE);
+        figuresLabel.setText("in maintenance only: the robot moves one wheel by the step");
+        // a line of its own: two tests' figures side by side are wider than the controls
+        figuresLabel.setLayoutData(new GridData(SWT.FILL, SWT.CENTER, true, false, 6, 1));
+        stepChart = new Chart(parent, SWT.NONE);
+        GridData sg = new GridData(SWT.FILL, SWT.FILL, true, true);
+        sg.heightHint = 220;
+        stepChart.setLayoutData(sg);
+        stepChart.getTitle().setText("Step response (cm.pid.step, sampled on the motor board)");
+        stepChart.getAxisSet().getXAxis(0).getTitle().setText("time since the step (ms)");
+        stepChart.getAxisSet().getYAxis(0).getTitle().setText("wheel position (mm)");
         chart = new Chart(parent, SWT.NONE);
         GridData g = new GridData(SWT.FILL, SWT.FILL, true, true);
-        g.heightHint = 220;
+        g.heightHint = 160;
         chart.setLayoutData(g);
         chart.getTitle().setText("Executed twist (cm.velocity telemetry)");
         chart.getAxisSet().getXAxis(0).getTitle().setText("time (s)");
@@ -77,6 +124,98 @@ public final class PidView extends RobotView {
         series("linear (m/s)", SWT.COLOR_DARK_BLUE);
         series("angular (rad/s)", SWT.COLOR_DARK_RED);
         showGains(null);
+    }
+
+    private static double millimetres(Text t) {
+        try {
+            double v = Double.parseDouble(t.getText().strip());
+            if (v == 0 || !Double.isFinite(v)) {
+                throw new NumberFormatException();
+            }
+            return v;
+        } catch (NumberFormatException e) {
+            throw new IllegalArgumentException("the step must be a non-zero number of mm, not '" + t.getText() + "'");
+        }
+    }
+
+    /**
+     * Asks the robot for a step test (off the UI thread); the response is plotted over the previous one.
+     *
+     * @param motor the wheel's motor, as {@code cm.pid} numbers it
+     * @param step  m of wheel travel
+     */
+    public void stepTest(int motor, double step) {
+        request("step test", (fleet, jid) -> fleet.set(jid, PidStep.RESOURCE, StepTest.request(motor, step)),
+                this::showStep);
+    }
+
+    private void showStep(StepTest test) {
+        if (test == null || test.samples().size() < 2) {
+            showMessage("the robot answered the step test without samples", true);
+            return;
+        }
+        previousStep = lastStep;
+        lastStep = test;
+        for (ISeries<?> old : stepChart.getSeriesSet().getSeries()) {
+            stepChart.getSeriesSet().deleteSeries(old.getId());
+        }
+        if (previousStep != null) {
+            stepSeries("previous: measured", previousStep, false, SWT.COLOR_GRAY, SWT.LINE_DASH);
+        }
+        stepSeries("set-point", test, true, SWT.COLOR_DARK_GREEN, SWT.LINE_SOLID);
+        stepSeries("measured", test, false, SWT.COLOR_DARK_BLUE, SWT.LINE_SOLID);
+        stepChart.getAxisSet().adjustRange();
+        stepChart.redraw();
+        figuresLabel.setText(describe("now", test) + (previousStep == null ? "" : "   |   " + describe("before",
+                previousStep)));
+        figuresLabel.getParent().layout(true, true);
+    }
+
+    private void stepSeries(String name, StepTest test, boolean setPoint, int colour, int style) {
+        double[] x = new double[test.samples().size()];
+        double[] y = new double[x.length];
+        for (int i = 0; i < x.length; i++) {
+            StepSample s = test.samples().get(i);
+            x[i] = s.t() * 1e3;
+            y[i] = (setPoint ? s.setPoint() : s.measured()) * 1e3;
+        }
+        ILineSeries<?> s = (ILineSeries<?>) stepChart.getSeriesSet().createSeries(ISeries.SeriesType.LINE, name);
+        s.setLineColor(stepChart.getDisplay().getSystemColor(colour));
+        s.setLineStyle(style == SWT.LINE_DASH ? org.eclipse.swtchart.LineStyle.DASH
+                : org.eclipse.swtchart.LineStyle.SOLID);
+        s.setSymbolType(ILineSeries.PlotSymbolType.NONE);
+        s.setXSeries(x);
+        s.setYSeries(y);
+    }
+
+    private static String describe(String which, StepTest test) {
+        StepFigures f = StepFigures.of(test.samples());
+        return String.format(Locale.ROOT, "%s wheel %d, %.2f mm: rise %s, overshoot %.1f %%, settling %s", which,
+                test.motor(), test.step() * 1e3, ms(f.riseTime()), f.overshoot(), ms(f.settlingTime()));
+    }
+
+    private static String ms(double seconds) {
+        return Double.isNaN(seconds) ? "not reached" : String.format(Locale.ROOT, "%.1f ms", seconds * 1e3);
+    }
+
+    /** @return the last step test's answer, or null */
+    public StepTest lastStep() {
+        return lastStep;
+    }
+
+    /** @return the step test before it (overlaid), or null */
+    public StepTest previousStep() {
+        return previousStep;
+    }
+
+    /** @return the figures line under the step controls */
+    public String figuresText() {
+        return figuresLabel.getText();
+    }
+
+    /** @return the step-response chart */
+    public Chart stepChart() {
+        return stepChart;
     }
 
     private void series(String name, int colour) {

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Files;
@@ -15,6 +16,7 @@ import java.util.List;
 import java.util.Locale;
 import java.util.Map;
 import java.util.Random;
+import java.util.concurrent.TimeUnit;
 import java.util.function.BooleanSupplier;
 import java.util.function.Supplier;
 
@@ -27,6 +29,7 @@ import org.eclipse.swt.graphics.ImageLoader;
 import org.eclipse.swt.graphics.Point;
 import org.eclipse.swt.graphics.Rectangle;
 import org.eclipse.swt.widgets.Control;
+import org.eclipse.swtchart.ISeries;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.swt.widgets.Event;
 import org.eclipse.ui.IViewPart;
@@ -42,7 +45,10 @@ import org.junit.jupiter.api.Order;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestMethodOrder;
 
+import sabot.controlml.Resources;
 import sabot.controlml.payload.FileEntry;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.identity.DeviceCard;
@@ -55,7 +61,10 @@ import sabot.testsupport.robot.SimProcess;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
+import sabot.pidstep.StepFigures;
+import sabot.pidstep.controlml.StepTest;
 import sabot.workbench.fleet.Availability;
+import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.identity.internal.IdentityView;
@@ -242,6 +251,69 @@ class PluginViewsLiveTest {
             waitFor(() -> pid.message().contains("write gains"), 20, pid::message);
         }
         assertFalse(pid.messageIsError(), pid.message());
+    }
+
+    @Test
+    @Order(5)
+    void pidStepTestPlotsTheBoardsResponseComparesTwoGainSetsAndRefusesBadInput() throws Exception {
+        PidView pid = open(PidView.ID, PidView.class);
+        awaitLive(pid);
+        waitFor(() -> pid.gains() != null, 20, pid::message);
+        PidGains original = pid.gains();
+        FleetState fleet = fleet();
+        // out of maintenance: refused with the robot's reason, nothing plotted
+        pid.stepTest(1, 0.002);
+        waitFor(() -> pid.message().contains("switch the robot to maintenance first"), 30, pid::message);
+        assertTrue(pid.messageIsError());
+        assertNull(pid.lastStep());
+        fleet.set(pid.robot(), Resources.MISSION, new MissionStatus(MissionState.IDLE, true, 0, "PID tuning")).get(
+                20, TimeUnit.SECONDS);
+        try {
+            SimProcess.Truth before = truth();
+            pid.stepTest(2, 0.002);
+            waitFor(() -> pid.message().contains("motor 2: this robot has motors 0 (left) and 1 (right)"), 30,
+                    pid::message);
+            pid.stepTest(0, 0.008);
+            waitFor(() -> pid.message().contains("following-error limit"), 30, pid::message);
+            assertNull(pid.lastStep(), "a refused step test plots nothing");
+            assertTrue(truth().distanceTo(before.x(), before.y()) < 1e-4, "refusals moved the robot");
+
+            pid.stepTest(1, 0.002);
+            waitFor(() -> pid.lastStep() != null, 30, pid::message);
+            StepTest stiff = pid.lastStep();
+            assertEquals(256, stiff.samples().size());
+            ISeries<?> measured = pid.stepChart().getSeriesSet().getSeries("measured");
+            assertEquals(256, measured.getYSeries().length, "the plot holds every sample");
+            StepFigures f = StepFigures.of(stiff.samples());
+            assertTrue(f.riseTime() > 5e-3 && f.riseTime() < 40e-3 && f.overshoot() < 20 && f.settlingTime() < 0.1,
+                    f.toString());
+            // a softer right wheel, then the same test: both on the plot, both sets of figures shown
+            PidGains soft = new PidGains(List.of(new MotorGains(1, 60, 2, 600)));
+            pid.type(soft);
+            pid.writeTyped();
+            waitFor(() -> pid.message().contains("write gains: done"), 20, pid::message);
+            pid.stepTest(1, -0.002);
+            waitFor(() -> pid.lastStep() != stiff && pid.lastStep() != null, 30, pid::message);
+            assertEquals(stiff, pid.previousStep());
+            assertTrue(pid.stepChart().getSeriesSet().getSeries("previous: measured") != null);
+            assertTrue(pid.figuresText().contains("now wheel 1, -2.00 mm") && pid.figuresText().contains(
+                    "before wheel 1, 2.00 mm"), pid.figuresText());
+            StepFigures g = StepFigures.of(pid.lastStep().samples());
+            assertTrue(g.settlingTime() > f.settlingTime(), "softer gains settle later: " + g + " vs " + f);
+            System.out.printf("[pid step view] %s%n", pid.figuresText());
+            shot(pid, "pid-step.png");
+        } finally {
+            pid.writeGains(original);
+            waitFor(() -> pid.message().contains("write gains"), 20, pid::message);
+            fleet.set(pid.robot(), Resources.MISSION, new MissionStatus(MissionState.IDLE, false, 0, "")).get(20,
+                    TimeUnit.SECONDS);
+        }
+    }
+
+    private static FleetState fleet() {
+        org.osgi.framework.BundleContext c = org.osgi.framework.FrameworkUtil.getBundle(PluginViewsLiveTest.class)
+                .getBundleContext();
+        return c.getService(c.getServiceReference(FleetState.class));
     }
 
     @Test
