@@ -84,6 +84,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private final MapViewport viewport = new MapViewport(50, 5, 5);
     private final List<ISelectionChangedListener> selectionListeners = new ArrayList<>();
     private final long[] frameNanos = new long[FRAME_SAMPLES];
+    /** ./sabot bench workbench's measurement hook (does nothing unless its system property is set). */
+    private final sabot.workbench.internal.PaintProbe probe = sabot.workbench.internal.PaintProbe.fromSystemProperty();
     private int frames;
     private Canvas canvas;
     private FleetBinding fleet;
@@ -522,7 +524,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawGrid(gc, area);
         drawAxes(gc, area);
         Instant now = Instant.now();
-        for (RobotState r : fleet.robots()) {
+        List<RobotState> drawn = fleet.robots();
+        for (RobotState r : drawn) {
             boolean stale = r.isStale(now);
             drawRobot(gc, r, stale);
             if (!stale && r.pose() != null && map != null && !liveShown) {
@@ -539,6 +542,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawMessage(gc, area);
         frameNanos[frames % FRAME_SAMPLES] = System.nanoTime() - t0;
         frames++;
+        probe.painted(t0, drawn, fleet.fleet());
     }
 
     private void drawMap(GC gc) {
