@@ -1,0 +1,333 @@
+package sabot.controlml.bench;
+
+import java.io.IOException;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.Random;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+
+import org.jivesoftware.smack.SmackConfiguration;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smack.xml.SmackXmlParser;
+import org.jxmpp.jid.BareJid;
+import org.jxmpp.jid.EntityBareJid;
+
+import sabot.controlml.AccessLevel;
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.Resources;
+import sabot.controlml.TelemetryPublication;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PoseCovariance;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPoint;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.fleet.PresenceLevels;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+import sabot.model.map.MapServerFormat;
+import sabot.model.map.OccupancyGrid;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * {@code ./sabot load}: N simulated robots, each a real ControlML endpoint (the {@code sabot.controlml} library's
+ * device side, as in {@link ControlMlBench}) on its own XMPP account of a private Prosody or ejabberd. Each robot
+ * drives a circle of its own (centre on a grid over the lab, radius, speed and phase drawn from a fixed seed: the same
+ * seed gives the same fleet), publishes {@code cm.position} and {@code cm.velocity} at the rate given (default 10 Hz)
+ * and {@code cm.mission} at 1 Hz (the onboard product's defaults, docs/CONTROLML.md §4), and answers gets of position,
+ * velocity, goal, trajectory, mission, map (the lab map at 0.1 m, 120 × 90 cells: it fits one payload), obstacles
+ * (none) and limits, and sets of goal, mission and velocity.
+ * <p>
+ * What it is not: a robot. A goal is taken (the mission runs, progress grows over {@link #MISSION_SECONDS} s, then
+ * done) but the robot keeps to its circle; the onboard product with {@code sabot-sim} is the real thing, at one
+ * simulator per robot.
+ * <p>
+ * Rules as a robot keeps them (docs/CONTROLML.md §7, §9): the operator may set, everyone else is refused; the robot
+ * approves the operator's presence subscription and subscribes back; its presence carries the presence level.
+ */
+public final class FleetLoad implements AutoCloseable {
+
+    /** How long a taken goal's mission runs before it is done, seconds. */
+    static final double MISSION_SECONDS = 5;
+    /** Lab floor the robots' circles are spread over, metres (inside the lab map, 12 m × 9 m). */
+    static final double[] FLOOR = { 0.6, 0.6, 11.4, 8.4 };
+
+    private final List<Robot> robots = new ArrayList<>();
+    private final Instant epoch = Instant.now();
+
+    /** One simulated robot: its connection and its circle. */
+    final class Robot {
+        final String name;
+        final XMPPTCPConnection connection;
+        final ControlMlManager manager;
+        final double cx, cy, radius, omega, phase;
+        final List<TelemetryPublication> publications = new ArrayList<>();
+        private Goal goal;
+        private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "");
+        private Instant missionStart;
+
+        Robot(String name, XMPPTCPConnection connection, double cx, double cy, double radius, double omega,
+                double phase) {
+            this.name = name;
+            this.connection = connection;
+            this.manager = ControlMlManager.getInstanceFor(connection);
+            this.cx = cx;
+            this.cy = cy;
+            this.radius = radius;
+            this.omega = omega;
+            this.phase = phase;
+        }
+
+        EntityBareJid jid() {
+            return connection.getUser().asEntityBareJid();
+        }
+
+        PoseEstimate pose(Instant now) {
+            double t = Duration.between(epoch, now).toNanos() / 1e9;
+            double a = phase + omega * t;
+            double theta = Math.IEEEremainder(a + Math.signum(omega) * Math.PI / 2, 2 * Math.PI);
+            return new PoseEstimate(now, new Pose2D(cx + radius * Math.cos(a), cy + radius * Math.sin(a), theta),
+                    new PoseCovariance(0.004, 0.0005, 0, 0.003, 0, 0.002));
+        }
+
+        VelocityCommand velocity(Instant now) {
+            return new VelocityCommand(now, new Twist2D(Math.abs(omega) * radius, omega));
+        }
+
+        synchronized MissionStatus mission(Instant now) {
+            if (mission.state() == MissionState.RUNNING) {
+                double p = Math.min(100, 100 * Duration.between(missionStart, now).toNanos() / 1e9 / MISSION_SECONDS);
+                mission = p >= 100 ? new MissionStatus(MissionState.DONE, false, 100, "goal reached")
+                        : new MissionStatus(MissionState.RUNNING, false, p, "to the goal");
+                if (mission.state() == MissionState.DONE) {
+                    announce(MissionState.DONE);
+                }
+            }
+            return mission;
+        }
+
+        synchronized Outcome<Goal> takeGoal(Goal g) {
+            goal = g;
+            missionStart = Instant.now();
+            mission = new MissionStatus(MissionState.RUNNING, false, 0, "to the goal");
+            announce(MissionState.RUNNING);
+            return Outcome.done();
+        }
+
+        synchronized Outcome<MissionStatus> command(MissionStatus m) {
+            if (m.state() == MissionState.ABORTED && mission.state().isActive()) {
+                mission = new MissionStatus(MissionState.ABORTED, false, mission.progress(), m.detail());
+                announce(MissionState.ABORTED);
+                return Outcome.done();
+            }
+            return Outcome.failure(ControlMlCondition.INVALID_STATE, "load robot " + name + ": mission is "
+                    + mission.state().code() + "; it only aborts a running mission");
+        }
+
+        synchronized Outcome<Goal> goal() {
+            return goal == null ? Outcome.failure(ControlMlCondition.INVALID_STATE, "no goal since the robot started")
+                    : Outcome.success(goal);
+        }
+
+        synchronized Outcome<Trajectory> trajectory(Instant now) {
+            if (goal == null || !mission.state().isActive()) {
+                return Outcome.success(new Trajectory(now, List.of()));
+            }
+            Pose2D p = pose(now).pose();
+            return Outcome.success(new Trajectory(now, List.of(new TrajectoryPoint(0, p.x(), p.y(), p.theta(), 0.3, 0),
+                    new TrajectoryPoint(MISSION_SECONDS, goal.pose().x(), goal.pose().y(), goal.pose().theta(), 0,
+                            0))));
+        }
+
+        private void announce(MissionState state) {
+            try {
+                connection.sendStanza(PresenceLevels.presenceFor(connection, state, false));
+            } catch (Exception e) {
+                // offline: the next login announces again
+            }
+        }
+
+        void close() {
+            publications.forEach(TelemetryPublication::stop);
+            connection.instantShutdown();
+        }
+    }
+
+    /**
+     * Starts the fleet: registers and logs in {@code count} robots named {@code prefix + i} (1-based, two digits at
+     * least), installs their endpoints and starts their telemetry.
+     *
+     * @param server   the private server
+     * @param count    robots, 1..1000
+     * @param prefix   the robots' local part before the number
+     * @param password their password
+     * @param operator the account that may set (and follows them)
+     * @param rateHz   position and velocity rate, Hz (mission: 1 Hz)
+     * @param seed     the fleet's seed
+     * @param map      the lab map's YAML (map_server), halved to 0.1 m a cell for {@code cm.map}
+     */
+    public static FleetLoad start(PrivateXmppServer server, int count, String prefix, String password,
+            BareJid operator, double rateHz, long seed, Path map) throws Exception {
+        if (count < 1 || count > 1000) {
+            throw new IllegalArgumentException("robots: " + count + " is outside 1..1000");
+        }
+        GridMap grid = halved(MapServerFormat.load(map).grid());
+        FleetLoad load = new FleetLoad();
+        Random random = new Random(seed);
+        int cols = (int) Math.ceil(Math.sqrt(count * (FLOOR[2] - FLOOR[0]) / (FLOOR[3] - FLOOR[1])));
+        int rows = (int) Math.ceil(count / (double) cols);
+        try {
+            for (int i = 0; i < count; i++) {
+                String name = String.format(Locale.ROOT, "%s%02d", prefix, i + 1);
+                server.register(name, PrivateXmppServer.DOMAIN, password);
+                XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
+                        password).setResource("onboard").setSendPresence(false).build());
+                double cx = FLOOR[0] + (i % cols + 0.5) * (FLOOR[2] - FLOOR[0]) / cols;
+                double cy = FLOOR[1] + (i / cols + 0.5) * (FLOOR[3] - FLOOR[1]) / rows;
+                double radius = 0.15 + 0.2 * random.nextDouble();
+                double omega = (random.nextBoolean() ? 1 : -1) * (0.3 + 0.5 * random.nextDouble());
+                double phase = 2 * Math.PI * random.nextDouble();
+                Robot r = load.new Robot(name, c, cx, cy, radius, omega, phase);
+                load.robots.add(r);
+                serve(r, operator, grid);
+                c.connect().login();
+                c.sendStanza(PresenceLevels.presenceFor(c, MissionState.IDLE, false));
+                r.publications.add(r.manager.publishTelemetry(Resources.POSITION, () -> r.pose(Instant.now()),
+                        rateHz));
+                r.publications.add(r.manager.publishTelemetry(Resources.VELOCITY, () -> r.velocity(Instant.now()),
+                        rateHz));
+                r.publications.add(r.manager.publishTelemetry(Resources.MISSION, () -> r.mission(Instant.now()), 1));
+            }
+        } catch (Exception | Error e) {
+            load.close();
+            throw e;
+        }
+        return load;
+    }
+
+    private static void serve(Robot r, BareJid operator, GridMap grid) {
+        Roster roster = Roster.getInstanceFor(r.connection);
+        roster.setSubscriptionMode(Roster.SubscriptionMode.manual);
+        // the operator's subscription is approved and asked back (the robot's server must see the workbench's caps
+        // to send it PEP notifications); anyone else is denied, as the onboard product does
+        roster.addSubscribeListener((from, request) -> from.asBareJid().equals(operator)
+                ? SubscribeAnswer.ApproveAndAlsoRequestIfRequired : SubscribeAnswer.Deny);
+        ControlMlManager m = r.manager;
+        m.setAccessPolicy(j -> j.asBareJid().equals(operator) ? AccessLevel.SET : AccessLevel.NONE);
+        m.onGet(Resources.POSITION, (q, n) -> Outcome.success(r.pose(Instant.now())));
+        m.onGet(Resources.VELOCITY, (q, n) -> Outcome.success(r.velocity(Instant.now())));
+        m.onGet(Resources.MISSION, (q, n) -> Outcome.success(r.mission(Instant.now())));
+        m.onGet(Resources.GOAL, (q, n) -> r.goal());
+        m.onGet(Resources.TRAJECTORY, (q, n) -> r.trajectory(Instant.now()));
+        m.onGet(Resources.MAP, (q, n) -> Outcome.success(grid));
+        m.onGet(Resources.OBSTACLES, (q, n) -> Outcome.success(new Obstacles(Instant.now(), List.of())));
+        m.onGet(Resources.LIMITS, (q, n) -> Outcome.success(new MotionLimits(0.5, 1.5, 0.5, 2.0)));
+        m.onSet(Resources.GOAL, (q, g) -> r.takeGoal(g));
+        m.onSet(Resources.MISSION, (q, s) -> r.command(s));
+        m.onSet(Resources.VELOCITY, (q, v) -> Outcome.done());
+    }
+
+    /** The map at half the resolution (a cell: the most occupied of its four), so that it fits one cm.map payload. */
+    static GridMap halved(OccupancyGrid g) {
+        int w = g.width() / 2;
+        int h = g.height() / 2;
+        byte[] cells = new byte[w * h];
+        for (int row = 0; row < h; row++) {
+            for (int col = 0; col < w; col++) {
+                int v = Math.max(Math.max(g.get(2 * col, 2 * row), g.get(2 * col + 1, 2 * row)), Math.max(g.get(2
+                        * col, 2 * row + 1), g.get(2 * col + 1, 2 * row + 1)));
+                cells[row * w + col] = (byte) v;
+            }
+        }
+        return new GridMap(2 * g.resolution(), w, h, g.geometry().origin(), cells);
+    }
+
+    /** @return the robots' bare JIDs, in order */
+    public List<EntityBareJid> jids() {
+        return robots.stream().map(Robot::jid).toList();
+    }
+
+    /** @return the robots' position publications that failed so far (server refusals, counted by ControlML) */
+    public long telemetryFailed() {
+        return robots.stream().mapToLong(r -> r.manager.statistics().telemetryFailed()).sum();
+    }
+
+    @Override
+    public void close() {
+        robots.forEach(Robot::close);
+    }
+
+    // ------------------------------------------------------------------------------------------------ ./sabot load
+
+    public static void main(String[] args) throws Exception {
+        int robots = 10;
+        PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
+        double rate = 10;
+        long seed = 1;
+        long seconds = 0;
+        for (int i = 0; i < args.length; i++) {
+            switch (args[i]) {
+                case "--robots" -> robots = Integer.parseInt(value(args, ++i, "--robots"));
+                case "--server" -> kind = PrivateXmppServer.Kind.valueOf(value(args, ++i, "--server").toUpperCase(
+                        Locale.ROOT));
+                case "--rate" -> rate = Double.parseDouble(value(args, ++i, "--rate"));
+                case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
+                case "--seconds" -> seconds = Long.parseLong(value(args, ++i, "--seconds"));
+                case "--help", "-h" -> {
+                    System.out.println("usage: ./sabot load [--robots N (10)] [--server prosody|ejabberd] [--rate HZ "
+                            + "(10)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]");
+                    return;
+                }
+                default -> throw new IllegalArgumentException("unknown option " + args[i] + " (--help)");
+            }
+        }
+        setUpSmack();
+        try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
+            BareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, "sabot");
+            Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+            try (FleetLoad load = start(server, robots, "load-", "sabot", operator, rate, seed, map)) {
+                System.out.printf(Locale.ROOT, "[load] %d robots (load-01..load-%02d@%s, password 'sabot') on %s "
+                        + "127.0.0.1:%d, %.0f Hz; operator operator@%s password 'sabot' may set; seed %d%n", robots,
+                        robots, PrivateXmppServer.DOMAIN, kind.name().toLowerCase(Locale.ROOT), server.port(), rate,
+                        PrivateXmppServer.DOMAIN, seed);
+                CountDownLatch stop = new CountDownLatch(1);
+                Runtime.getRuntime().addShutdownHook(new Thread(stop::countDown));
+                if (seconds > 0) {
+                    stop.await(seconds, TimeUnit.SECONDS);
+                } else {
+                    stop.await();
+                }
+            }
+        }
+    }
+
+    private static String value(String[] args, int i, String option) {
+        if (i >= args.length) {
+            throw new IllegalArgumentException(option + " needs a value");
+        }
+        return args[i];
+    }
+
+    /** Smack as the benchmarks use it: one parser factory, generous reply timeout (100 logins at once). */
+    static void setUpSmack() {
+        SmackXmlParser.setXmlPullParserFactory(SmackXmlParser.getXmlPullParserFactory());
+        SmackConfiguration.setDefaultReplyTimeout(20_000);
+        if (System.getProperty("sabot.root") == null && System.getenv("SABOT_ROOT") != null) {
+            System.setProperty("sabot.root", System.getenv("SABOT_ROOT"));
+        }
+    }
+}
