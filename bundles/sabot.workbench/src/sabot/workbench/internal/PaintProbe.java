@@ -26,7 +26,7 @@ import sabot.workbench.fleet.RobotState;
  * <p>
  * Lines appended to the file, written by a daemon thread every 250 ms (the UI thread only fills a buffer):
  * <ul>
- * <li>{@code f,<end µs since the epoch>,<paint duration ns>,<robots drawn>}</li>
+ * <li>{@code f,<end µs since the epoch>,<paint duration ns>,<robots drawn>,<UI thread CPU time of the paint ns>}</li>
  * <li>{@code l,<end µs since the epoch>,<time stamp to paint end ns>,<robot jid>}</li>
  * <li>{@code n,<µs since the epoch>,<time stamp to notification ns>,<robot jid>}</li>
  * </ul>
@@ -45,6 +45,8 @@ public final class PaintProbe implements FleetListener {
     /** Pose time stamps already notified per robot (notification thread). */
     private final Map<String, Instant> notified = new ConcurrentHashMap<>();
     private FleetState observed;
+    private final java.lang.management.ThreadMXBean threads = java.lang.management.ManagementFactory.getThreadMXBean();
+    private long cpuAtStart;
 
     private PaintProbe(Path file) {
         this.file = file;
@@ -61,6 +63,13 @@ public final class PaintProbe implements FleetListener {
         return f == null || f.isBlank() ? OFF : new PaintProbe(Paths.get(f));
     }
 
+    /** UI thread, at the start of a paint: the paint's CPU time (apart from the wall time other processes stretch). */
+    public void paintStarting() {
+        if (file != null) {
+            cpuAtStart = threads.getCurrentThreadCpuTime();
+        }
+    }
+
     /**
      * UI thread, at the end of a paint.
      *
@@ -73,6 +82,7 @@ public final class PaintProbe implements FleetListener {
             return;
         }
         long duration = System.nanoTime() - startNanos;
+        long cpu = threads.getCurrentThreadCpuTime() - cpuAtStart;
         Instant end = Instant.now();
         long endMicros = micros(end);
         if (fleet != null && fleet != observed) {
@@ -81,7 +91,7 @@ public final class PaintProbe implements FleetListener {
         }
         StringBuilder lines = new StringBuilder(64 + 48 * robots.size());
         lines.append("f,").append(endMicros).append(',').append(duration).append(',').append(robots.size()).append(
-                '\n');
+                ',').append(cpu).append('\n');
         for (RobotState r : robots) {
             if (r.pose() == null) {
                 continue;

@@ -514,6 +514,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     private void paint(PaintEvent e) {
         long t0 = System.nanoTime();
+        probe.paintStarting();
         GC gc = e.gc;
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();

@@ -261,14 +261,20 @@ public final class FleetLoad implements AutoCloseable {
         return robots.stream().map(Robot::jid).toList();
     }
 
-    /** @return the robots' position publications that failed so far (server refusals, counted by ControlML) */
+    /** @return the robots' telemetry publications that failed so far (refused, timed out or not sent) */
     public long telemetryFailed() {
         return robots.stream().mapToLong(r -> r.manager.statistics().telemetryFailed()).sum();
     }
 
+    /** @return the robots' telemetry publications the server acknowledged so far */
+    public long telemetryPublished() {
+        return robots.stream().mapToLong(r -> r.manager.statistics().telemetryPublished()).sum();
+    }
+
     @Override
     public void close() {
-        robots.forEach(Robot::close);
+        // in parallel: a connection whose writer is blocked waits for it a while before giving up
+        robots.parallelStream().forEach(Robot::close);
     }
 
     // ------------------------------------------------------------------------------------------------ ./sabot load
@@ -306,10 +312,12 @@ public final class FleetLoad implements AutoCloseable {
                         PrivateXmppServer.DOMAIN, seed);
                 CountDownLatch stop = new CountDownLatch(1);
                 Runtime.getRuntime().addShutdownHook(new Thread(stop::countDown));
-                if (seconds > 0) {
-                    stop.await(seconds, TimeUnit.SECONDS);
-                } else {
-                    stop.await();
+                long end = seconds > 0 ? System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds) : Long.MAX_VALUE;
+                // a status line every 10 s until stopped or the time is up
+                while (!stop.await(Math.min(10_000_000_000L, end - System.nanoTime()), TimeUnit.NANOSECONDS)
+                        && System.nanoTime() < end) {
+                    System.out.printf(Locale.ROOT, "[load] telemetry acknowledged %d, failed %d%n", load
+                            .telemetryPublished(), load.telemetryFailed());
                 }
             }
         }

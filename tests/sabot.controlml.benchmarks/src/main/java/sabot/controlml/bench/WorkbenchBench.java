@@ -136,6 +136,9 @@ public final class WorkbenchBench {
                         .toLowerCase(Locale.ROOT), robots, (System.nanoTime() - l0) / 1e9, seed);
                 Path probe = dir.resolve("paint-probe.csv");
                 Process wb = startWorkbench(dir, server, operator, operatorPw, load.jids(), memory ? null : probe);
+                // stopped early (SIGTERM, Ctrl-C): the workbench goes with the benchmark
+                Thread reaper = new Thread(wb::destroy);
+                Runtime.getRuntime().addShutdownHook(reaper);
                 try {
                     if (memory) {
                         memory(wb, dir, figures);
@@ -144,6 +147,7 @@ public final class WorkbenchBench {
                     }
                 } finally {
                     stop(wb);
+                    Runtime.getRuntime().removeShutdownHook(reaper);
                 }
             }
         }
@@ -213,7 +217,14 @@ public final class WorkbenchBench {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(120 + robots);
         long firstMicros = -1;
         Set<String> live = new HashSet<>();
+        long report = System.nanoTime();
         while (live.size() < robots) {
+            if (System.nanoTime() - report > 10_000_000_000L) {
+                report = System.nanoTime();
+                System.out.printf(Locale.ROOT, "[bench] %d of %d robots drawn live; telemetry acknowledged %d, failed %d "
+                        + "(load %s)%n", live.size(), robots, load.telemetryPublished(), load.telemetryFailed(),
+                        loadAverage());
+            }
             if (System.nanoTime() > deadline) {
                 throw new IllegalStateException("within " + (120 + robots) + " s only " + live.size() + " of " + robots
                         + " robots were drawn live (see the workbench's log)");
@@ -259,6 +270,8 @@ public final class WorkbenchBench {
             ControlMlManager.getInstanceFor(observer).followTelemetry(r, Resources.POSITION);
         }
         hold(wb, warmupSeconds);
+        long acked0 = load.telemetryPublished();
+        long failed0 = load.telemetryFailed();
 
         String load0 = loadAverage();
         long serverCpu0 = cpuTicks(server.pid());
@@ -277,6 +290,7 @@ public final class WorkbenchBench {
         observer.instantShutdown();
 
         List<Long> frames = new ArrayList<>();
+        List<Long> frameCpu = new ArrayList<>();
         List<Long> shown = new ArrayList<>();
         List<Long> notified = new ArrayList<>();
         for (String line : lines(probe)) {
@@ -287,7 +301,14 @@ public final class WorkbenchBench {
             long at = Long.parseLong(f[1]);
             long v = Long.parseLong(f[2]);
             switch (f[0]) {
-                case "f" -> { if (at >= from && at < to) frames.add(v); }
+                case "f" -> {
+                    if (at >= from && at < to) {
+                        frames.add(v);
+                        if (f.length > 4) {
+                            frameCpu.add(Long.parseLong(f[4]));
+                        }
+                    }
+                }
                 // latencies: the item's stamp (at - v) in the window, as for the reference
                 case "l" -> { if (stampIn(at, v, from, to)) shown.add(v); }
                 case "n" -> { if (stampIn(at, v, from, to)) notified.add(v); }
@@ -295,6 +316,7 @@ public final class WorkbenchBench {
             }
         }
         long[] fr = sorted(frames);
+        long[] frCpu = sorted(frameCpu);
         long[] lat = sorted(shown);
         long[] note = sorted(notified);
         long[] refLat = Arrays.copyOf(ref, (int) Math.min(ref.length, refCount.get()));
@@ -303,8 +325,8 @@ public final class WorkbenchBench {
         String loads = load0 + " → " + load1;
         System.out.printf(Locale.ROOT, "[figure] %s, %d robots x %.0f Hz, %d s window, load %s%n", kind.name()
                 .toLowerCase(Locale.ROOT), robots, rate, seconds, loads);
-        System.out.printf(Locale.ROOT, "[figure] workspace paint time: %s, %.1f paints/s%n", pct(fr), fr.length
-                / (double) seconds);
+        System.out.printf(Locale.ROOT, "[figure] workspace paint time: %s, %.1f paints/s; its CPU time on the UI "
+                + "thread: %s%n", pct(fr), fr.length / (double) seconds, pct(frCpu));
         System.out.printf(Locale.ROOT, "[figure] telemetry-to-screen latency (pose stamp to end of the paint that "
                 + "first shows it): %s; poses shown %d of ~%d published (%.1f %%)%n", pct(lat), lat.length, published,
                 100.0 * lat.length / published);
@@ -313,8 +335,10 @@ public final class WorkbenchBench {
         System.out.printf(Locale.ROOT, "[figure]   reference, server fan-out alone (the same items at a second session "
                 + "of the operator, Smack only): %s, %d received%n", pct(refLat), refLat.length);
         System.out.printf(Locale.ROOT, "[figure]   CPU over the window (1 core = 100 %%): server %.0f %%, workbench "
-                + "%.0f %%; publications failed %d%n", serverCpu, wbCpu, load.telemetryFailed());
+                + "%.0f %%; robots' publications in the window acknowledged %d, failed %d%n", serverCpu, wbCpu, load
+                .telemetryPublished() - acked0, load.telemetryFailed() - failed0);
         put(figures, "paint", fr);
+        put(figures, "paint_cpu", frCpu);
         figures.put("paints_per_s", round(fr.length / (double) seconds));
         put(figures, "latency", lat);
         figures.put("poses_shown_pct", round(100.0 * lat.length / published));
@@ -357,8 +381,10 @@ public final class WorkbenchBench {
             double heap = heapAfterGc(wb.pid());
             double rss = rssMb(wb.pid());
             samples.add(new double[] { m, heap, rss });
-            System.out.printf(Locale.ROOT, "[memory] minute %3d: heap after full GC %.1f MB, RSS %.1f MB (load %s)%n",
-                    m, heap, rss, loadAverage());
+            List<double[]> sofar = samples.size() > 6 ? samples.subList(5, samples.size()) : samples;
+            System.out.printf(Locale.ROOT, "[memory] minute %3d: heap after full GC %.1f MB, RSS %.1f MB (load %s); "
+                    + "slope so far %+.2f / %+.2f MB/h%n", m, heap, rss, loadAverage(), slope(sofar, 1) * 60, slope(
+                            sofar, 2) * 60);
             Files.writeString(dir.resolve("memory.csv"), String.format(Locale.ROOT, "%d,%.2f,%.2f%n", m, heap, rss),
                     StandardCharsets.US_ASCII, java.nio.file.StandardOpenOption.CREATE,
                     java.nio.file.StandardOpenOption.APPEND);
