@@ -78,6 +78,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private static final double ELLIPSE_SCALE = Math.sqrt(5.991);
     /** Drags shorter than this (pixels) are clicks. */
     private static final int CLICK_SLOP_PX = 5;
+    /** A trail point closer than this (pixels, either axis) to the last one drawn is left out. */
+    private static final int TRAIL_STEP_PX = 4;
     /** Paint times kept for the frame-time figure. */
     private static final int FRAME_SAMPLES = 4096;
 
@@ -570,7 +572,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             if (r.trail().size() > 1) {
                 gc.setForeground(trail);
                 gc.setLineWidth(2);
-                gc.drawPolyline(toScreen(r.trail()));
+                gc.drawPolyline(toScreenDecimated(r.trail(), TRAIL_STEP_PX));
             }
             if (r.path() != null && r.path().points().size() > 1) {
                 List<Point2D> pts = new ArrayList<>();
@@ -637,7 +639,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (a * viewport.scale() < 1) {
             return; // smaller than a pixel
         }
-        int n = 36;
+        // vertices about every 6 pixels of the outline (12..36): a 95 % ellipse of a well-localised robot is a few
+        // pixels across, and each dotted segment costs the renderer; 100 robots are 100 ellipses a frame
+        double perimeterPx = Math.PI * (a + b) * viewport.scale();
+        int n = (int) Math.max(12, Math.min(36, Math.round(perimeterPx / 6)));
         int[] pts = new int[2 * n];
         for (int i = 0; i < n; i++) {
             double t = 2 * Math.PI * i / n;
@@ -679,6 +684,26 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         } finally {
             c.dispose();
         }
+    }
+
+    /**
+     * A polyline's screen points without those closer than {@code minPx} to the last point kept (the last point is
+     * always kept): a trail holds up to 600 points, often laid over one another; what the eye cannot tell apart the
+     * renderer need not stroke.
+     */
+    private int[] toScreenDecimated(List<Point2D> pts, int minPx) {
+        int[] out = new int[2 * pts.size()];
+        int k = 0;
+        for (int i = 0; i < pts.size(); i++) {
+            int x = sx(pts.get(i).x());
+            int y = sy(pts.get(i).y());
+            boolean last = i == pts.size() - 1;
+            if (k == 0 || last || Math.abs(x - out[k - 2]) >= minPx || Math.abs(y - out[k - 1]) >= minPx) {
+                out[k++] = x;
+                out[k++] = y;
+            }
+        }
+        return java.util.Arrays.copyOf(out, k);
     }
 
     private int[] toScreen(List<Point2D> pts) {
