@@ -50,6 +50,7 @@ public final class WorkbenchBench {
     private int seconds = 30;
     private int warmupSeconds = 10;
     private boolean memory;
+    private boolean sharedCpus;
     private int minutes = 60;
     private double rate = 10;
     private long seed = 1;
@@ -75,11 +76,12 @@ public final class WorkbenchBench {
                 case "--rate" -> { rate = Double.parseDouble(need(a, v)); i++; }
                 case "--seed" -> { seed = Long.parseLong(need(a, v)); i++; }
                 case "--memory" -> memory = true;
+                case "--shared-cpus" -> sharedCpus = true;
                 case "--product" -> { product = Paths.get(need(a, v)); i++; }
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--seed N (1)] "
+                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--seed N (1)] [--shared-cpus] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -127,6 +129,11 @@ public final class WorkbenchBench {
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
+            // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
+            // ./sabot bench controlml does; the load, the workbench (started by this JVM) and Xvfb on the others
+            CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
+            System.out.println("[bench] CPUs: " + cpus.description());
+            figures.put("cpu_layout", cpus.description());
             String operatorPw = "operator-pw";
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, operatorPw);
             long l0 = System.nanoTime();
