@@ -176,12 +176,13 @@ public final class FleetLoad implements AutoCloseable {
      * @param prefix   the robots' local part before the number
      * @param password their password
      * @param operator the account that may set (and follows them)
-     * @param rateHz   position and velocity rate, Hz (mission: 1 Hz)
+     * @param rateHz   position rate, Hz (mission: 1 Hz)
+     * @param velocityRateHz velocity rate, Hz; 0: none
      * @param seed     the fleet's seed
      * @param map      the lab map's YAML (map_server), halved to 0.1 m a cell for {@code cm.map}
      */
     public static FleetLoad start(PrivateXmppServer server, int count, String prefix, String password,
-            BareJid operator, double rateHz, long seed, Path map) throws Exception {
+            BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
         if (count < 1 || count > 1000) {
             throw new IllegalArgumentException("robots: " + count + " is outside 1..1000");
         }
@@ -212,8 +213,10 @@ public final class FleetLoad implements AutoCloseable {
                 c.sendStanza(PresenceLevels.presenceFor(c, MissionState.IDLE, false));
                 r.publications.add(r.manager.publishTelemetry(Resources.POSITION, () -> r.pose(Instant.now()),
                         rateHz));
-                r.publications.add(r.manager.publishTelemetry(Resources.VELOCITY, () -> r.velocity(Instant.now()),
-                        rateHz));
+                if (velocityRateHz > 0) {
+                    r.publications.add(r.manager.publishTelemetry(Resources.VELOCITY, () -> r.velocity(Instant.now()),
+                            velocityRateHz));
+                }
                 r.publications.add(r.manager.publishTelemetry(Resources.MISSION, () -> r.mission(Instant.now()), 1));
             }
         } catch (Exception | Error e) {
@@ -299,6 +302,7 @@ public final class FleetLoad implements AutoCloseable {
         int robots = 10;
         PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
         double rate = 10;
+        double velocityRate = -1;
         long seed = 1;
         long seconds = 0;
         for (int i = 0; i < args.length; i++) {
@@ -307,11 +311,12 @@ public final class FleetLoad implements AutoCloseable {
                 case "--server" -> kind = PrivateXmppServer.Kind.valueOf(value(args, ++i, "--server").toUpperCase(
                         Locale.ROOT));
                 case "--rate" -> rate = Double.parseDouble(value(args, ++i, "--rate"));
+                case "--velocity-rate" -> velocityRate = Double.parseDouble(value(args, ++i, "--velocity-rate"));
                 case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
                 case "--seconds" -> seconds = Long.parseLong(value(args, ++i, "--seconds"));
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot load [--robots N (10)] [--server prosody|ejabberd] [--rate HZ "
-                            + "(10)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]");
+                            + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]");
                     return;
                 }
                 default -> throw new IllegalArgumentException("unknown option " + args[i] + " (--help)");
@@ -321,7 +326,8 @@ public final class FleetLoad implements AutoCloseable {
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             BareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, "sabot");
             Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
-            try (FleetLoad load = start(server, robots, "load-", "sabot", operator, rate, seed, map)) {
+            try (FleetLoad load = start(server, robots, "load-", "sabot", operator, rate, velocityRate < 0
+                    ? rate : velocityRate, seed, map)) {
                 System.out.printf(Locale.ROOT, "[load] %d robots (load-01..load-%02d@%s, password 'sabot') on %s "
                         + "127.0.0.1:%d, %.0f Hz; operator operator@%s password 'sabot' may set; seed %d%n", robots,
                         robots, PrivateXmppServer.DOMAIN, kind.name().toLowerCase(Locale.ROOT), server.port(), rate,

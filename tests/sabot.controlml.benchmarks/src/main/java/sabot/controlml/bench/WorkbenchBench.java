@@ -53,6 +53,8 @@ public final class WorkbenchBench {
     private boolean sharedCpus;
     private int minutes = 60;
     private double rate = 10;
+    /** Velocity telemetry rate, Hz; negative: as {@link #rate}. */
+    private double velocityRate = -1;
     private long seed = 1;
     private Path product;
     private Path out;
@@ -74,6 +76,7 @@ public final class WorkbenchBench {
                 case "--warmup" -> { warmupSeconds = positive(a, v, 600); i++; }
                 case "--minutes" -> { minutes = positive(a, v, 24 * 60); i++; }
                 case "--rate" -> { rate = Double.parseDouble(need(a, v)); i++; }
+                case "--velocity-rate" -> { velocityRate = Double.parseDouble(need(a, v)); i++; }
                 case "--seed" -> { seed = Long.parseLong(need(a, v)); i++; }
                 case "--memory" -> memory = true;
                 case "--shared-cpus" -> sharedCpus = true;
@@ -81,7 +84,7 @@ public final class WorkbenchBench {
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--seed N (1)] [--shared-cpus] "
+                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--shared-cpus] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -128,6 +131,7 @@ public final class WorkbenchBench {
         figures.put("server", kind.name().toLowerCase(Locale.ROOT));
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
+        figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
             // ./sabot bench controlml does; the load, the workbench (started by this JVM) and Xvfb on the others
@@ -137,7 +141,7 @@ public final class WorkbenchBench {
             String operatorPw = "operator-pw";
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, operatorPw);
             long l0 = System.nanoTime();
-            try (FleetLoad load = FleetLoad.start(server, robots, "load-", "robot-pw", operator, rate, seed, root
+            try (FleetLoad load = FleetLoad.start(server, robots, "load-", "robot-pw", operator, rate, velocityRate < 0 ? rate : velocityRate, seed, root
                     .resolve("onboard-bridge/maps/lab.yaml"))) {
                 System.out.printf(Locale.ROOT, "[bench] %s: %d load robots online in %.1f s (seed %d)%n", kind.name()
                         .toLowerCase(Locale.ROOT), robots, (System.nanoTime() - l0) / 1e9, seed);
@@ -330,8 +334,9 @@ public final class WorkbenchBench {
         Arrays.sort(refLat);
         long published = Math.round(robots * rate * seconds);
         String loads = load0 + " → " + load1;
-        System.out.printf(Locale.ROOT, "[figure] %s, %d robots x %.0f Hz, %d s window, load %s%n", kind.name()
-                .toLowerCase(Locale.ROOT), robots, rate, seconds, loads);
+        System.out.printf(Locale.ROOT, "[figure] %s, %d robots, cm.position %.0f Hz, cm.velocity %.0f Hz, cm.mission 1 Hz, "
+                + "%d s window, load %s%n", kind.name().toLowerCase(Locale.ROOT), robots, rate, velocityRate < 0 ? rate
+                        : velocityRate, seconds, loads);
         System.out.printf(Locale.ROOT, "[figure] workspace paint time: %s, %.1f paints/s; its CPU time on the UI "
                 + "thread: %s%n", pct(fr), fr.length / (double) seconds, pct(frCpu));
         System.out.printf(Locale.ROOT, "[figure] telemetry-to-screen latency (pose stamp to end of the paint that "

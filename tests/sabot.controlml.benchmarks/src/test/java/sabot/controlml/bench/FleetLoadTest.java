@@ -41,7 +41,7 @@ class FleetLoadTest {
         FleetLoad.setUpSmack();
         server = PrivateXmppServer.prosody().start();
         operator = server.register("operator", PrivateXmppServer.DOMAIN, "operator-pw");
-        load = FleetLoad.start(server, 3, "load-", "robot-pw", operator, 10, 1, PrivateXmppServer.repositoryRoot()
+        load = FleetLoad.start(server, 3, "load-", "robot-pw", operator, 10, 10, 1, PrivateXmppServer.repositoryRoot()
                 .resolve("onboard-bridge/maps/lab.yaml"));
     }
 
