@@ -572,7 +572,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             if (r.trail().size() > 1) {
                 gc.setForeground(trail);
                 gc.setLineWidth(2);
-                gc.drawPolyline(toScreenDecimated(r.trail(), TRAIL_STEP_PX));
+                for (int[] run : trailRuns(toScreenDecimated(r.trail(), TRAIL_STEP_PX), TRAIL_STEP_PX)) {
+                    gc.drawPolyline(run);
+                }
             }
             if (r.path() != null && r.path().points().size() > 1) {
                 List<Point2D> pts = new ArrayList<>();
@@ -704,6 +706,36 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             }
         }
         return java.util.Arrays.copyOf(out, k);
+    }
+
+    /**
+     * A trail's screen polyline cut into runs that leave out segments between two points whose {@code cellPx} cells
+     * the trail has already passed through: a robot that goes round the same loop (a patrol, a test circle) would
+     * otherwise have its 600 points stroked lap over lap on the same pixels every frame.
+     */
+    static List<int[]> trailRuns(int[] xy, int cellPx) {
+        List<int[]> runs = new ArrayList<>();
+        java.util.Set<Long> visited = new java.util.HashSet<>();
+        int start = -1;
+        boolean previousSeen = false;
+        for (int i = 0; i < xy.length / 2; i++) {
+            long cell = ((long) Math.floorDiv(xy[2 * i], cellPx) << 32) ^ (Math.floorDiv(xy[2 * i + 1], cellPx)
+                    & 0xffffffffL);
+            boolean seen = !visited.add(cell);
+            if (seen && previousSeen) {
+                if (start >= 0 && i - 1 > start) {
+                    runs.add(java.util.Arrays.copyOfRange(xy, 2 * start, 2 * i));
+                }
+                start = i; // the segment to the next new point is drawn from here
+            } else if (start < 0) {
+                start = i;
+            }
+            previousSeen = seen;
+        }
+        if (start >= 0 && xy.length / 2 - 1 > start) {
+            runs.add(java.util.Arrays.copyOfRange(xy, 2 * start, xy.length));
+        }
+        return runs;
     }
 
     private int[] toScreen(List<Point2D> pts) {

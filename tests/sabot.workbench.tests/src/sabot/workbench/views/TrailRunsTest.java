@@ -1,0 +1,41 @@
+package sabot.workbench.views;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+
+/** The trail drawn: laps over the same pixels are stroked once. */
+class TrailRunsTest {
+
+    @Test
+    void aTrailThatNeverReturnsIsOneRun() {
+        int[] xy = { 0, 0, 10, 0, 20, 0, 30, 5 };
+        List<int[]> runs = WorkspaceView.trailRuns(xy, 4);
+        assertEquals(1, runs.size());
+        assertArrayEquals(xy, runs.get(0));
+    }
+
+    @Test
+    void aSecondLapOverTheSamePixelsIsLeftOutAndTheWayOnIsKept() {
+        // a square lap, the same lap again, then away to the right
+        int[] lap = { 0, 0, 20, 0, 20, 20, 0, 20 };
+        int[] xy = new int[lap.length * 2 + 4];
+        System.arraycopy(lap, 0, xy, 0, lap.length);
+        System.arraycopy(lap, 0, xy, lap.length, lap.length);
+        xy[2 * lap.length] = 40;
+        xy[2 * lap.length + 1] = 20;
+        xy[2 * lap.length + 2] = 60;
+        xy[2 * lap.length + 3] = 20;
+        List<int[]> runs = WorkspaceView.trailRuns(xy, 4);
+        int segments = runs.stream().mapToInt(r -> r.length / 2 - 1).sum();
+        // first lap: 3 segments + the closing one back to (0, 0); then (0, 20) -> (40, 20) -> (60, 20)
+        assertEquals(6, segments, () -> runs.stream().map(java.util.Arrays::toString).toList().toString());
+        int[] last = runs.get(runs.size() - 1);
+        assertArrayEquals(new int[] { 0, 20, 40, 20, 60, 20 }, last);
+        assertTrue(runs.get(0)[0] == 0 && runs.get(0)[1] == 0);
+    }
+}
