@@ -224,21 +224,19 @@ public final class WorkbenchBench {
             FleetLoad load, Map<String, Object> figures) throws Exception {
         long started = System.nanoTime();
         long startedMicros = micros(Instant.now());
-        // every robot drawn live once: the probe has a latency line for each
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(120 + robots);
+        // every robot drawn live once (the probe has a latency line for each), or the deadline: then the run goes
+        // on with those that are, and says so
+        int limitS = 60 + robots;
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(limitS);
         long firstMicros = -1;
         Set<String> live = new HashSet<>();
         long report = System.nanoTime();
-        while (live.size() < robots) {
+        while (live.size() < robots && System.nanoTime() < deadline) {
             if (System.nanoTime() - report > 10_000_000_000L) {
                 report = System.nanoTime();
                 System.out.printf(Locale.ROOT, "[bench] %d of %d robots drawn live; telemetry acknowledged %d, failed %d "
                         + "(load %s)%n", live.size(), robots, load.telemetryPublished(), load.telemetryFailed(),
                         loadAverage());
-            }
-            if (System.nanoTime() > deadline) {
-                throw new IllegalStateException("within " + (120 + robots) + " s only " + live.size() + " of " + robots
-                        + " robots were drawn live (see the workbench's log)");
             }
             hold(wb, 0.2);
             for (String line : lines(probe)) {
@@ -251,9 +249,18 @@ public final class WorkbenchBench {
                 }
             }
         }
+        if (live.isEmpty()) {
+            throw new IllegalStateException("no robot drawn live within " + limitS + " s (see the workbench's log)");
+        }
+        if (live.size() < robots) {
+            System.out.printf(Locale.ROOT, "[bench] only %d of %d robots drawn live within %d s; measuring with them%n",
+                    live.size(), robots, limitS);
+        }
+        figures.put("robots_live", live.size());
         double allLiveS = (System.nanoTime() - started) / 1e9;
-        System.out.printf(Locale.ROOT, "[figure] workbench process start to first live robot on screen %.2f s, to all "
-                + "%d robots %.2f s (load %s)%n", (firstMicros - startedMicros) / 1e6, robots, allLiveS, loadAverage());
+        System.out.printf(Locale.ROOT, "[figure] workbench process start to first live robot on screen %.2f s, to %d of "
+                + "%d robots %.2f s (load %s)%n", (firstMicros - startedMicros) / 1e6, live.size(), robots, allLiveS,
+                loadAverage());
         figures.put("start_to_first_live_s", round((firstMicros - startedMicros) / 1e6));
         figures.put("start_to_all_live_s", round(allLiveS));
 
