@@ -299,6 +299,15 @@ public final class FleetLoad implements AutoCloseable {
     // ------------------------------------------------------------------------------------------------ ./sabot load
 
     public static void main(String[] args) throws Exception {
+        try {
+            run(args);
+        } catch (IllegalArgumentException e) {
+            System.err.println("[load] error: " + e.getMessage());
+            System.exit(2);
+        }
+    }
+
+    private static void run(String[] args) throws Exception {
         int robots = 10;
         PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
         double rate = 10;
@@ -308,8 +317,7 @@ public final class FleetLoad implements AutoCloseable {
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--robots" -> robots = Integer.parseInt(value(args, ++i, "--robots"));
-                case "--server" -> kind = PrivateXmppServer.Kind.valueOf(value(args, ++i, "--server").toUpperCase(
-                        Locale.ROOT));
+                case "--server" -> kind = serverKind(value(args, ++i, "--server"));
                 case "--rate" -> rate = Double.parseDouble(value(args, ++i, "--rate"));
                 case "--velocity-rate" -> velocityRate = Double.parseDouble(value(args, ++i, "--velocity-rate"));
                 case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
@@ -321,6 +329,13 @@ public final class FleetLoad implements AutoCloseable {
                 }
                 default -> throw new IllegalArgumentException("unknown option " + args[i] + " (--help)");
             }
+        }
+        if (robots < 1 || robots > 1000) {
+            throw new IllegalArgumentException("--robots " + robots + " is outside 1..1000");
+        }
+        if (!(rate > 0 && rate <= 100) || velocityRate > 100) {
+            throw new IllegalArgumentException("--rate/--velocity-rate: 0 < position rate <= 100 Hz, velocity rate <= "
+                    + "100 Hz");
         }
         setUpSmack();
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
@@ -343,6 +358,15 @@ public final class FleetLoad implements AutoCloseable {
                 }
             }
         }
+    }
+
+    /** @return the server kind named on the command line, or a precise error */
+    static PrivateXmppServer.Kind serverKind(String name) {
+        return switch (name) {
+            case "prosody" -> PrivateXmppServer.Kind.PROSODY;
+            case "ejabberd" -> PrivateXmppServer.Kind.EJABBERD;
+            default -> throw new IllegalArgumentException("--server '" + name + "': expected prosody or ejabberd");
+        };
     }
 
     private static String value(String[] args, int i, String option) {

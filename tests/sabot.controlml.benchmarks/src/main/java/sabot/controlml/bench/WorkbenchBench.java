@@ -61,7 +61,12 @@ public final class WorkbenchBench {
 
     public static void main(String[] args) throws Exception {
         WorkbenchBench b = new WorkbenchBench();
-        b.parse(args);
+        try {
+            b.parse(args);
+        } catch (IllegalArgumentException e) {
+            System.err.println("[bench] error: " + e.getMessage());
+            System.exit(2);
+        }
         System.exit(b.run());
     }
 
@@ -71,7 +76,7 @@ public final class WorkbenchBench {
             String v = i + 1 < args.length ? args[i + 1] : null;
             switch (a) {
                 case "--robots" -> { robots = positive(a, v, 1000); i++; }
-                case "--server" -> { kind = PrivateXmppServer.Kind.valueOf(need(a, v).toUpperCase(Locale.ROOT)); i++; }
+                case "--server" -> { kind = FleetLoad.serverKind(need(a, v)); i++; }
                 case "--seconds" -> { seconds = positive(a, v, 3600); i++; }
                 case "--warmup" -> { warmupSeconds = positive(a, v, 600); i++; }
                 case "--minutes" -> { minutes = positive(a, v, 24 * 60); i++; }
