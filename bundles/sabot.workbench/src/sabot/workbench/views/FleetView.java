@@ -27,7 +27,7 @@ import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.MissionStatus;
 import sabot.workbench.fleet.RobotState;
-import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.fleet.FleetBinding;
 
 /**
  * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
@@ -132,7 +132,7 @@ public final class FleetView extends ViewPart {
         });
         getSite().setSelectionProvider(viewer);
         getSite().getPage().addSelectionListener(otherViews);
-        fleet = new FleetBinding(table.getDisplay(), this::refresh);
+        fleet = new FleetBinding(table.getDisplay()::asyncExec, this::refresh);
         tick();
     }
 

@@ -44,7 +44,7 @@ import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
-import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.internal.FleetJobs;
 import sabot.workbench.map.MapViewport;
 
@@ -167,7 +167,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         createContextMenu();
         getSite().setSelectionProvider(this);
         getSite().getPage().addSelectionListener(otherViews);
-        fleet = new FleetBinding(canvas.getDisplay(), this::fleetChanged);
+        fleet = new FleetBinding(canvas.getDisplay()::asyncExec, this::fleetChanged);
         canvas.addDisposeListener(e -> {
             if (mapImage != null) {
                 mapImage.dispose();

@@ -30,6 +30,9 @@ import org.eclipse.core.runtime.preferences.IEclipsePreferences.IPreferenceChang
 import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.ConnectionListener;
 import org.jivesoftware.smack.ReconnectionManager;
+import org.jivesoftware.smack.SmackException;
+import org.jivesoftware.smack.XMPPException;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.Roster;
@@ -37,6 +40,8 @@ import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
 import org.jivesoftware.smack.roster.RosterListener;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
@@ -66,6 +71,10 @@ import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.SubscriptionGate;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceVCards;
+import sabot.identity.IdentityResult;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.MapServerFormat;
 import sabot.model.map.OccupancyGrid;
@@ -77,6 +86,7 @@ import sabot.workbench.fleet.ConnectionStatus.State;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
+import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
 
 /**
@@ -149,6 +159,8 @@ public final class ControlMlFleet implements FleetState {
 
     @Activate
     void activate() {
+        // vcard-temp parsed with the device fields (GEO, FN, ROLE) that Smack's own provider drops
+        DeviceIdentityManager.registerProvider();
         node = XmppAccountStore.workbenchNode();
         node.addPreferenceChangeListener(accountChanged);
         connector.execute(this::connect);
@@ -339,6 +351,73 @@ public final class ControlMlFleet implements FleetState {
     @Override
     public <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value) {
         return request(robot, (m, jid) -> m.set(jid, resource, value));
+    }
+
+    /**
+     * The robot's vCard (vcard-temp, stored by the server, so it is read while the robot is offline too), parsed with
+     * {@code sabot.identity}'s device profile, on the request pool.
+     */
+    @Override
+    public CompletableFuture<RobotIdentity> identity(String robot) {
+        CompletableFuture<RobotIdentity> f = new CompletableFuture<>();
+        try {
+            requests.execute(() -> {
+                try {
+                    f.complete(fetchIdentity(robot));
+                } catch (FleetCommandException e) {
+                    f.completeExceptionally(e);
+                } catch (RuntimeException e) {
+                    f.completeExceptionally(new FleetCommandException(ControlMlCondition.UNSPECIFIED, e.toString()));
+                }
+            });
+        } catch (java.util.concurrent.RejectedExecutionException stopped) {
+            f.completeExceptionally(new FleetCommandException(ControlMlCondition.NOT_CONNECTED,
+                    "the ControlML plug-in has stopped"));
+        }
+        return f;
+    }
+
+    /** Request pool: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
+    private RobotIdentity fetchIdentity(String robot) {
+        Session s = session;
+        if (s == null || !s.connection().isAuthenticated()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
+                    + status.summary() + ")");
+        }
+        if (!robots.containsKey(robot)) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
+                    + " is not a robot of this workbench's fleet");
+        }
+        VCard card;
+        try {
+            card = VCardManager.getInstanceFor(s.connection()).loadVCard(JidCreate.entityBareFrom(robot));
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        } catch (XMPPException.XMPPErrorException e) {
+            StanzaError.Condition c = e.getStanzaError().getCondition();
+            if (c == StanzaError.Condition.item_not_found || c == StanzaError.Condition.service_unavailable) {
+                throw new FleetCommandException(ControlMlCondition.UNKNOWN_RESOURCE, robot + " has no vCard");
+            }
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": " + c);
+        } catch (SmackException.NoResponseException e) {
+            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no vCard of " + robot + " within "
+                    + s.connection().getReplyTimeout() + " ms");
+        } catch (SmackException e) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "vCard of " + robot + ": " + e);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": interrupted");
+        }
+        IdentityResult<DeviceProfile> parsed = DeviceVCards.profileOf(card);
+        if (parsed instanceof IdentityResult.Err<DeviceProfile> e) {
+            ControlMlCondition c = e.problem() == IdentityResult.Problem.NO_VCARD ? ControlMlCondition.UNKNOWN_RESOURCE
+                    : ControlMlCondition.INVALID_VALUE;
+            throw new FleetCommandException(c, robot + "'s vCard: " + e.text());
+        }
+        DeviceProfile p = parsed.orElseThrow();
+        return new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(), p
+                .latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), card.getAvatar());
     }
 
     @FunctionalInterface
