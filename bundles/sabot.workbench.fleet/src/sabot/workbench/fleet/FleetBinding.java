@@ -21,8 +21,8 @@ import org.osgi.util.tracker.ServiceTrackerCustomizer;
  * a thousand events a second, the screen needs one repaint per frame.
  * <p>
  * No toolkit type: the UI thread is given as an {@link Executor} (with SWT: {@code display::asyncExec}, guarded by
- * {@code display.isDisposed()}). The bundle context is that of the bundle that loaded this class; the service is
- * tracked from there.
+ * {@code display.isDisposed()}). The service is tracked with this API bundle's context (the bundle activates lazily
+ * on the first use of this class).
  */
 public final class FleetBinding implements FleetListener {
 
@@ -45,6 +45,10 @@ public final class FleetBinding implements FleetListener {
         this.uiThread = Objects.requireNonNull(uiThread, "uiThread");
         this.refresh = Objects.requireNonNull(refresh, "refresh");
         BundleContext context = FrameworkUtil.getBundle(FleetBinding.class).getBundleContext();
+        if (context == null) {
+            throw new IllegalStateException("bundle " + FrameworkUtil.getBundle(FleetBinding.class)
+                    .getSymbolicName() + " is not active (it needs Bundle-ActivationPolicy: lazy and a started state)");
+        }
         tracker = new ServiceTracker<>(context, FleetState.class, new ServiceTrackerCustomizer<>() {
             @Override
             public FleetState addingService(ServiceReference<FleetState> reference) {
