@@ -40,6 +40,7 @@ import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
 import org.jivesoftware.smack.roster.RosterListener;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.muc.MultiUserChatManager;
 import org.jivesoftware.smackx.vcardtemp.VCardManager;
 import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.jxmpp.jid.EntityBareJid;
@@ -69,6 +70,9 @@ import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.Trajectory;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.FleetConnections;
+import sabot.fleet.FleetException;
+import sabot.fleet.FleetLobby;
+import sabot.fleet.RosterCompiler;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.SubscriptionGate;
 import sabot.identity.DeviceIdentityManager;
@@ -533,6 +537,10 @@ public final class ControlMlFleet implements FleetState {
                 }
             }
             refreshRoster(s);
+            String lobby = store.loadLobby();
+            if (!lobby.isEmpty()) {
+                joinLobby(s, lobby);
+            }
             backoff.reset();
             setStatus(State.ONLINE, account.jid(), account.server() + ":" + account.port());
             LOG.info("connected as {} to {}:{}; following {} robot(s)", c.getUser(), account.server(), account
@@ -622,6 +630,49 @@ public final class ControlMlFleet implements FleetState {
             if (!now.contains(jid)) {
                 remove(jid);
             }
+        }
+    }
+
+    /** The vCard ROLE of the devices roster rule 11 follows (docs/IDENTITY.md; the onboard product publishes it). */
+    static final String ROBOT_ROLE = "robot";
+
+    /**
+     * Connection thread: roster rule 11. Joins the fleet lobby (a XEP-0045 room every online device joins) and
+     * subscribes to the occupants whose vCard says they are robots ({@link #ROBOT_ROLE}), now and whenever an occupant
+     * comes in. A lobby that cannot be joined leaves the workbench with its roster (rule 12); the reason is logged and
+     * shown in the status line's detail.
+     */
+    private void joinLobby(Session s, String room) {
+        try {
+            EntityBareJid jid = JidCreate.entityBareFrom(room);
+            FleetLobby lobby = new FleetLobby(s.connection(), jid);
+            lobby.join();
+            MultiUserChatManager.getInstanceFor(s.connection()).getMultiUserChat(jid).addParticipantListener(p -> {
+                if (p.isAvailable()) {
+                    connector.execute(() -> compileRoster(s, lobby));
+                }
+            });
+            LOG.info("joined the fleet lobby {}", room);
+            compileRoster(s, lobby);
+        } catch (FleetException | XmppStringprepException e) {
+            LOG.warn("fleet lobby {}: {}", room, e.getMessage());
+        }
+    }
+
+    /** Connection thread: subscribes to the lobby's robots not yet in the roster (they then join the fleet). */
+    private void compileRoster(Session s, FleetLobby lobby) {
+        if (session != s) {
+            return;
+        }
+        try {
+            RosterCompiler.Report report = new RosterCompiler(s.connection(), lobby, new RosterCompiler.Rules(
+                    p -> ROBOT_ROLE.equals(p.role()), Set.of(), ROBOTS_GROUP)).compile();
+            if (!report.subscribed().isEmpty()) {
+                LOG.info("fleet lobby: subscribed to {}", report.subscribed());
+            }
+            report.rejected().forEach((jid, why) -> LOG.debug("fleet lobby: {} not followed: {}", jid, why));
+        } catch (FleetException e) {
+            LOG.warn("fleet lobby: {}", e.getMessage());
         }
     }
 
