@@ -182,6 +182,16 @@ class LiveFleetUiTest {
         List<String> messages = new ArrayList<>();
         boolean[] pathShown = { false };
         boolean[] shot = { false };
+        // as ./sabot demo's screenshot: taken right after the paint that first shows the running mission's path and
+        // trail (WorkspaceView.whenDrawn, the hook of -sabot.screenshot.mission)
+        workspace.whenDrawn(WorkspaceView::showsRunningMission, () -> {
+            shot[0] = true;
+            try {
+                screenshot("workbench-goal.png");
+            } catch (Exception e) {
+                throw new AssertionError("screenshot: " + e, e);
+            }
+        });
         waitFor(() -> {
             RobotState now = robotRow();
             if (workspace.lastMessage() != null && (messages.isEmpty() || !messages.get(messages.size() - 1).equals(
@@ -192,19 +202,12 @@ class LiveFleetUiTest {
                 progress.add(FleetView.texts(now, Instant.now()).get(3));
                 if (now.path() != null && now.goal() != null) {
                     pathShown[0] = true;
-                    if (!shot[0] && now.mission().progress() > 20) {
-                        shot[0] = true;
-                        try {
-                            screenshot("workbench-goal.png");
-                        } catch (Exception e) {
-                            throw new AssertionError("screenshot: " + e, e);
-                        }
-                    }
                 }
             }
             return now.mission() != null && now.mission().state() == MissionState.DONE;
         }, 60, () -> "mission not done: " + robotRow() + "; " + workspace.lastMessage());
         assertTrue(pathShown[0], "the planned path and goal never reached the workspace");
+        assertTrue(shot[0], "the running mission (path and trail) was never drawn");
         assertTrue(progress.stream().anyMatch(p -> p.matches("running [1-9][0-9]? %.*")), "no progress shown: "
                 + progress);
         assertTrue(messages.stream().anyMatch(m -> m.matches(
