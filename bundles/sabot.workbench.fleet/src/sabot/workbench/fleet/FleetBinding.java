@@ -1,31 +1,32 @@
-package sabot.workbench.internal;
+package sabot.workbench.fleet;
 
 import java.util.List;
 import java.util.Map;
+import java.util.Objects;
 import java.util.concurrent.ConcurrentSkipListMap;
+import java.util.concurrent.Executor;
+import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.atomic.AtomicBoolean;
 
-import org.eclipse.swt.widgets.Display;
 import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
 import org.osgi.framework.ServiceReference;
 import org.osgi.util.tracker.ServiceTracker;
 import org.osgi.util.tracker.ServiceTrackerCustomizer;
 
-import sabot.workbench.fleet.ConnectionStatus;
-import sabot.workbench.fleet.FleetListener;
-import sabot.workbench.fleet.FleetState;
-import sabot.workbench.fleet.RobotState;
-
 /**
- * A view's tie to the {@link FleetState} service (thesis rule 1: the core observes the ControlML plug-in). It follows
- * the service as it comes and goes (the plug-in is optional), keeps the latest state of each robot, and runs the
- * view's refresh on the UI thread at most once per burst of changes: a hundred robots at 10 Hz are a thousand events a
- * second, the screen needs one repaint per frame.
+ * A view's tie to the {@link FleetState} service (thesis rule 1: the core and the plug-ins observe the ControlML
+ * plug-in). It follows the service as it comes and goes (the plug-in is optional), keeps the latest state of each
+ * robot, and runs the view's refresh on the UI thread at most once per burst of changes: a hundred robots at 10 Hz are
+ * a thousand events a second, the screen needs one repaint per frame.
+ * <p>
+ * No toolkit type: the UI thread is given as an {@link Executor} (with SWT: {@code display::asyncExec}, guarded by
+ * {@code display.isDisposed()}). The service is tracked with this API bundle's context (the bundle activates lazily
+ * on the first use of this class).
  */
 public final class FleetBinding implements FleetListener {
 
-    private final Display display;
+    private final Executor uiThread;
     private final Runnable refresh;
     private final ServiceTracker<FleetState, FleetState> tracker;
     private final Map<String, RobotState> robots = new ConcurrentSkipListMap<>();
@@ -34,13 +35,20 @@ public final class FleetBinding implements FleetListener {
     private volatile boolean disposed;
 
     /**
-     * @param display the UI thread's display
-     * @param refresh runs on the UI thread after changes
+     * Starts observing at once (the present state arrives with the first refresh).
+     *
+     * @param uiThread runs a task on the UI thread later (never in the caller's stack); it may refuse with
+     *                 {@link RejectedExecutionException} or any runtime exception once the UI is gone
+     * @param refresh  runs on the UI thread after changes
      */
-    public FleetBinding(Display display, Runnable refresh) {
-        this.display = display;
-        this.refresh = refresh;
+    public FleetBinding(Executor uiThread, Runnable refresh) {
+        this.uiThread = Objects.requireNonNull(uiThread, "uiThread");
+        this.refresh = Objects.requireNonNull(refresh, "refresh");
         BundleContext context = FrameworkUtil.getBundle(FleetBinding.class).getBundleContext();
+        if (context == null) {
+            throw new IllegalStateException("bundle " + FrameworkUtil.getBundle(FleetBinding.class)
+                    .getSymbolicName() + " is not active (it needs Bundle-ActivationPolicy: lazy and a started state)");
+        }
         tracker = new ServiceTracker<>(context, FleetState.class, new ServiceTrackerCustomizer<>() {
             @Override
             public FleetState addingService(ServiceReference<FleetState> reference) {
@@ -71,12 +79,12 @@ public final class FleetBinding implements FleetListener {
         return tracker.getService();
     }
 
-    /** @return the robots as last reported, sorted by JID */
+    /** @return the robots as last reported, sorted by bare JID; empty without a fleet */
     public List<RobotState> robots() {
         return List.copyOf(robots.values());
     }
 
-    /** @return a robot as last reported, or null */
+    /** @return a robot as last reported, or null (also for a null JID) */
     public RobotState robot(String jid) {
         return jid == null ? null : robots.get(jid);
     }
@@ -105,17 +113,22 @@ public final class FleetBinding implements FleetListener {
     }
 
     private void schedule() {
-        if (!disposed && scheduled.compareAndSet(false, true) && !display.isDisposed()) {
-            display.asyncExec(() -> {
+        if (!disposed && scheduled.compareAndSet(false, true)) {
+            try {
+                uiThread.execute(() -> {
+                    scheduled.set(false);
+                    if (!disposed) {
+                        refresh.run();
+                    }
+                });
+            } catch (RuntimeException uiGone) {
+                // the display is being disposed: nothing is left to refresh
                 scheduled.set(false);
-                if (!disposed) {
-                    refresh.run();
-                }
-            });
+            }
         }
     }
 
-    /** Stops observing (the view is closing). */
+    /** Stops observing (the view is closing); no refresh runs afterwards. */
     public void dispose() {
         disposed = true;
         tracker.close();
