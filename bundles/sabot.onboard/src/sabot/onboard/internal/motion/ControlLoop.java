@@ -207,6 +207,11 @@ final class ControlLoop {
             LOG.info("ready to move ({})", localizerTask.config().useImu() ? "inertial biases settled after "
                     + localizerTask.config().imuSettleTime() + " s at rest" : "odometry only");
         }
+        if (mode == Mode.TELEOP && !wroteTwist) {
+            // a twist that arrived during this period's encoder read goes out with this period's wheel write, not at
+            // the start of the next period
+            owner.applyCommands();
+        }
         Twist2D command = command(t);
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
         if (!applied.isFinite()) {
@@ -219,6 +224,9 @@ final class ControlLoop {
             WheelSpeeds w = drive.toWheelSpeeds(applied);
             try {
                 boards.writeWheelSpeeds(w.left(), w.right());
+                if (mode == Mode.TELEOP && teleopSent != null) {
+                    teleopWritten();
+                }
             } catch (RobotBoards.MotorFaultException e) {
                 fault(e.getMessage());
             } catch (IOException e) {
@@ -678,14 +686,19 @@ final class ControlLoop {
         return left >= silence + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
     }
 
+    /** The newest joystick twist has reached the board (through the smoother): its latency is recorded. */
+    private void teleopWritten() {
+        teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
+        teleopSent = null;
+    }
+
     /** Writes the joystick's twist through the smoother; records its latency. @return true when written */
     private boolean writeTwist(double t) {
         Twist2D applied = smoother.smooth(t, teleopTwist);
         WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
         try {
             boards.writeWheelSpeeds(w.left(), w.right());
-            teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
-            teleopSent = null;
+            teleopWritten();
             return true;
         } catch (RobotBoards.MotorFaultException e) {
             teleopSent = null;

@@ -251,7 +251,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
-    private void applyCommands() {
+    /** Applies the commands queued so far; on the loop's thread only (between periods, or mid-period by the loop). */
+    void applyCommands() {
         Consumer<ControlLoop> command;
         boolean applied = false;
         while ((command = commands.poll()) != null) {
