@@ -38,6 +38,7 @@ import org.eclipse.swt.widgets.Control;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.swt.widgets.Event;
 import org.eclipse.swt.widgets.Label;
+import org.eclipse.swt.widgets.Link;
 import org.eclipse.swt.widgets.Menu;
 import org.eclipse.swt.widgets.MenuItem;
 import org.eclipse.swt.widgets.ProgressBar;
@@ -287,6 +288,7 @@ final class UiDriver implements Runnable {
             item.getParent().notifyListeners(SWT.Selection, e); // CheckboxTreeViewer: check state changed
             return null;
         });
+        await("Next to be enabled", () -> ui(() -> button(wizard, "Next >").isEnabled()));
         String shot = ui(() -> shot(wizard, "p2-install.png"));
         finishWizard(wizard, "Install Details");
         String trusted = trust();
@@ -335,9 +337,15 @@ final class UiDriver implements Runnable {
 
     private void noUpdate() throws Exception {
         runCommand("org.eclipse.equinox.p2.ui.sdk.update");
-        Shell dialog = await("the 'no updates' answer", () -> shellWith(s -> first(s, Label.class,
-                l -> l.getText().contains("No updates")) != null));
-        String text = ui(() -> first(dialog, Label.class, l -> l.getText().contains("No updates")).getText());
+        // a message dialog whose text is a Label, or a Link when it offers "Configure available software sites"
+        Predicate<Control> noUpdates = c -> (c instanceof Label l && l.getText().contains("No updates"))
+                || (c instanceof Link k && k.getText().contains("No updates"));
+        Shell dialog = await("the 'no updates' answer", () -> shellWith(s -> first(s, Control.class, noUpdates)
+                != null));
+        String text = ui(() -> {
+            Control c = first(dialog, Control.class, noUpdates);
+            return c instanceof Label l ? l.getText() : ((Link) c).getText();
+        });
         press(dialog, "OK");
         await("the dialog to close", () -> ui(() -> dialog.isDisposed()));
         ok("noupdate", "'" + text.replace('\n', ' ') + "'");
@@ -437,8 +445,8 @@ final class UiDriver implements Runnable {
             }
             return names.toString();
         });
-        String shot = ui(() -> shot(dialog, "p2-trust.png"));
         await("Trust Selected to be enabled", () -> ui(() -> button(dialog, "Trust Selected").isEnabled()));
+        String shot = ui(() -> shot(dialog, "p2-trust.png"));
         press(dialog, "Trust Selected");
         return rows + shot;
     }
@@ -472,6 +480,43 @@ final class UiDriver implements Runnable {
     }
 
     // --- widgets ------------------------------------------------------------------------------------------------
+
+    /** The open shells with their titles and label texts, for a failure message. */
+    private String describeShells() {
+        try {
+            return ui(() -> {
+                List<String> out = new ArrayList<>();
+                for (Shell s : display.getShells()) {
+                    if (s.isDisposed() || !s.isVisible()) {
+                        continue;
+                    }
+                    List<String> labels = new ArrayList<>();
+                    collectTexts(s, labels);
+                    out.add("'" + s.getText() + "' " + labels);
+                }
+                return out.toString();
+            });
+        } catch (Exception e) {
+            return "(shells unknown: " + e + ")";
+        }
+    }
+
+    private static void collectTexts(Composite root, List<String> out) {
+        for (Control c : root.getChildren()) {
+            if (c instanceof Label l && !l.getText().isBlank()) {
+                out.add(l.getText().replace('\n', ' '));
+            } else if (c instanceof Button b && !b.getText().isBlank()) {
+                out.add("[" + plain(b.getText()) + "]");
+            } else if (c instanceof Link k && !k.getText().isBlank()) {
+                out.add(k.getText().replace('\n', ' '));
+            } else if (c instanceof org.eclipse.swt.widgets.Text t && !t.getText().isBlank()) {
+                out.add(t.getText().replace('\n', ' '));
+            }
+            if (c instanceof Composite comp) {
+                collectTexts(comp, out);
+            }
+        }
+    }
 
     private Shell shellWith(Predicate<Shell> test) throws Exception {
         return ui(() -> {
@@ -629,7 +674,7 @@ final class UiDriver implements Runnable {
     }
 
     /** Probes until it gives a non-null value other than FALSE; fails after {@value #WAIT_S} s. */
-    private static <T> T await(String what, Callable<T> probe) throws Exception {
+    private <T> T await(String what, Callable<T> probe) throws Exception {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(WAIT_S);
         while (true) {
             T value = probe.call();
@@ -637,7 +682,8 @@ final class UiDriver implements Runnable {
                 return value;
             }
             if (System.nanoTime() > deadline) {
-                throw new AssertionError("waited " + WAIT_S + " s for " + what);
+                throw new AssertionError("waited " + WAIT_S + " s for " + what + "; open shells: "
+                        + (display == null ? "(no display)" : describeShells()));
             }
             LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(PROBE_MS));
             if (Thread.currentThread().isInterrupted()) {
