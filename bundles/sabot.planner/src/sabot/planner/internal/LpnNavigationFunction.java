@@ -272,10 +272,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * the start, expanding only cells that can lie on a path from the start of cost at most a bound U, i.e. with
      * {@code N(p) + c_min |p - start| <= U + margin} (c_min |p - start| is a lower bound of the cost from p to the
      * start, as A*'s heuristic; P. E. Hart, N. J. Nilsson, B. Raphael, IEEE SSC 4(2), 1968). Cells are still expanded
-     * in increasing N, so every expanded cell is final and expanded once, with the same values as the whole-grid
-     * propagation: the bound only leaves out cells (deferred: reached, not expanded). The margin, four diagonal
-     * steps at the highest density, covers the corners of the triangles of the path's cells (their keys exceed the
-     * path's by less than c_min sqrt 2) and the neighbourhood the descent reads.
+     * in increasing N, so every expanded cell is final and expanded once, with the values of the whole-grid
+     * propagation (to the order effects inside a bucket, see the class comment): the bound only leaves out cells
+     * (deferred: reached, not expanded), no cell is expanded twice as in A* with this update (whose keys N + h fall
+     * along many updates: the interpolated update may raise N by only c / sqrt 2 while h falls by c_min). The
+     * margin, four diagonal steps at the highest density, covers the corners of the triangles of the path's cells
+     * (their keys exceed the path's by less than c_min sqrt 2) and the neighbourhood the descent reads.
      *
      * <p>U starts at c_min times the straight distance to the nearest goal plus {@link #FOCUS_FIRST_EXCESS}; when the
      * start is not reached within it and cells were deferred, the excess grows fourfold and the computation starts
