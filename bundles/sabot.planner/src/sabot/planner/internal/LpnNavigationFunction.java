@@ -130,6 +130,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int focusRow;
     private int focusColumn;
     private int deferred;
+    /** Expansions of the last computation or repair (every attempt of a focused one); cells a repair withdrew. */
+    private int expandedCount;
+    private int withdrawnCount;
     private int queued;
     private int currentBucket;
     private int bandShift;
@@ -241,6 +244,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     public void compute(int[] goals, int stopAtCell) {
         completeGoals = stopAtCell < 0 ? goals.clone() : null;
+        expandedCount = 0;
+        withdrawnCount = 0;
         focusBound = Float.POSITIVE_INFINITY;
         start(goals);
         propagate(stopAtCell, false);
@@ -291,6 +296,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     public void computeFocused(int[] goals, int startCell) {
         completeGoals = null;
+        expandedCount = 0;
+        withdrawnCount = 0;
         int stride = grid.stride();
         focusRow = startCell / stride;
         focusColumn = startCell - focusRow * stride;
@@ -318,6 +325,19 @@ public final class LpnNavigationFunction implements AutoCloseable {
         focusBound = Float.POSITIVE_INFINITY;
     }
 
+    /**
+     * @return cells expanded by the last {@link #compute}, {@link #computeFocused} (all its attempts) or
+     *         {@link #repair} (the withdrawn cells refilled and the cells their new values lowered): the work done
+     */
+    public int expandedCount() {
+        return expandedCount;
+    }
+
+    /** @return cells whose values the last {@link #repair} withdrew (0 after a computation) */
+    public int withdrawnCount() {
+        return withdrawnCount;
+    }
+
     /** @return number of cells the last computation left out by its focus (see {@link #computeFocused}) */
     public int deferredCount() {
         return deferred;
@@ -340,6 +360,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (planningGrid != grid || completeGoals == null || !Arrays.equals(completeGoals, goals)) {
             return false;
         }
+        expandedCount = 0;
+        withdrawnCount = 0;
         if (changed.isEmpty()) {
             return true;
         }
@@ -410,6 +432,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 }
             }
         }
+        withdrawnCount = invalidCount;
         if (invalidCount == 0) {
             return true;
         }
@@ -654,6 +677,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
             currentBucket++;
         }
         finalizedCount += finalized;
+        expandedCount += finalized;
         deferred += deferredHere;
         // cells reached but not final when a bounded computation stops are still queued: record them for the reset
         for (int slot = 0; queued > 0 && slot <= bucketMask; slot++) {
