@@ -699,7 +699,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
     }
 
-    /** @return true when a cell of value {@code value} lies outside the focus: {@code N + c_min |p - start| > focusBound} */
+    /**
+     * @return true when a cell of value {@code value} lies outside the focus, {@code N + c_min |p - start| > focusBound}
+     */
     private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
         // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
         int row = (int) ((cell + 0.5) * inverseStride);
