@@ -1,4 +1,4 @@
-package sabot.planner.render;
+package sabot.tools.render;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;

@@ -1,4 +1,4 @@
-package sabot.planner.internal.cli;
+package sabot.tools.plan;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;

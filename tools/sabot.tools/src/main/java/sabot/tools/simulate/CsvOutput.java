@@ -1,4 +1,4 @@
-package sabot.motion.sim;
+package sabot.tools.simulate;
 
 import java.io.BufferedWriter;
 import java.io.IOException;
@@ -6,6 +6,8 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Locale;
+
+import sabot.motion.sim.Trace;
 
 /** Writes a {@link Trace} as CSV: a header with units in the column names, one row per control step. */
 public final class CsvOutput {

@@ -1,4 +1,4 @@
-package sabot.planner.maps;
+package sabot.model.map;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -16,16 +16,8 @@ import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.CsvSource;
 
 import sabot.model.geometry.Pose2D;
-import sabot.model.map.Costmap;
-import sabot.model.map.GridGeometry;
-import sabot.model.map.MapFormatException;
-import sabot.model.map.MapMetadata;
-import sabot.model.map.MapMode;
-import sabot.model.map.MapServerFormat;
-import sabot.model.map.OccupancyGrid;
-import sabot.model.map.PgmImage;
 
-/** ROS map_server PGM + YAML: round trips and clear errors. (Lives here: the model tests are another team's.) */
+/** ROS map_server PGM + YAML: round trips and clear errors. */
 class MapServerFormatTest {
 
     @TempDir

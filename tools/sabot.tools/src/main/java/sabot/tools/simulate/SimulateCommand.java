@@ -1,4 +1,4 @@
-package sabot.motion.sim;
+package sabot.tools.simulate;
 
 import java.io.IOException;
 import java.io.PrintStream;
@@ -7,6 +7,12 @@ import java.nio.file.Path;
 import java.util.Locale;
 
 import sabot.model.robot.RobotDescriptions;
+import sabot.motion.sim.ControllerKind;
+import sabot.motion.sim.Feedback;
+import sabot.motion.sim.Scenario;
+import sabot.motion.sim.Simulation;
+import sabot.motion.sim.SimulationConfig;
+import sabot.motion.sim.SimulationResult;
 
 /**
  * {@code ./sabot simulate}: runs one scenario and prints, as its last line, one JSON object with the figures.

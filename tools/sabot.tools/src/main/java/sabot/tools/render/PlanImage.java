@@ -1,4 +1,4 @@
-package sabot.planner.render;
+package sabot.tools.render;
 
 import java.awt.BasicStroke;
 import java.awt.Color;

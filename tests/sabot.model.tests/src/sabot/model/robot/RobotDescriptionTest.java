@@ -1,4 +1,4 @@
-package sabot.control;
+package sabot.model.robot;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -6,11 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import org.junit.jupiter.api.Test;
 
-import sabot.model.robot.InvalidRobotDescriptionException;
-import sabot.model.robot.RobotDescription;
-import sabot.model.robot.RobotDescriptions;
-
-/** The robot description lives in sabot.model; it is exercised here, where its numbers are used. */
+/** The robot description: the seed constants, derived figures and precise errors for bad input. */
 class RobotDescriptionTest {
 
     private static final String VALID = """

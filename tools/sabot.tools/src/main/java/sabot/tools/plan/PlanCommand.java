@@ -1,4 +1,4 @@
-package sabot.planner.internal.cli;
+package sabot.tools.plan;
 
 import java.io.IOException;
 import java.io.PrintStream;
@@ -20,7 +20,7 @@ import sabot.planner.Planners;
 import sabot.planner.costmap.CostmapLayers;
 import sabot.planner.costmap.InflationParameters;
 import sabot.planner.costmap.MovingObstacleModel;
-import sabot.planner.render.PlanImage;
+import sabot.tools.render.PlanImage;
 
 /**
  * {@code sabot plan}: plans once or repeatedly on a map file and prints, as its last line, one JSON object with the
