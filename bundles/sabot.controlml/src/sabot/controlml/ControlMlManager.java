@@ -17,8 +17,6 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.function.Supplier;
-import java.util.logging.Level;
-import java.util.logging.Logger;
 
 import org.jivesoftware.smack.Manager;
 import org.jivesoftware.smack.SmackException.NotConnectedException;
@@ -48,6 +46,8 @@ import org.jivesoftware.smackx.pubsub.UnsubscribeExtension;
 import org.jivesoftware.smackx.pubsub.packet.PubSub;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.internal.SchemaValidator;
@@ -78,7 +78,7 @@ import sabot.controlml.swe.SweComponent;
  */
 public final class ControlMlManager extends Manager {
 
-    private static final Logger LOGGER = Logger.getLogger(ControlMlManager.class.getName());
+    private static final Logger LOG = LoggerFactory.getLogger(ControlMlManager.class);
     private static final Map<XMPPConnection, ControlMlManager> INSTANCES = new WeakHashMap<>();
     private static final int SENT_IDS_REMEMBERED = 16_384;
 
@@ -213,7 +213,7 @@ public final class ControlMlManager extends Manager {
 
     private void dropUnsolicited(Jid from, ControlMlElement element) {
         unsolicitedDropped.incrementAndGet();
-        LOGGER.warning("dropped unsolicited ControlML answer " + element + " from " + from);
+        LOG.warn("dropped unsolicited ControlML answer {} from {}", element, from);
         for (UnsolicitedAnswerListener l : unsolicitedListeners) {
             l.dropped(from, element);
         }
@@ -483,7 +483,7 @@ public final class ControlMlManager extends Manager {
             try {
                 connection().sendStanza(reply);
             } catch (NotConnectedException e) {
-                LOGGER.log(Level.INFO, "answer to " + from + " not sent: not connected");
+                LOG.info("answer to {} not sent: not connected", from);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
@@ -631,14 +631,14 @@ public final class ControlMlManager extends Manager {
                             // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
                             // publish with the server's defaults from now on, this item included
                             if (publishWithoutOptions.add(node)) {
-                                LOGGER.info("server refused telemetry publish-options on " + node + " (" + x
-                                        .getStanzaError().getCondition() + "); publishing with its defaults");
+                                LOG.info("server refused telemetry publish-options on {} ({}); publishing with its defaults",
+                                        node, x.getStanzaError().getCondition());
                             }
                             sendPublication(node, element, false);
                             return;
                         }
                         telemetryFailed.incrementAndGet();
-                        LOGGER.log(Level.FINE, "telemetry publication failed", e);
+                        LOG.debug("telemetry publication failed", e);
                     });
         } catch (RuntimeException e) {
             telemetryFailed.incrementAndGet();
@@ -716,13 +716,13 @@ public final class ControlMlManager extends Manager {
                     if (element.defect() != null || element.payload() == null || !resource.name().equals(element
                             .res())) {
                         telemetryRejected.incrementAndGet();
-                        LOGGER.fine("rejected telemetry " + element + " from " + from);
+                        LOG.debug("rejected telemetry {} from {}", element, from);
                         return;
                     }
                     if (!isNewer(lastAccepted, from, element.id())) {
                         // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
                         // subscription) or an older one overtaken: section 6's rule, by the publication's id
-                        LOGGER.finest("duplicate telemetry " + element + " from " + from);
+                        LOG.trace("duplicate telemetry {} from {}", element, from);
                         return;
                     }
                     T value;
@@ -730,7 +730,7 @@ public final class ControlMlManager extends Manager {
                         value = element.value(resource);
                     } catch (PayloadException e) {
                         telemetryRejected.incrementAndGet();
-                        LOGGER.fine("rejected telemetry from " + from + ": " + e.getMessage());
+                        LOG.debug("rejected telemetry from {}: {}", from, e.getMessage());
                         return;
                     }
                     telemetryReceived.incrementAndGet();
