@@ -81,11 +81,11 @@ class ConnectionTest extends RigTest {
             ControlMlManager watcher = ControlMlManager.getInstanceFor(second);
             AtomicInteger poses = new AtomicInteger();
             CountDownLatch tenPoses = new CountDownLatch(10);
-            watcher.addTelemetryListener(Resources.POSITION, (device, pose) -> {
+            watcher.telemetry().addListener(Resources.POSITION, (device, pose) -> {
                 poses.incrementAndGet();
                 tenPoses.countDown();
             });
-            Outcome<Void> follow = watcher.followTelemetry(robotBare, Resources.POSITION);
+            Outcome<Void> follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
             assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
 
             byte[] content = new byte[70_000];

@@ -162,7 +162,7 @@ class ControlMlEndpointOnProsodyTest {
                 Resources.OBSTACLES)) {
             BlockingQueue<Long> times = new LinkedBlockingQueue<>();
             arrivals.put(r.name(), times);
-            workbench.addTelemetryListener(r, (device, value) -> times.add(System.nanoTime()));
+            workbench.telemetry().addListener(r, (device, value) -> times.add(System.nanoTime()));
         }
         wbConnection.addAsyncStanzaListener(p -> robotPresences.add((Presence) p), p -> p instanceof Presence
                 && robotConnection != null && p.getFrom() != null && p.getFrom().asBareJid().equals(robotConnection
@@ -501,13 +501,13 @@ class ControlMlEndpointOnProsodyTest {
         long checks = session.onlineChecks.get();
         awaitOnlineChecks(checks + 1);
         long reads = robot.telemetryReads();
-        long failed = robotManager.statistics().telemetryFailed();
+        long failed = robotManager.telemetry().statistics().failed();
 
         awaitOnlineChecks(session.onlineChecks.get() + 2 * Math.round(POSITION_HZ + VELOCITY_HZ + MISSION_HZ
                 + OBSTACLES_HZ)); // about two seconds of ticks
 
         assertEquals(reads, robot.telemetryReads(), "nothing read for telemetry while offline");
-        assertEquals(failed, robotManager.statistics().telemetryFailed(), "no failed publication while offline");
+        assertEquals(failed, robotManager.telemetry().statistics().failed(), "no failed publication while offline");
 
         robotConnection.connect().login();
         arrivals.get("cm.position").clear();
@@ -660,7 +660,7 @@ class ControlMlEndpointOnProsodyTest {
                 Resources.OBSTACLES)) {
             long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
             while (true) {
-                Outcome<Void> followed = workbench.followTelemetry(device, r);
+                Outcome<Void> followed = workbench.telemetry().follow(device, r);
                 if (followed.isSuccess()) {
                     break;
                 }
