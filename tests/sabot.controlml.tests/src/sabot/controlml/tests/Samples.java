@@ -58,8 +58,8 @@ final class Samples {
                     "active"), new TaskInfo("sabot.onboard.planner", "0.1.0", "resolved")))),
             Map.entry(Resources.FS_LIST, new DirectoryListing("maps", List.of(new FileEntry("lab.pgm", 10240, false),
                     new FileEntry("old", 0, true)))),
-            Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, Resources.sha256Hex(DATA), true)),
-            Map.entry(Resources.FS_WRITE, new FileChunk("logs/run.txt", 16, DATA, Resources.sha256Hex(DATA), false)),
+            Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, FileChunk.sha256Hex(DATA), true)),
+            Map.entry(Resources.FS_WRITE, new FileChunk("logs/run.txt", 16, DATA, FileChunk.sha256Hex(DATA), false)),
             Map.entry(Resources.FS_DELETE, new FileQuery("logs/run.txt", 0, 0)));
 
     static final FileQuery QUERY = new FileQuery("maps/lab.yaml", 0, 4096);
