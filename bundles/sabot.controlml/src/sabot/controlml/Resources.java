@@ -12,14 +12,14 @@ import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TaskList;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
@@ -45,8 +45,8 @@ public final class Resources {
     public static final Resource<Goal, NoQuery> GOAL = new Resource<Goal, NoQuery>("cm.goal", Goal.CODEC, null,
             true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1));
     /** {@code cm.trajectory} (get/set): timed path. */
-    public static final Resource<Trajectory, NoQuery> TRAJECTORY = new Resource<>("cm.trajectory",
-            Trajectory.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)");
+    public static final Resource<TrajectoryPayload, NoQuery> TRAJECTORY = new Resource<>("cm.trajectory",
+            TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)");
     /** {@code cm.map} (get/set): occupancy grid. */
     public static final Resource<GridMap, NoQuery> MAP = new Resource<>("cm.map", GridMap.CODEC, null, true, true,
             "occupancy grid (at most 64 KiB of payload; larger maps via cm.fs)");
@@ -57,9 +57,9 @@ public final class Resources {
     public static final Resource<PidGains, NoQuery> PID = new Resource<>("cm.pid", PidGains.CODEC, null, true, true,
             "speed-loop PID gains per motor");
     /** {@code cm.limits} (get/set): speed and acceleration limits. */
-    public static final Resource<MotionLimits, NoQuery> LIMITS = new Resource<MotionLimits, NoQuery>("cm.limits",
-            MotionLimits.CODEC, null, true, true, "speed and acceleration limits").withRecordStructure(
-                    new MotionLimits(1, 1, 1, 1));
+    public static final Resource<LimitsPayload, NoQuery> LIMITS = new Resource<LimitsPayload, NoQuery>("cm.limits",
+            LimitsPayload.CODEC, null, true, true, "speed and acceleration limits").withRecordStructure(
+                    new LimitsPayload(1, 1, 1, 1));
     /** {@code cm.mission} (get: state; set: pause/resume/abort/maintenance). */
     public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<>("cm.mission", MissionStatus.CODEC,
             null, true, true, "mission state and maintenance mode");

@@ -67,7 +67,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.FleetException;
@@ -817,7 +817,7 @@ public final class ControlMlFleet implements FleetState {
 
     /** Asks the robot for its planned trajectory and goal (a goal of none is not an error: no plan to show). */
     private void fetchPlan(String jid) {
-        CompletableFuture<Trajectory> path = get(jid, Resources.TRAJECTORY);
+        CompletableFuture<TrajectoryPayload> path = get(jid, Resources.TRAJECTORY);
         CompletableFuture<Goal> goal = get(jid, Resources.GOAL);
         path.handle((t, e) -> t).thenCombine(goal.handle((g, e) -> g), (t, g) -> {
             update(jid, r -> r.withPlan(t != null && !t.points().isEmpty() ? t : null, g));

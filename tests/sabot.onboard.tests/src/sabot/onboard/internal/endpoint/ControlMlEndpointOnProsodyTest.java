@@ -60,14 +60,14 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.RecordBuilder;
 import sabot.controlml.payload.TaskInfo;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.controlml.swe.SweComponent;
@@ -258,7 +258,7 @@ class ControlMlEndpointOnProsodyTest {
     @Test
     void trajectoryGetIsEmptyWithoutMissionAndSetIsFollowed() {
         assertEquals(List.of(), workbench.get(robotJid, Resources.TRAJECTORY).orElseThrow().points());
-        Trajectory imposed = new Trajectory(RecordedRobot.T0, List.of(new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0),
+        TrajectoryPayload imposed = new TrajectoryPayload(RecordedRobot.T0, List.of(new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0),
                 new TrajectoryPoint(1, 0.7, 0.5, 0, 0.2, 0), new TrajectoryPoint(2, 0.9, 0.6, 0.4, 0.2, 0.1)));
 
         assertTrue(workbench.set(robotJid, Resources.TRAJECTORY, imposed).isSuccess());
@@ -301,7 +301,7 @@ class ControlMlEndpointOnProsodyTest {
     @Test
     void limitsGetAndSet() {
         assertEquals(robot.limits(), workbench.get(robotJid, Resources.LIMITS).orElseThrow());
-        MotionLimits slower = new MotionLimits(0.8, 2.0, 0.6, 3.0);
+        LimitsPayload slower = new LimitsPayload(0.8, 2.0, 0.6, 3.0);
 
         assertTrue(workbench.set(robotJid, Resources.LIMITS, slower).isSuccess());
 
@@ -385,11 +385,11 @@ class ControlMlEndpointOnProsodyTest {
                         Condition.unexpected_request, ControlMlCondition.INVALID_STATE, true),
                 refusal("map replaced during a mission", onMission, (w, r) -> w.set(r, Resources.MAP,
                         RecordedRobot.LAB), Condition.unexpected_request, ControlMlCondition.INVALID_STATE, true),
-                refusal("empty trajectory", idle, (w, r) -> w.set(r, Resources.TRAJECTORY, new Trajectory(
+                refusal("empty trajectory", idle, (w, r) -> w.set(r, Resources.TRAJECTORY, new TrajectoryPayload(
                         RecordedRobot.T0, List.of())), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
                         true),
                 refusal("limits above the physical ones", idle, (w, r) -> w.set(r, Resources.LIMITS,
-                        new MotionLimits(1.5, 1, 1, 1)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
+                        new LimitsPayload(1.5, 1, 1, 1)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
                         true),
                 refusal("gains read with the motor board silent", r -> r.boardAnswering(false), (w, r) -> w.get(r,
                         Resources.PID), Condition.service_unavailable, ControlMlCondition.DEVICE_FAULT, false),

@@ -10,13 +10,14 @@ import sabot.controlml.swe.DataArray;
 import sabot.controlml.swe.SweComponent;
 
 /**
- * {@code cm.trajectory}: the planned (get) or imposed (set) timed path.
+ * {@code cm.trajectory}: the planned (get) or imposed (set) timed path, as it travels: a table of samples. What a
+ * controller follows is a {@code sabot.model.path.Trajectory}, of which this is a sampling.
  *
  * @param start  the time of {@code t = 0}; never null
  * @param points samples with non-decreasing {@code t}; never null
  */
-public record Trajectory(Instant start, List<TrajectoryPoint> points) {
-    public Trajectory {
+public record TrajectoryPayload(Instant start, List<TrajectoryPoint> points) {
+    public TrajectoryPayload {
         Objects.requireNonNull(start, "start");
         points = List.copyOf(points);
     }
@@ -27,9 +28,9 @@ public record Trajectory(Instant start, List<TrajectoryPoint> points) {
                             "rad/s"));
 
     /** The payload schema (section 4 of {@code docs/CONTROLML.md}): fields, SWE types, canonical units, ranges. */
-    public static final PayloadCodec<Trajectory> CODEC = new PayloadCodec<>() {
+    public static final PayloadCodec<TrajectoryPayload> CODEC = new PayloadCodec<>() {
         @Override
-        public SweComponent encode(Trajectory t) {
+        public SweComponent encode(TrajectoryPayload t) {
             List<double[]> rows = new ArrayList<>(t.points().size());
             for (TrajectoryPoint p : t.points()) {
                 rows.add(new double[] { p.t(), p.x(), p.y(), p.theta(), p.v(), p.omega() });
@@ -39,7 +40,7 @@ public record Trajectory(Instant start, List<TrajectoryPoint> points) {
         }
 
         @Override
-        public Trajectory decode(SweComponent payload) throws PayloadException {
+        public TrajectoryPayload decode(SweComponent payload) throws PayloadException {
             RecordReader r = RecordReader.of(payload, "start", "points");
             List<double[]> rows = r.array("points", TRAJECTORY_COLUMNS, 4096);
             List<TrajectoryPoint> points = new ArrayList<>(rows.size());
@@ -52,7 +53,7 @@ public record Trajectory(Instant start, List<TrajectoryPoint> points) {
                 previous = row[0];
                 points.add(new TrajectoryPoint(row[0], row[1], row[2], row[3], row[4], row[5]));
             }
-            return new Trajectory(r.time("start"), points);
+            return new TrajectoryPayload(r.time("start"), points);
         }
     };
 }
