@@ -34,8 +34,8 @@ import sabot.controlml.payload.PayloadException;
 
 /**
  * ControlML telemetry on one XMPP connection (section 6 of {@code docs/CONTROLML.md}), in Smack's manager style
- * ({@link #getInstanceFor(XMPPConnection)}), beside {@link ControlMlManager} as Smack's {@code PepManager} is beside its
- * IQ managers.
+ * ({@link #getInstanceFor(XMPPConnection)}), beside {@link ControlMlManager} as Smack's {@code PepManager} is beside
+ * its IQ managers.
  * <p>
  * A device {@link #publish publishes} a resource's value to its PEP node {@link ControlMl#telemetryNode} at a fixed
  * rate; a client {@link #addListener listens} to the resource (register before login so that the {@code +notify}
@@ -186,8 +186,8 @@ public final class TelemetryManager extends Manager {
                             // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
                             // publish with the server's defaults from now on, this item included
                             if (publishWithoutOptions.add(node)) {
-                                LOG.info("server refused telemetry publish-options on {} ({}); publishing with its defaults",
-                                        node, x.getStanzaError().getCondition());
+                                LOG.info("server refused telemetry publish-options on {} ({}); publishing with its"
+                                        + " defaults", node, x.getStanzaError().getCondition());
                             }
                             sendPublication(node, element, false);
                             return;

@@ -258,8 +258,9 @@ class ControlMlEndpointOnProsodyTest {
     @Test
     void trajectoryGetIsEmptyWithoutMissionAndSetIsFollowed() {
         assertEquals(List.of(), workbench.get(robotJid, Resources.TRAJECTORY).orElseThrow().points());
-        TrajectoryPayload imposed = new TrajectoryPayload(RecordedRobot.T0, List.of(new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0),
-                new TrajectoryPoint(1, 0.7, 0.5, 0, 0.2, 0), new TrajectoryPoint(2, 0.9, 0.6, 0.4, 0.2, 0.1)));
+        TrajectoryPayload imposed = new TrajectoryPayload(RecordedRobot.T0, List.of(
+                new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0), new TrajectoryPoint(1, 0.7, 0.5, 0, 0.2, 0),
+                new TrajectoryPoint(2, 0.9, 0.6, 0.4, 0.2, 0.1)));
 
         assertTrue(workbench.set(robotJid, Resources.TRAJECTORY, imposed).isSuccess());
 

@@ -214,7 +214,8 @@ final class RecordedRobot implements RobotMotion {
                     + " obstacle", x, y));
         }
         goal = Optional.of(target);
-        trajectory = new TrajectoryPayload(T0, List.of(new TrajectoryPoint(0, pose.pose().x(), pose.pose().y(), 0, 0, 0),
+        trajectory = new TrajectoryPayload(T0, List.of(
+                new TrajectoryPoint(0, pose.pose().x(), pose.pose().y(), 0, 0, 0),
                 new TrajectoryPoint(5, x, y, target.pose().theta(), 0, 0)));
         changeMission(new MissionStatus(MissionState.RUNNING, false, 0, String.format("to (%.2f, %.2f)", x, y)));
     }
