@@ -67,7 +67,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.FleetException;
@@ -779,7 +779,7 @@ public final class ControlMlFleet implements FleetState {
         }
         List<String> missing = new ArrayList<>();
         for (Resource<?, ?> r : TELEMETRY) {
-            Outcome<Void> o = s.manager().followTelemetry(robot, r);
+            Outcome<Void> o = s.manager().telemetry().follow(robot, r);
             if (!o.isSuccess()) {
                 missing.add(r.name() + " (" + o.errorOrNull() + ")");
             }
@@ -796,13 +796,13 @@ public final class ControlMlFleet implements FleetState {
 
     private void listenTelemetry(Session s) {
         ControlMlManager m = s.manager();
-        m.addTelemetryListener(Resources.POSITION, (device, pose) -> update(device.toString(), r -> r.withPose(pose,
+        m.telemetry().addListener(Resources.POSITION, (device, pose) -> update(device.toString(), r -> r.withPose(pose,
                 clock.instant())));
-        m.addTelemetryListener(Resources.VELOCITY, (device, v) -> update(device.toString(), r -> r.withVelocity(v
+        m.telemetry().addListener(Resources.VELOCITY, (device, v) -> update(device.toString(), r -> r.withVelocity(v
                 .twist(), clock.instant())));
-        m.addTelemetryListener(Resources.OBSTACLES, (device, o) -> update(device.toString(), r -> r.withObstacles(o,
+        m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> update(device.toString(), r -> r.withObstacles(o,
                 clock.instant())));
-        m.addTelemetryListener(Resources.MISSION, (device, mission) -> {
+        m.telemetry().addListener(Resources.MISSION, (device, mission) -> {
             String jid = device.toString();
             RobotState before = robots.get(jid);
             update(jid, r -> r.withMission(mission, clock.instant()));
@@ -817,7 +817,7 @@ public final class ControlMlFleet implements FleetState {
 
     /** Asks the robot for its planned trajectory and goal (a goal of none is not an error: no plan to show). */
     private void fetchPlan(String jid) {
-        CompletableFuture<Trajectory> path = get(jid, Resources.TRAJECTORY);
+        CompletableFuture<TrajectoryPayload> path = get(jid, Resources.TRAJECTORY);
         CompletableFuture<Goal> goal = get(jid, Resources.GOAL);
         path.handle((t, e) -> t).thenCombine(goal.handle((g, e) -> g), (t, g) -> {
             update(jid, r -> r.withPlan(t != null && !t.points().isEmpty() ? t : null, g));
