@@ -34,27 +34,52 @@ sabot_mvn() {
     (cd "$SABOT_ROOT" && JAVA_HOME="$jh" ./mvnw -B -ntp "$@")
 }
 
-# The planner commands (sabot-plan, sabot-bench-planner) run from the shaded planner benchmark jar.
-SABOT_PLANNER_MODULES=bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,tests/sabot.planner.benchmarks
+# Prints the first file under the given files or folders (target/ folders and dot files left out) that is newer than
+# file $1; nothing when none is, or when $1 does not exist (then everything is stale: the caller checks -f itself).
+sabot_newer_source() {
+    local stamp=$1; shift
+    find "$@" \( -name target -o -name '.*' \) -prune -o -type f -newer "$stamp" -print -quit 2>/dev/null
+}
 
-# Prints the path of sabot-planner-bench.jar, building it first when it is missing or older than a planner source.
-sabot_planner_jar() {
-    local jar="$SABOT_ROOT/tests/sabot.planner.benchmarks/target/sabot-planner-bench.jar"
-    local stale=""
-    if [ -f "$jar" ]; then
-        stale=$(find "$SABOT_ROOT/bundles/sabot.model/src" "$SABOT_ROOT/bundles/sabot.model/META-INF" \
-            "$SABOT_ROOT/bundles/sabot.planner" "$SABOT_ROOT/tests/sabot.planner.benchmarks/src" \
-            "$SABOT_ROOT/tests/sabot.planner.benchmarks/pom.xml" \
-            \( -name '*.java' -o -name '*.MF' -o -name '*.properties' -o -name pom.xml \) -newer "$jar" \
-            -not -path '*/target/*' -print -quit 2>/dev/null)
-    fi
+# sabot_jar NAME JAR MODULES [EXTRA_SOURCE...]
+# Prints the path of the runnable jar JAR (relative to the repository root), building it first with Maven when it is
+# missing or older than a file of one of MODULES (comma-separated reactor folders, built in that order without -am)
+# or of an EXTRA_SOURCE (a file or folder read by the build). NAME says what is built, in the log line.
+sabot_jar() {
+    local name=$1 jar="$SABOT_ROOT/$2" modules=$3; shift 3
+    local sources=() m stale=""
+    for m in ${modules//,/ }; do sources+=("$SABOT_ROOT/$m"); done
+    for m in "$@"; do sources+=("$SABOT_ROOT/$m"); done
+    [ -f "$jar" ] && stale=$(sabot_newer_source "$jar" "${sources[@]}")
     if [ ! -f "$jar" ] || [ -n "$stale" ]; then
-        sabot_log "building the planner jar (${stale:+$stale changed; }first run downloads JMH from Maven Central)"
-        sabot_mvn -q -DskipTests package -pl "$SABOT_PLANNER_MODULES" >&2 \
-            || sabot_die "building the planner jar failed (run: ./mvnw -B package -DskipTests -pl $SABOT_PLANNER_MODULES)"
+        sabot_log "building the $name jar${stale:+ ($stale changed)}"
+        sabot_mvn -q -DskipTests package -pl "$modules" >&2 \
+            || sabot_die "building the $name jar failed (run: ./mvnw -B package -DskipTests -pl $modules)"
     fi
     [ -f "$jar" ] || sabot_die "the build did not produce $jar"
     echo "$jar"
+}
+
+# The runnable jars of the commands (one place for each jar's modules).
+sabot_tools_jar() { # ./sabot plan, ./sabot simulate
+    sabot_jar tools tools/sabot.tools/target/sabot-tools.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools \
+        docs/sabot-robot.properties
+}
+sabot_planner_bench_jar() { # ./sabot bench planner, ./sabot bench navfn
+    sabot_jar "planner benchmark" tests/sabot.planner.benchmarks/target/sabot-planner-bench.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools,tests/sabot.planner.benchmarks \
+        docs/sabot-robot.properties
+}
+sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench, ./sabot load
+    sabot_jar "ControlML benchmark" tests/sabot.controlml.benchmarks/target/sabot-bench-controlml.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tests/sabot.controlml.benchmarks \
+        docs/sabot-robot.properties
+}
+sabot_motion_bench_jar() { # ./sabot bench control
+    sabot_jar "motion benchmark" tests/sabot.motion.benchmarks/target/sabot-motion.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tests/sabot.motion.benchmarks \
+        docs/sabot-robot.properties
 }
 
 # Prints the JVM options of an onboard product folder (its etc/jvm.options, comments and blank lines left out), one per

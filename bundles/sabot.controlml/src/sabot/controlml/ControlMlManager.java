@@ -5,25 +5,18 @@ import java.time.Duration;
 import java.time.Instant;
 import java.util.Date;
 import java.util.LinkedHashMap;
+import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 import java.util.WeakHashMap;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
-import java.util.concurrent.ScheduledExecutorService;
-import java.util.concurrent.ScheduledFuture;
-import java.util.concurrent.ScheduledThreadPoolExecutor;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicLong;
-import java.util.function.Supplier;
-import java.util.logging.Level;
-import java.util.logging.Logger;
 
 import org.jivesoftware.smack.Manager;
 import org.jivesoftware.smack.SmackException.NotConnectedException;
 import org.jivesoftware.smack.StanzaCollector;
-import org.jivesoftware.smack.StanzaListener;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.filter.StanzaFilter;
 import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
@@ -39,20 +32,14 @@ import org.jivesoftware.smack.packet.StandardExtensionElement;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smackx.delay.DelayInformationManager;
 import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
-import org.jivesoftware.smackx.pep.PepManager;
-import org.jivesoftware.smackx.pubsub.NodeExtension;
-import org.jivesoftware.smackx.pubsub.PayloadItem;
-import org.jivesoftware.smackx.pubsub.PublishItem;
-import org.jivesoftware.smackx.pubsub.SubscribeExtension;
-import org.jivesoftware.smackx.pubsub.UnsubscribeExtension;
-import org.jivesoftware.smackx.pubsub.packet.PubSub;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.internal.SchemaValidator;
 import sabot.controlml.payload.NoQuery;
-import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PayloadException;
 import sabot.controlml.provider.ControlMlProviders;
 import sabot.controlml.swe.SweComponent;
@@ -72,13 +59,11 @@ import sabot.controlml.swe.SweComponent;
  * {@code not-acceptable}), XSD validation when enabled, and for sets the {@link StaleCommandPolicy}. A refused
  * request leaves the device's state unchanged, and no bad request breaks the connection.
  * <p>
- * <b>Telemetry</b>: {@link #publishTelemetry} publishes a resource's value to the device's PEP node at a fixed rate;
- * {@link #addTelemetryListener} receives it (register before login so that the {@code +notify} feature is in the
- * client's entity caps).
+ * Telemetry (PEP publications) has its own manager, {@link TelemetryManager}.
  */
 public final class ControlMlManager extends Manager {
 
-    private static final Logger LOGGER = Logger.getLogger(ControlMlManager.class.getName());
+    private static final Logger LOG = LoggerFactory.getLogger(ControlMlManager.class);
     private static final Map<XMPPConnection, ControlMlManager> INSTANCES = new WeakHashMap<>();
     private static final int SENT_IDS_REMEMBERED = 16_384;
 
@@ -103,16 +88,7 @@ public final class ControlMlManager extends Manager {
     private volatile boolean textForm = true;
 
     private final AtomicLong unsolicitedDropped = new AtomicLong();
-    private final AtomicLong telemetryPublished = new AtomicLong();
-    private final AtomicLong telemetryFailed = new AtomicLong();
-    private final AtomicLong telemetryReceived = new AtomicLong();
-    private final AtomicLong telemetryRejected = new AtomicLong();
-
-    private final java.util.List<UnsolicitedAnswerListener> unsolicitedListeners =
-            new java.util.concurrent.CopyOnWriteArrayList<>();
-    private final java.util.Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
-    private ScheduledExecutorService scheduler;
-    private final AtomicInteger activePublications = new AtomicInteger();
+    private final List<UnsolicitedAnswerListener> unsolicitedListeners = new CopyOnWriteArrayList<>();
 
     private record PendingMessage<T>(Resource<T, ?> resource, CompletableFuture<Outcome<T>> future) {
     }
@@ -166,7 +142,10 @@ public final class ControlMlManager extends Manager {
         endpoint.setStaleCommandPolicy(policy);
     }
 
-    /** @param timeout how long {@link #get}/{@link #set} wait for an answer; default 10 s */
+    /**
+     * @param timeout how long {@link #get}/{@link #set} (and {@link TelemetryManager#follow}) wait for an answer;
+     *                default 10 s
+     */
     public void setRequestTimeout(Duration timeout) {
         if (timeout.isNegative() || timeout.isZero()) {
             throw new IllegalArgumentException("timeout must be positive");
@@ -188,8 +167,8 @@ public final class ControlMlManager extends Manager {
      * @param text true (default): values of resources with a record structure ({@link Resource#recordTemplate()})
      *             are sent in the text form, a SWE {@code DataStream} of one record referring to the structure
      *             (about a third of the XML form's size and a fifth of its elements, which servers pay for per
-     *             element); false: always the XML form. Applies to requests, answers and telemetry this manager
-     *             writes; both forms are always read.
+     *             element); false: always the XML form. Applies to requests, answers and the telemetry of this
+     *             connection's {@link TelemetryManager}; both forms are always read.
      */
     public void setTextForm(boolean text) {
         this.textForm = text;
@@ -213,18 +192,36 @@ public final class ControlMlManager extends Manager {
 
     private void dropUnsolicited(Jid from, ControlMlElement element) {
         unsolicitedDropped.incrementAndGet();
-        LOGGER.warning("dropped unsolicited ControlML answer " + element + " from " + from);
+        LOG.warn("dropped unsolicited ControlML answer {} from {}", element, from);
         for (UnsolicitedAnswerListener l : unsolicitedListeners) {
             l.dropped(from, element);
         }
     }
 
-    /** @return a snapshot of this connection's counters */
+    /** @return the telemetry manager of this connection ({@link TelemetryManager#getInstanceFor}) */
+    public TelemetryManager telemetry() {
+        return TelemetryManager.getInstanceFor(connection());
+    }
+
+    /** @return a snapshot of this connection's request counters (telemetry's: {@link TelemetryManager#statistics}) */
     public ControlMlStatistics statistics() {
         return new ControlMlStatistics(endpoint.requestsServed(), endpoint.errorsAnswered(), endpoint
-                .duplicatesReplayed(),
-                unsolicitedDropped.get(), telemetryPublished.get(), telemetryFailed.get(), telemetryReceived.get(),
-                telemetryRejected.get());
+                .duplicatesReplayed(), unsolicitedDropped.get());
+    }
+
+    /** @return a fresh id of this requester (telemetry items take theirs from here too, section 6) */
+    RequestId nextId() {
+        return ids.next();
+    }
+
+    /** @return whether values are written in the text form where their resource allows it */
+    boolean isTextForm() {
+        return textForm;
+    }
+
+    /** @return how long a request waits for its answer */
+    Duration requestTimeout() {
+        return requestTimeout;
     }
 
     // ---------------------------------------------------------------------------------------------- requester
@@ -477,13 +474,13 @@ public final class ControlMlManager extends Manager {
                         + answer.element().id());
             } else {
                 // unreadable attributes: nothing to correlate with but the message itself, so bounce it (RFC 6120 8.3)
-                reply = org.jivesoftware.smack.packet.StanzaBuilder.buildMessage(message.getStanzaId()).to(from)
+                reply = StanzaBuilder.buildMessage(message.getStanzaId()).to(from)
                         .ofType(Message.Type.error).setError(answer.bareError().toStanzaError()).build();
             }
             try {
                 connection().sendStanza(reply);
             } catch (NotConnectedException e) {
-                LOGGER.log(Level.INFO, "answer to " + from + " not sent: not connected");
+                LOG.info("answer to {} not sent: not connected", from);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
@@ -515,226 +512,5 @@ public final class ControlMlManager extends Manager {
 
     private void onIqAnswer(Stanza stanza) {
         dropUnsolicited(stanza.getFrom(), ((ControlMlIQ) stanza).element());
-    }
-
-    // ---------------------------------------------------------------------------------------------- telemetry
-
-    /**
-     * Publishes a resource's value to this device's PEP node {@link ControlMl#telemetryNode} at a fixed rate. Each
-     * publication is sent without waiting for the server's acknowledgement (counted in {@link #statistics()}); a
-     * null from {@code source} skips that tick.
-     *
-     * @param rateHz publications per second, &gt; 0 and at most 1000
-     * @return the running publication
-     */
-    public <T> TelemetryPublication publishTelemetry(Resource<T, ?> resource, Supplier<? extends T> source,
-            double rateHz) {
-        if (!(rateHz > 0 && rateHz <= 1000)) {
-            throw new IllegalArgumentException("rate must be in (0, 1000] Hz, was " + rateHz);
-        }
-        long period = Math.round(1e9 / rateHz);
-        ScheduledFuture<?> task;
-        synchronized (this) {
-            if (scheduler == null) {
-                ScheduledThreadPoolExecutor s = new ScheduledThreadPoolExecutor(1, r -> {
-                    Thread t = new Thread(r, "controlml-telemetry-" + connection().getXMPPServiceDomain());
-                    t.setDaemon(true);
-                    return t;
-                });
-                s.setRemoveOnCancelPolicy(true);
-                scheduler = s;
-            }
-            activePublications.incrementAndGet();
-            task = scheduler.scheduleAtFixedRate(() -> {
-                T value = source.get();
-                if (value != null) {
-                    publishTelemetryNow(resource, value);
-                }
-            }, 0, period, TimeUnit.NANOSECONDS);
-        }
-        return new TelemetryPublication() {
-            private boolean stopped;
-
-            @Override
-            public String resource() {
-                return resource.name();
-            }
-
-            @Override
-            public long periodNanos() {
-                return period;
-            }
-
-            @Override
-            public void stop() {
-                synchronized (ControlMlManager.this) {
-                    if (stopped) {
-                        return;
-                    }
-                    stopped = true;
-                    task.cancel(false);
-                    if (activePublications.decrementAndGet() == 0 && scheduler != null) {
-                        scheduler.shutdown();
-                        scheduler = null;
-                    }
-                }
-            }
-        };
-    }
-
-    /**
-     * XEP-0060 publish-options of telemetry nodes: items are not persisted (a pose is stale 100 ms later, and
-     * Prosody would otherwise write every item to its storage: measured, 1,000 publications/s saturated it) and at
-     * most one is kept. The server creates the node with these options on first publication.
-     */
-    private static final StandardExtensionElement TELEMETRY_PUBLISH_OPTIONS = StandardExtensionElement.builder(
-            "publish-options", "http://jabber.org/protocol/pubsub").addElement(StandardExtensionElement.builder("x",
-                    "jabber:x:data").addAttribute("type", "submit").addElement(formField("FORM_TYPE",
-                            "http://jabber.org/protocol/pubsub#publish-options", true)).addElement(formField(
-                                    "pubsub#persist_items", "false", false)).addElement(formField("pubsub#max_items",
-                                            "1", false)).build()).build();
-
-    private static StandardExtensionElement formField(String var, String value, boolean hidden) {
-        StandardExtensionElement.Builder b = StandardExtensionElement.builder("field", "jabber:x:data").addAttribute(
-                "var", var);
-        if (hidden) {
-            b.addAttribute("type", "hidden");
-        }
-        return b.addElement("value", value).build();
-    }
-
-    /** Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. */
-    public <T> void publishTelemetryNow(Resource<T, ?> resource, T value) {
-        ControlMlElement element = ControlMlElement.result(ids.next(), resource.name(), resource.codec().encode(
-                value)).withTextForm(textForm);
-        String node = ControlMl.telemetryNode(resource.name());
-        // The options are needed only until the server has created the node with them: checking them costs the
-        // server a data-form comparison on every publication.
-        sendPublication(node, element, !publishWithoutOptions.contains(node));
-    }
-
-    private void sendPublication(String node, ControlMlElement element, boolean withOptions) {
-        PubSub publish = PubSub.createPubsubPacket(null, IQ.Type.set, new PublishItem<>(node, new PayloadItem<>(
-                "current", element)));
-        if (withOptions) {
-            publish.addExtension(TELEMETRY_PUBLISH_OPTIONS);
-        }
-        try {
-            connection().sendIqRequestAsync(publish).onSuccess(r -> {
-                telemetryPublished.incrementAndGet();
-                if (withOptions) {
-                    publishWithoutOptions.add(node); // the node exists with the options now
-                }
-            }).onError(
-                    e -> {
-                        if (withOptions && e instanceof org.jivesoftware.smack.XMPPException.XMPPErrorException x) {
-                            // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
-                            // publish with the server's defaults from now on, this item included
-                            if (publishWithoutOptions.add(node)) {
-                                LOGGER.info("server refused telemetry publish-options on " + node + " (" + x
-                                        .getStanzaError().getCondition() + "); publishing with its defaults");
-                            }
-                            sendPublication(node, element, false);
-                            return;
-                        }
-                        telemetryFailed.incrementAndGet();
-                        LOGGER.log(Level.FINE, "telemetry publication failed", e);
-                    });
-        } catch (RuntimeException e) {
-            telemetryFailed.incrementAndGet();
-        }
-    }
-
-    /**
-     * Subscribes this client explicitly (XEP-0060 {@code subscribe}) to a device's telemetry node of a resource, so
-     * that its publications arrive at {@link #addTelemetryListener listeners} even where the server does not honour
-     * the {@code +notify} of the entity capabilities (ejabberd 23.01 now and then never does for a contact, while it
-     * always delivers to explicit subscribers). Servers keep one subscription per JID, so calling again does no harm.
-     * The node exists once the device has published the resource: before that the answer is {@code item-not-found};
-     * call again when the device comes online or publishes.
-     *
-     * @param device the device's bare JID (the owner of the PEP node)
-     * @return done, or why not ({@code item-not-found}, {@code forbidden} without a presence subscription, timeout,
-     *         not connected)
-     */
-    public Outcome<Void> followTelemetry(EntityBareJid device, Resource<?, ?> resource) {
-        return pubsubRequest(device, new SubscribeExtension(connection().getUser(), ControlMl.telemetryNode(resource
-                .name())));
-    }
-
-    /** Ends a subscription made by {@link #followTelemetry}; same answers. */
-    public Outcome<Void> unfollowTelemetry(EntityBareJid device, Resource<?, ?> resource) {
-        return pubsubRequest(device, new UnsubscribeExtension(connection().getUser().toString(), ControlMl
-                .telemetryNode(resource.name())));
-    }
-
-    private Outcome<Void> pubsubRequest(EntityBareJid device, NodeExtension request) {
-        // a plain request to the owner's PEP service: Smack's PubSubManager.getLeafNode() asks disco#info first, and
-        // ejabberd answers it for an auto-created PEP node without the identity Smack insists on
-        PubSub iq = PubSub.createPubsubPacket(device, IQ.Type.set, request);
-        IQ answer;
-        try (StanzaCollector collector = connection().createStanzaCollectorAndSend(iq)) {
-            answer = collector.nextResult(requestTimeout.toMillis());
-        } catch (NotConnectedException e) {
-            return Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected: " + e.getMessage());
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            return Outcome.failure(ControlMlCondition.TIMEOUT, "interrupted while waiting for " + device);
-        }
-        if (answer == null) {
-            return Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from the PEP service of " + device
-                    + " within " + requestTimeout.toMillis() + " ms");
-        }
-        if (answer.getType() == IQ.Type.error) {
-            return Outcome.failure(ControlMlError.fromStanzaError(answer.getError()));
-        }
-        return Outcome.done();
-    }
-
-    /**
-     * Section 6's deduplication: a telemetry item is taken only when its id is greater than the last one taken from
-     * the same publisher for the same resource (a publisher's ids increase, RequestIdGenerator).
-     */
-    private static boolean isNewer(Map<EntityBareJid, RequestId> lastAccepted, EntityBareJid from, RequestId id) {
-        boolean[] newer = { false };
-        lastAccepted.compute(from, (k, last) -> {
-            newer[0] = last == null || id.compareTo(last) > 0;
-            return newer[0] ? id : last;
-        });
-        return newer[0];
-    }
-
-    /**
-     * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
-     * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
-     * delivery that does not depend on it, also {@link #followTelemetry} each device.
-     */
-    public <T> void addTelemetryListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
-        Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
-        PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
-                ControlMlElement.class, (from, element, itemId, message) -> {
-                    if (element.defect() != null || element.payload() == null || !resource.name().equals(element
-                            .res())) {
-                        telemetryRejected.incrementAndGet();
-                        LOGGER.fine("rejected telemetry " + element + " from " + from);
-                        return;
-                    }
-                    if (!isNewer(lastAccepted, from, element.id())) {
-                        // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
-                        // subscription) or an older one overtaken: section 6's rule, by the publication's id
-                        LOGGER.finest("duplicate telemetry " + element + " from " + from);
-                        return;
-                    }
-                    T value;
-                    try {
-                        value = element.value(resource);
-                    } catch (PayloadException e) {
-                        telemetryRejected.incrementAndGet();
-                        LOGGER.fine("rejected telemetry from " + from + ": " + e.getMessage());
-                        return;
-                    }
-                    telemetryReceived.incrementAndGet();
-                    listener.onTelemetry(from, value);
-                });
     }
 }

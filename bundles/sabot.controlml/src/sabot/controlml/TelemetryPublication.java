@@ -1,6 +1,6 @@
 package sabot.controlml;
 
-/** A running periodic telemetry publication; see {@link ControlMlManager#publishTelemetry}. */
+/** A running periodic telemetry publication; see {@link TelemetryManager#publish}. */
 public interface TelemetryPublication extends AutoCloseable {
 
     /** @return the resource published */

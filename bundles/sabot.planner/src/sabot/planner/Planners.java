@@ -44,10 +44,13 @@ public final class Planners {
     }
 
     /**
-     * @return the LPN planner that computes the navigation function in the order of N plus an underestimate of the
-     *         cost to the start (A*-like, expanding cells again when that order was wrong) and stops once the start's
-     *         value is final: the path of {@link #lpn} (to float rounding), computed over fewer cells when the start
-     *         lies across open space from the goal; as complete (an enclosed goal or start is reported as such)
+     * @return the LPN planner that computes the navigation function in the order of N, as {@link #lpnBounded}, but
+     *         expands only cells whose N plus a lower bound of the cost to the start (c_min times the straight
+     *         distance, as A*'s heuristic) stays within a bound of the start's value, raised and recomputed when the
+     *         start is not reached within it: the path of {@link #lpn} (to the order effects of bucketed expansion),
+     *         computed over far fewer cells when the path is not much longer than the straight line (random
+     *         1000 x 1000: 344 k of 736 k cells), a little slower than {@link #lpnBounded} when it is (a maze); as
+     *         complete (an enclosed goal or start is reported as such)
      */
     public static Planner lpnFocused(CostModel costModel) {
         return LpnPlanner.focused(costModel);

@@ -81,11 +81,11 @@ class ConnectionTest extends RigTest {
             ControlMlManager watcher = ControlMlManager.getInstanceFor(second);
             AtomicInteger poses = new AtomicInteger();
             CountDownLatch tenPoses = new CountDownLatch(10);
-            watcher.addTelemetryListener(Resources.POSITION, (device, pose) -> {
+            watcher.telemetry().addListener(Resources.POSITION, (device, pose) -> {
                 poses.incrementAndGet();
                 tenPoses.countDown();
             });
-            Outcome<Void> follow = watcher.followTelemetry(robotBare, Resources.POSITION);
+            Outcome<Void> follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
             assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
 
             byte[] content = new byte[70_000];
@@ -94,7 +94,7 @@ class ConnectionTest extends RigTest {
             for (int offset = 0; offset < content.length; offset += chunk) {
                 byte[] data = Arrays.copyOfRange(content, offset, Math.min(content.length, offset + chunk));
                 Outcome<FileChunk> o = rig.operator.set(rig.robot, Resources.FS_WRITE, new FileChunk("maps/copy.bin",
-                        offset, data, Resources.sha256Hex(data), offset + data.length == content.length));
+                        offset, data, FileChunk.sha256Hex(data), offset + data.length == content.length));
                 assertTrue(o.isSuccess(), String.valueOf(o.errorOrNull()));
             }
             assertArrayEquals(content, Files.readAllBytes(dir.resolve("fs/maps/copy.bin")), "the file on the robot");

@@ -17,7 +17,7 @@ import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
@@ -163,7 +163,7 @@ class SafetyTest extends RigTest {
     void limitsSetOverControlMlAreEnforcedOnTheRobot(@TempDir Path dir) throws Exception {
         try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
             double slow = 0.2;
-            assertTrue(rig.operator.set(rig.robot, Resources.LIMITS, new MotionLimits(slow, 1.0, 0.5, 2.5))
+            assertTrue(rig.operator.set(rig.robot, Resources.LIMITS, new LimitsPayload(slow, 1.0, 0.5, 2.5))
                     .isSuccess(), rig.onboard.output());
             assertEquals(slow, rig.get(Resources.LIMITS).maxLinearSpeed(), 1e-9);
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(7.5, 1.0, 0), 0.15, 0.3))
@@ -176,7 +176,7 @@ class SafetyTest extends RigTest {
             assertTrue(fastest[0] <= slow * 1.05, "drove at " + fastest[0] + " m/s with a limit of " + slow);
             assertTrue(fastest[0] >= slow * 0.7, "barely moved: " + fastest[0] + " m/s");
 
-            assertFalse(rig.operator.set(rig.robot, Resources.LIMITS, new MotionLimits(5.0, 1.0, 0.5, 2.5))
+            assertFalse(rig.operator.set(rig.robot, Resources.LIMITS, new LimitsPayload(5.0, 1.0, 0.5, 2.5))
                     .isSuccess(), "a limit above the robot's physical one was accepted");
             assertEquals(slow, rig.get(Resources.LIMITS).maxLinearSpeed(), 1e-9, "a refused set changed the limits");
         }

@@ -7,10 +7,10 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.AtomicLong;
-import java.util.logging.Level;
-import java.util.logging.Logger;
 
 import org.jxmpp.jid.Jid;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import org.jivesoftware.smack.util.PacketParserUtils;
 import org.jivesoftware.smack.xml.XmlPullParser;
@@ -45,7 +45,7 @@ import sabot.controlml.swe.SweXml;
  */
 public final class Endpoint {
 
-    private static final Logger LOGGER = Logger.getLogger(Endpoint.class.getName());
+    private static final Logger LOG = LoggerFactory.getLogger(Endpoint.class);
 
     private final Clock clock;
     private final ResourceRegistry resources;
@@ -171,7 +171,7 @@ public final class Endpoint {
         try {
             answer = serveChecked(request, carrierType, from, delayStamp, carrier);
         } catch (RuntimeException e) {
-            LOGGER.log(Level.WARNING, "ControlML request " + request + " from " + from + " failed", e);
+            LOG.warn("ControlML request {} from {} failed", request, from, e);
             answer = refuse(request, ControlMlError.of(ControlMlCondition.DEVICE_FAULT, "the device failed: " + e));
         }
         if (answer.bareError() != null || answer.element().type() == ControlMlType.ERROR) {

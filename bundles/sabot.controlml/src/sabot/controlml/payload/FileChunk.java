@@ -1,7 +1,11 @@
 package sabot.controlml.payload;
 
 import java.util.Arrays;
+import java.util.Base64;
 import java.util.Objects;
+
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.swe.SweComponent;
 
 /**
  * Part of a file: the answer to {@code get cm.fs.read}, the value of {@code set cm.fs.write}.
@@ -38,5 +42,43 @@ public record FileChunk(String path, long offset, byte[] data, String sha256, bo
     @Override
     public String toString() {
         return "FileChunk[" + path + " @" + offset + " +" + data.length + (last ? " last" : "") + "]";
+    }
+
+    /** Largest chunk, bytes: 32 KiB of data is 43,692 characters of base64, well inside one payload. */
+    public static final int MAX_CHUNK = 32 * 1024;
+
+    /** The payload schema (section 4 of {@code docs/CONTROLML.md}): fields, SWE types, canonical units, ranges. */
+    public static final PayloadCodec<FileChunk> CODEC = new PayloadCodec<>() {
+        @Override
+        public SweComponent encode(FileChunk c) {
+            return new RecordBuilder().text("path", c.path()).count("offset", c.offset()).text("data", Base64
+                    .getEncoder().encodeToString(c.data())).text("sha256", c.sha256()).bool("last", c.last()).build();
+        }
+
+        @Override
+        public FileChunk decode(SweComponent payload) throws PayloadException {
+            RecordReader r = RecordReader.of(payload, "path", "offset", "data", "sha256", "last");
+            byte[] data;
+            try {
+                data = Base64.getDecoder().decode(r.text("data", 4 * (MAX_CHUNK / 3 + 1)));
+            } catch (IllegalArgumentException e) {
+                throw new PayloadException(ControlMlCondition.MALFORMED_PAYLOAD, "data is not base64");
+            }
+            String sha = r.text("sha256", 64);
+            if (!sha.equals(sha256Hex(data))) {
+                throw new PayloadException(ControlMlCondition.INVALID_VALUE, "sha256 does not match the data");
+            }
+            return new FileChunk(FileQuery.path(r), r.count("offset", 0, Long.MAX_VALUE), data, sha, r.bool("last"));
+        }
+    };
+
+    /** @return lower-case hex SHA-256 of bytes */
+    public static String sha256Hex(byte[] data) {
+        try {
+            byte[] d = java.security.MessageDigest.getInstance("SHA-256").digest(data);
+            return java.util.HexFormat.of().formatHex(d);
+        } catch (java.security.NoSuchAlgorithmException e) {
+            throw new IllegalStateException("SHA-256 is a required JDK algorithm", e);
+        }
     }
 }

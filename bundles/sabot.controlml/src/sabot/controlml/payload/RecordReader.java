@@ -26,6 +26,11 @@ import sabot.controlml.swe.Ucum;
  */
 public final class RecordReader {
 
+    /** A lower bound of {@link #quantity(String, String, double, double)} that means "greater than 0". */
+    public static final double POSITIVE = Double.MIN_VALUE;
+    /** An upper bound of {@link #quantity(String, String, double, double)} that means "any finite value". */
+    public static final double UNBOUNDED = Double.POSITIVE_INFINITY;
+
     private final DataRecord record;
     private final String path;
 
@@ -229,5 +234,26 @@ public final class RecordReader {
 
     static PayloadException malformed(String message) {
         return new PayloadException(ControlMlCondition.MALFORMED_PAYLOAD, message);
+    }
+
+    /**
+     * @return field names {@code count, <prefix>0 .. <prefix>n-1} of a record whose {@code count} field says n (a
+     *         list of records as a record, for {@link #of})
+     * @throws PayloadException when n is negative or over {@code max}
+     */
+    public static String[] indexedFields(SweComponent payload, String prefix, int max) throws PayloadException {
+        long n = 0;
+        if (payload instanceof DataRecord r && r.get("count") instanceof Count c) {
+            n = c.value();
+        }
+        if (n < 0 || n > max) {
+            throw new PayloadException(ControlMlCondition.INVALID_VALUE, "count must be 0.." + max);
+        }
+        String[] names = new String[(int) n + 1];
+        names[0] = "count";
+        for (int i = 0; i < n; i++) {
+            names[i + 1] = prefix + i;
+        }
+        return names;
     }
 }

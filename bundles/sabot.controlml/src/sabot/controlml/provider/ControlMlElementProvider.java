@@ -46,12 +46,34 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
      */
     public static ControlMlElement parseElement(XmlPullParser parser, int initialDepth) throws XmlPullParserException,
             IOException {
-        ControlMlType type = null;
-        RequestId id = null;
-        String res = null;
+        Attributes attributes = readAttributes(parser);
+        if (attributes.defect() != null) {
+            skipToEnd(parser, initialDepth);
+            return ControlMlElement.received(attributes.type(), attributes.id(), attributes.res(), null, null,
+                    attributes.defect());
+        }
+        Content content = new Content(attributes.type(), attributes.res());
+        ControlMlError defect = content.read(parser, initialDepth);
+        if (defect != null) {
+            skipToEnd(parser, initialDepth);
+        }
+        return ControlMlElement.received(attributes.type(), attributes.id(), attributes.res(), defect == null
+                ? content.payload : null, content.failure, defect);
+    }
+
+    /**
+     * The three attributes as far as they could be read, and the first problem with them.
+     *
+     * @param res null when absent or not a resource name
+     */
+    private record Attributes(ControlMlType type, RequestId id, String res, ControlMlError defect) {
+    }
+
+    private static Attributes readAttributes(XmlPullParser parser) {
         ControlMlError defect = null;
         String typeText = null;
         String idText = null;
+        String res = null;
         for (int i = 0; i < parser.getAttributeCount(); i++) {
             String name = parser.getAttributeName(i);
             String value = parser.getAttributeValue(i);
@@ -71,6 +93,7 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
             defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "missing attribute"
                     + (typeText == null ? " type" : "") + (idText == null ? " id" : "") + (res == null ? " res" : ""));
         }
+        ControlMlType type = null;
         if (typeText != null) {
             type = ControlMlType.fromAttribute(typeText);
             if (type == null) {
@@ -78,6 +101,7 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                         + abbreviate(typeText) + "'");
             }
         }
+        RequestId id = null;
         if (idText != null) {
             id = RequestId.parse(idText);
             if (id == null) {
@@ -90,76 +114,96 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                     + "' is not a resource name (cm.<name>)");
             res = null;
         }
+        return new Attributes(type, id, res, defect);
+    }
 
-        SweComponent payload = null;
-        ControlMlError failure = null;
-        if (defect == null) {
-            SweXml.Budget budget = new SweXml.Budget(ControlMl.MAX_PAYLOAD_CHARS);
+    /** Reads the content of an element whose attributes were all readable: one payload, or an error's failure. */
+    private static final class Content {
+        private final ControlMlType type;
+        private final String res;
+        private final SweXml.Budget budget = new SweXml.Budget(ControlMl.MAX_PAYLOAD_CHARS);
+        private SweComponent payload;
+        private ControlMlError failure;
+
+        Content(ControlMlType type, String res) {
+            this.type = type;
+            this.res = res;
+        }
+
+        /** @return the content's first defect, or null; the parser is on the element's end tag when null */
+        ControlMlError read(XmlPullParser parser, int initialDepth) throws XmlPullParserException, IOException {
+            ControlMlError defect;
             try {
-                content: while (true) {
-                    XmlPullParser.Event e = parser.next();
-                    switch (e) {
-                        case START_ELEMENT -> {
-                            if (Swe.NAMESPACE.equals(parser.getNamespace())) {
-                                if (payload != null || failure != null) {
-                                    defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
-                                            "control-ml holds at most one payload component");
-                                    break content;
-                                }
-                                String resource = res;
-                                payload = SweXml.readPayload(parser, budget, href -> structureOf(resource, href));
-                            } else if (ControlMl.NAMESPACE.equals(parser.getNamespace()) && "failure".equals(parser
-                                    .getName()) && type == ControlMlType.ERROR && failure == null && payload == null) {
-                                failure = readFailure(parser);
-                                if (failure == null) {
-                                    defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
-                                            "failure needs condition and reason attributes and text only");
-                                    break content;
-                                }
-                            } else {
-                                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unexpected element "
-                                        + abbreviate(parser.getName()) + " in namespace '" + abbreviate(String.valueOf(parser
-                                                .getNamespace())) + "'");
-                                break content;
-                            }
-                        }
-                        case END_ELEMENT -> {
-                            if (parser.getDepth() == initialDepth) {
-                                break content;
-                            }
-                        }
-                        case TEXT_CHARACTERS, ENTITY_REFERENCE -> {
-                            if (!parser.getText().isBlank()) {
-                                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
-                                        "text where a payload element belongs");
-                                break content;
-                            }
-                        }
-                        case END_DOCUMENT -> throw new XmlPullParserException("document ended inside control-ml");
-                        default -> {
-                            // whitespace, comments
-                        }
-                    }
-                }
+                defect = readChildren(parser, initialDepth);
             } catch (SweFormatException e) {
-                defect = ControlMlError.of(e.problem() == SweFormatException.Problem.TOO_LARGE
+                return ControlMlError.of(e.problem() == SweFormatException.Problem.TOO_LARGE
                         ? ControlMlCondition.PAYLOAD_TOO_LARGE : ControlMlCondition.MALFORMED_PAYLOAD, e.getMessage());
             } catch (RuntimeException e) {
                 // A reader bug must not take the connection down: report it as a malformed payload.
-                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unreadable payload: " + e);
+                return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unreadable payload: " + e);
             }
-            if (defect == null && type == ControlMlType.ERROR && failure == null) {
-                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "an error answer needs a failure");
+            if (defect != null) {
+                return defect;
             }
-            if (defect == null && type != ControlMlType.ERROR && failure != null) {
-                defect = ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "failure only in error answers");
+            if (type == ControlMlType.ERROR && failure == null) {
+                return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "an error answer needs a failure");
+            }
+            if (type != ControlMlType.ERROR && failure != null) {
+                return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "failure only in error answers");
+            }
+            return null;
+        }
+
+        /** @return the first defect, or null at the element's end tag */
+        private ControlMlError readChildren(XmlPullParser parser, int initialDepth) throws SweFormatException,
+                XmlPullParserException, IOException {
+            while (true) {
+                switch (parser.next()) {
+                    case START_ELEMENT -> {
+                        ControlMlError defect = readChild(parser);
+                        if (defect != null) {
+                            return defect;
+                        }
+                    }
+                    case END_ELEMENT -> {
+                        if (parser.getDepth() == initialDepth) {
+                            return null;
+                        }
+                    }
+                    case TEXT_CHARACTERS, ENTITY_REFERENCE -> {
+                        if (!parser.getText().isBlank()) {
+                            return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                                    "text where a payload element belongs");
+                        }
+                    }
+                    case END_DOCUMENT -> throw new XmlPullParserException("document ended inside control-ml");
+                    default -> {
+                        // whitespace, comments
+                    }
+                }
             }
         }
-        if (defect != null) {
-            skipToEnd(parser, initialDepth);
-            payload = null;
+
+        /** @return the defect of the child element the parser is on, or null when it was read */
+        private ControlMlError readChild(XmlPullParser parser) throws SweFormatException, XmlPullParserException,
+                IOException {
+            if (Swe.NAMESPACE.equals(parser.getNamespace())) {
+                if (payload != null || failure != null) {
+                    return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                            "control-ml holds at most one payload component");
+                }
+                payload = SweXml.readPayload(parser, budget, href -> structureOf(res, href));
+                return null;
+            }
+            if (ControlMl.NAMESPACE.equals(parser.getNamespace()) && "failure".equals(parser.getName())
+                    && type == ControlMlType.ERROR && failure == null && payload == null) {
+                failure = readFailure(parser);
+                return failure != null ? null : ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD,
+                        "failure needs condition and reason attributes and text only");
+            }
+            return ControlMlError.of(ControlMlCondition.MALFORMED_PAYLOAD, "unexpected element " + abbreviate(parser
+                    .getName()) + " in namespace '" + abbreviate(String.valueOf(parser.getNamespace())) + "'");
         }
-        return ControlMlElement.received(type, id, res, payload, failure, defect);
     }
 
     /**

@@ -5,6 +5,9 @@ import java.util.List;
 
 import org.osgi.framework.Bundle;
 import org.osgi.framework.BundleContext;
+import org.osgi.service.component.annotations.Activate;
+import org.osgi.service.component.annotations.Component;
+import org.osgi.service.component.annotations.Deactivate;
 
 import sabot.identity.HardwareDescription;
 import sabot.identity.Inventories;
@@ -12,17 +15,20 @@ import sabot.identity.Inventory;
 import sabot.identity.InventorySource;
 
 /**
- * Declarative Services component ({@code OSGI-INF/sabot.identity.inventory.xml}): the inventory of the running
- * product, read from the framework's installed bundles each time it is asked (bundles come and go with tasks).
+ * Declarative Services component {@code sabot.identity.inventory}: the inventory of the running product, read from
+ * the framework's installed bundles each time it is asked (bundles come and go with tasks).
  */
+@Component(name = "sabot.identity.inventory", service = InventorySource.class)
 public final class OsgiInventorySource implements InventorySource {
 
     private volatile BundleContext context;
 
+    @Activate
     void activate(BundleContext ctx) {
         this.context = ctx;
     }
 
+    @Deactivate
     void deactivate() {
         this.context = null;
     }

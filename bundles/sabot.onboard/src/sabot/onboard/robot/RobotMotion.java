@@ -7,11 +7,11 @@ import java.util.Optional;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.pidstep.controlml.StepTest;
@@ -59,10 +59,10 @@ public interface RobotMotion {
     void navigateTo(Goal goal) throws CommandRefused;
 
     /** @return the trajectory being followed (empty point list when none); never null */
-    Trajectory trajectory();
+    TrajectoryPayload trajectory();
 
     /** Follows an imposed trajectory instead of a planned one (a mission without a goal pose check). */
-    void follow(Trajectory trajectory) throws CommandRefused;
+    void follow(TrajectoryPayload trajectory) throws CommandRefused;
 
     /** @return the obstacles the sonar board sees now, map frame; never null */
     Obstacles obstacles();
@@ -74,10 +74,10 @@ public interface RobotMotion {
     void replaceMap(GridMap map) throws CommandRefused;
 
     /** @return the motion limits in force; never null */
-    MotionLimits limits();
+    LimitsPayload limits();
 
     /** Sets new limits, never above the robot's physical ones (INVALID_VALUE). Applies at the next control period. */
-    void setLimits(MotionLimits limits) throws CommandRefused;
+    void setLimits(LimitsPayload limits) throws CommandRefused;
 
     /** @return the motor gains read back from the motor board; DEVICE_FAULT when the board does not answer */
     PidGains gains() throws CommandRefused;

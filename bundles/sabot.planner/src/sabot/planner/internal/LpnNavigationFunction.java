@@ -68,19 +68,17 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     private static final int INITIAL_BUCKET_CAPACITY = 1024;
     /**
-     * Bucket width of the focused propagation, in units of c_min: keys N + h need not rise by a fixed amount per
-     * update (h falls as fast as N rises along a straight path), so a bucket is not final as a whole and a cell that
-     * a later expansion lowers is expanded again (see {@link #computeFocused}); narrow buckets keep that rare.
+     * First excess of the focused propagation's bound over c_min times the straight distance from the start to the
+     * nearest goal (see {@link #computeFocused}): 5 %; random grids between opposite corners need 4 %.
      */
-    private static final float FOCUS_BUCKET = 0.1f;
+    static final float FOCUS_FIRST_EXCESS = 0.05f;
+    /** Factor of the excess from one focused attempt to the next. */
+    private static final float FOCUS_GROWTH = 4f;
     /**
-     * Weight w of the focused propagation's heuristic {@code w * c_min * |p - start|}: at 1 the keys fall so often that
-     * a third of the expansions repeat earlier ones (random-1000: 656 k of 903 k), at 0.9 one in twenty (28 k of
-     * 569 k at 0.8, 434 k cells reached at 0.9 against 736 k for the whole grid).
+     * A second or later focused attempt that expanded more than this fraction of the grid in vain is followed by an
+     * unfocused one.
      */
-    static final float FOCUS_WEIGHT = 0.9f;
-    /** A final cell is expanded again only when its value falls by more than this many float ulps (rounding). */
-    private static final int REOPEN_ULPS = 16;
+    private static final int FOCUS_GIVE_UP_FRACTION = 32;
     /** A grid is cut into about 2^10 memory bands for the bucket ordering: a row or so on grids of 1000 x 1000. */
     private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
@@ -97,10 +95,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * conversion stays in int range (N stays below it unless a grid holds some 10^8 cells).
      */
     private final float bucketCap;
-    /** Mask of the bucket ring in use: {@link #ringMask} for N, {@link #focusRingMask} for the focused keys. */
-    private int bucketMask;
-    private final int ringMask;
-    private final int focusRingMask;
+    /** Mask of the bucket ring (its size is a power of two). */
+    private final int bucketMask;
     /**
      * The bucket ring, flat: bucket slot s holds its cells at {@code [s << bucketShift, s << bucketShift + size)} (one
      * array rather than one per bucket: one load less per push and per pop in the hot loop); all buckets grow together.
@@ -109,8 +105,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int bucketShift;
     private final int[] bucketSizes;
     private final float minDensity;
-    private final float focusBucketWidth;
-    private final float inverseFocusBucketWidth;
 
     private PlanningGrid grid;
     private int[] potential = new int[0];
@@ -130,8 +124,18 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int[] invalid = new int[256];
     private int touchedCount;
     private int finalizedCount;
-    /** Cells the focused propagation lowered after their expansion (counted as final twice). */
-    private int reopened;
+    /**
+     * Focus of the propagation: a cell p is expanded only if {@code N(p) + c_min |p - start| <= focusBound}
+     * ({@code +infinity}: every cell); cells outside are deferred (reached, not expanded) and counted in
+     * {@link #deferred}. Start row and column in cells.
+     */
+    private float focusBound = Float.POSITIVE_INFINITY;
+    private int focusRow;
+    private int focusColumn;
+    private int deferred;
+    /** Expansions of the last computation or repair (every attempt of a focused one); cells a repair withdrew. */
+    private int expandedCount;
+    private int withdrawnCount;
     private int queued;
     private int currentBucket;
     private int bandShift;
@@ -163,19 +167,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.inverseBucketWidth = 1f / bucketWidth;
         this.bucketCap = (1 << 30) * bucketWidth;
         int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
-        // the focused propagation's keys rise by at most sqrt(2) * (c_max + c_min) per update
         this.minDensity = costModel.minDensity();
-        this.focusBucketWidth = FOCUS_BUCKET * minDensity;
-        this.inverseFocusBucketWidth = 1f / focusBucketWidth;
-        int focusReach = (int) Math.ceil(SQRT2 * (costModel.maxDensity() + minDensity) / focusBucketWidth) + 2;
-        // two rings in one array: the first 2^k slots serve N (16 at the standard cost model), all of them the
-        // focused keys (128). The propagation of N must not cycle through the large ring: every bucket would be a
-        // fresh stretch of memory (cold cache lines for every push and pop, 25-30 % slower on 1000 x 1000)
-        this.ringMask = (Integer.highestOneBit(reach + 1) << 1) - 1;
-        this.focusRingMask = (Integer.highestOneBit(Math.max(reach, focusReach) + 1) << 1) - 1;
-        int ring = focusRingMask + 1;
-        this.bucketMask = ringMask;
-        this.bucketShift = Integer.numberOfTrailingZeros(Math.max(64, INITIAL_BUCKET_CAPACITY * 16 / (ringMask + 1)));
+        this.bucketMask = (Integer.highestOneBit(reach + 1) << 1) - 1;
+        int ring = bucketMask + 1;
+        this.bucketShift = Integer.numberOfTrailingZeros(Math.max(64, INITIAL_BUCKET_CAPACITY * 16 / ring));
         this.buckets = new int[ring << bucketShift];
         this.bucketSizes = new int[ring];
     }
@@ -252,13 +247,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     public void compute(int[] goals, int stopAtCell) {
         completeGoals = stopAtCell < 0 ? goals.clone() : null;
+        expandedCount = 0;
+        withdrawnCount = 0;
+        focusBound = Float.POSITIVE_INFINITY;
+        start(goals);
+        propagate(stopAtCell, false);
+    }
+
+    /** Clears the previous computation and queues the goal cells at 0. */
+    private void start(int[] goals) {
         checkSize = 0;
         resetTouched();
         finalizedCount = 0;
         queued = 0;
+        deferred = 0;
         currentBucket = 0;
         Arrays.fill(bucketSizes, 0);
-        bucketMask = ringMask;
         for (int goal : goals) {
             if (potential[goal] == UNREACHED) {
                 if (touchedCount < touched.length) {
@@ -269,58 +273,82 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 push(goal, 0f);
             }
         }
-        propagate(stopAtCell, false);
     }
 
     /**
-     * Computes N from the goal cells as far as a plan from {@code startCell} needs it: an A*-like focused propagation
-     * (P. E. Hart, N. J. Nilsson, B. Raphael, IEEE SSC 4(2), 1968) on the LPN update. Cells are expanded in buckets of
-     * the key {@code N(p) + h(p)}, {@code h(p) = w * c_min * |p - start|} (cell units, w = {@link #FOCUS_WEIGHT}), a lower bound of the cost from p
-     * to the start (no path costs less than c_min per cell of length). Unlike N alone, the key need not rise from a
-     * cell to the cells it updates (h falls by up to w * c_min per cell), so a cell may be lowered after its expansion;
-     * it is then expanded again (the label-correcting form of A* for a heuristic that is admissible but not
-     * consistent; only cells whose N exceeds the expanding cell's are checked, since no update lowers a cell below
-     * its source). Every cell whose key is at most N(start) is expanded with its final value, among them the cells
-     * of the cheapest path (their keys are at most N(start) since h underestimates); the propagation goes on until
-     * the keys pass N(start) plus two diagonal steps at the highest density, so that the neighbourhood the path
-     * descent reads is final too. When the start is never reached the whole region of the goals is expanded: an
-     * enclosed goal or start is still reported as such.
+     * Computes N from the goal cells as far as a plan from {@code startCell} needs it: {@link #compute} stopped at
+     * the start, expanding only cells that can lie on a path from the start of cost at most a bound U, i.e. with
+     * {@code N(p) + c_min |p - start| <= U + margin} (c_min |p - start| is a lower bound of the cost from p to the
+     * start, as A*'s heuristic; P. E. Hart, N. J. Nilsson, B. Raphael, IEEE SSC 4(2), 1968). Cells are still expanded
+     * in increasing N, so every expanded cell is final and expanded once, with the values of the whole-grid
+     * propagation (to the order effects inside a bucket, see the class comment): the bound only leaves out cells
+     * (deferred: reached, not expanded), no cell is expanded twice as in A* with this update (whose keys N + h fall
+     * along many updates: the interpolated update may raise N by only c / sqrt 2 while h falls by c_min). The
+     * margin, four diagonal steps at the highest density, covers the corners of the triangles of the path's cells
+     * (their keys exceed the path's by less than c_min sqrt 2) and the neighbourhood the descent reads.
+     *
+     * <p>U starts at c_min times the straight distance to the nearest goal plus {@link #FOCUS_FIRST_EXCESS}; when the
+     * start is not reached within it and cells were deferred, the excess grows fourfold and the computation starts
+     * again, without a bound once a second or later attempt has expanded a 32nd of the grid in vain (the region
+     * grows steeply with U, so a tight first bound pays more than the occasional repeated computation).
+     * When no cell was deferred the region of the goals was exhausted: the start is unreachable, as for
+     * {@link #compute}.
      *
      * @param goals     padded indices of passable goal cells
      * @param startCell padded index of the start
      */
     public void computeFocused(int[] goals, int startCell) {
         completeGoals = null;
-        checkSize = 0;
-        resetTouched();
-        finalizedCount = 0;
-        queued = 0;
-        currentBucket = 0;
-        Arrays.fill(bucketSizes, 0);
-        bucketMask = focusRingMask;
+        expandedCount = 0;
+        withdrawnCount = 0;
         int stride = grid.stride();
-        int startRow = startCell / stride;
-        int startColumn = startCell - startRow * stride;
-        float weight = FOCUS_WEIGHT * minDensity;
-        reopened = 0;
+        focusRow = startCell / stride;
+        focusColumn = startCell - focusRow * stride;
+        double distance = Double.POSITIVE_INFINITY;
         for (int goal : goals) {
-            if (potential[goal] == UNREACHED) {
-                if (touchedCount < touched.length) {
-                    touched[touchedCount] = goal;
-                }
-                touchedCount++;
-                potential[goal] = 0;
-                int row = goal / stride;
-                int column = goal - row * stride;
-                // goals wait in the heap and enter the ring as the front reaches their keys (a goal set may spread
-                // further than the ring reaches)
-                pushSeed(goal, weight * (float) Math.hypot(column - startColumn, row - startRow));
+            distance = Math.min(distance, Math.hypot(goal % stride - focusColumn, goal / stride - focusRow));
+        }
+        // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
+        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
+        float margin = 4 * SQRT2 * maxDensity;
+        float excess = FOCUS_FIRST_EXCESS;
+        int vainAttempts = 0;
+        focusBound = (float) (minDensity * distance * (1 + excess)) + margin;
+        while (true) {
+            start(goals);
+            propagate(startCell, false);
+            if (isReached(startCell) || deferred == 0) {
+                break;
             }
+            excess *= FOCUS_GROWTH;
+            vainAttempts++;
+            // a second vain attempt that already expanded a sizeable part of the grid (a maze, where paths are many
+            // times the straight distance) is followed by the unfocused propagation rather than more attempts; after
+            // the first the bound is raised in any case (the robot's lab map: 24,188 cells in all, against 32,212
+            // unfocused and 35,188 when giving up after the first)
+            focusBound = vainAttempts >= 2 && finalizedCount > potential.length / FOCUS_GIVE_UP_FRACTION
+                    ? Float.POSITIVE_INFINITY
+                    : (float) (minDensity * distance * (1 + excess)) + margin;
         }
-        if (checkSize > 0) {
-            currentBucket = (int) (checkKeys[0] * inverseFocusBucketWidth);
-        }
-        propagateFocused(startCell, startRow, startColumn, weight);
+        focusBound = Float.POSITIVE_INFINITY;
+    }
+
+    /**
+     * @return cells expanded by the last {@link #compute}, {@link #computeFocused} (all its attempts) or
+     *         {@link #repair} (the withdrawn cells refilled and the cells their new values lowered): the work done
+     */
+    public int expandedCount() {
+        return expandedCount;
+    }
+
+    /** @return cells whose values the last {@link #repair} withdrew (0 after a computation) */
+    public int withdrawnCount() {
+        return withdrawnCount;
+    }
+
+    /** @return number of cells the last computation left out by its focus (see {@link #computeFocused}) */
+    public int deferredCount() {
+        return deferred;
     }
 
     /**
@@ -340,6 +368,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (planningGrid != grid || completeGoals == null || !Arrays.equals(completeGoals, goals)) {
             return false;
         }
+        expandedCount = 0;
+        withdrawnCount = 0;
         if (changed.isEmpty()) {
             return true;
         }
@@ -410,12 +440,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 }
             }
         }
+        withdrawnCount = invalidCount;
         if (invalidCount == 0) {
             return true;
         }
         queued = 0;
         Arrays.fill(bucketSizes, 0);
-        bucketMask = ringMask;
         currentBucket = Integer.MAX_VALUE;
         for (int i = 0; i < invalidCount; i++) {
             int cell = invalid[i];
@@ -570,7 +600,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
         final byte[] costs = grid.costs();
         final int stride = grid.stride();
         float stopAbove = Float.POSITIVE_INFINITY;
+        // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
+        // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
+        final float focusFrom = focusBound - minDensity * (float) Math.hypot(stride, potential.length / stride);
+        final double inverseStride = 1.0 / stride;
         int finalized = 0;
+        int deferredHere = 0;
         while ((queued > 0 || checkSize > 0) && currentBucket * bucketWidth <= stopAbove) {
             if (checkSize > 0) {
                 injectSeeds();
@@ -597,13 +632,17 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 if (bits < 0) {
                     continue;
                 }
-                potential[cell] = bits | FINAL;
-                finalized++;
                 if (record < touched.length) {
                     touched[record] = cell;
                 }
                 record++;
                 float value = Float.intBitsToFloat(bits);
+                if (value > focusFrom && outsideFocus(cell, value, stride, inverseStride)) {
+                    deferredHere++; // reached (recorded for the reset), left out
+                    continue;
+                }
+                potential[cell] = bits | FINAL;
+                finalized++;
                 if (cell == stopAtCell) {
                     stopAbove = value + 2 * SQRT2 * maxDensity;
                 }
@@ -646,6 +685,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
             currentBucket++;
         }
         finalizedCount += finalized;
+        expandedCount += finalized;
+        deferred += deferredHere;
         // cells reached but not final when a bounded computation stops are still queued: record them for the reset
         for (int slot = 0; queued > 0 && slot <= bucketMask; slot++) {
             for (int i = 0; i < bucketSizes[slot]; i++) {
@@ -659,155 +700,15 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
-     * The loop of {@link #computeFocused}: {@link #propagate}'s expansion with buckets of N + h. Seeds waiting in the
-     * check heap (goals whose keys lie beyond the ring) enter as the front reaches them.
+     * @return true when a cell of value {@code value} lies outside the focus, {@code N + c_min |p - start| > focusBound}
      */
-    private void propagateFocused(int startCell, int startRow, int startColumn, float weight) {
-        final int[] potential = this.potential;
-        final float[] halfDensity = this.halfDensity;
-        final byte[] costs = grid.costs();
-        final int stride = grid.stride();
-        final float inverseWidth = inverseFocusBucketWidth;
-        final double inverseStride = 1.0 / stride;
-        float stopAbove = Float.POSITIVE_INFINITY;
-        int finalized = 0;
-        while ((queued > 0 || checkSize > 0) && currentBucket * focusBucketWidth <= stopAbove) {
-            if (checkSize > 0) {
-                injectFocusSeeds(inverseWidth);
-                if (queued == 0) {
-                    continue;
-                }
-            }
-            int slot = currentBucket & bucketMask;
-            if (bucketSizes[slot] >= bandCounts.length >> 3) {
-                sortByMemoryBand(slot);
-            }
-            for (int head = 0; head < bucketSizes[slot]; head++) {
-                int cell = buckets[(slot << bucketShift) + head];
-                queued--;
-                int bits = potential[cell];
-                if (bits < 0) {
-                    continue;
-                }
-                potential[cell] = bits | FINAL;
-                finalized++;
-                float value = Float.intBitsToFloat(bits);
-                if (cell == startCell) {
-                    stopAbove = value + 2 * SQRT2 * maxDensity; // again if the start is lowered and expanded again
-                }
-                // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
-                int row = (int) ((cell + 0.5) * inverseStride);
-                int dx = cell - row * stride - startColumn;
-                int dy = row - startRow;
-                float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
-                int eastBits = potential[cell + 1];
-                int westBits = potential[cell - 1];
-                int northBits = potential[cell + stride];
-                int southBits = potential[cell - stride];
-                float northValue = decode(northBits);
-                float southValue = decode(southBits);
-                float eastValue = decode(eastBits);
-                float westValue = decode(westBits);
-                float northSouthCorner = northValue < southValue ? northValue : southValue;
-                float eastWestCorner = eastValue < westValue ? eastValue : westValue;
-                if (eastBits != IMPASSABLE && eastValue > value) {
-                    relaxFocused(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs,
-                            weight, dx + 1, dy);
-                }
-                if (westBits != IMPASSABLE && westValue > value) {
-                    relaxFocused(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs,
-                            weight, dx - 1, dy);
-                }
-                if (northBits != IMPASSABLE && northValue > value) {
-                    relaxFocused(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity,
-                            costs, weight, dx, dy + 1);
-                }
-                if (southBits != IMPASSABLE && southValue > value) {
-                    relaxFocused(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity,
-                            costs, weight, dx, dy - 1);
-                }
-                // an axis neighbour expanded before this cell although its N is higher (its key was lower: it lies
-                // nearer the start) read this cell's older value as the corner of its triangles towards the two
-                // diagonal neighbours between them: update those through the final corner (in the whole-grid
-                // propagation N orders the expansions, and this hardly happens)
-                if (eastBits < 0 && eastBits != IMPASSABLE && eastValue > value) {
-                    cornerFocused(cell + 1 + stride, eastValue, value, costs[cell + 1], costs, weight, dx + 1, dy + 1);
-                    cornerFocused(cell + 1 - stride, eastValue, value, costs[cell + 1], costs, weight, dx + 1, dy - 1);
-                }
-                if (westBits < 0 && westBits != IMPASSABLE && westValue > value) {
-                    cornerFocused(cell - 1 + stride, westValue, value, costs[cell - 1], costs, weight, dx - 1, dy + 1);
-                    cornerFocused(cell - 1 - stride, westValue, value, costs[cell - 1], costs, weight, dx - 1, dy - 1);
-                }
-                if (northBits < 0 && northBits != IMPASSABLE && northValue > value) {
-                    cornerFocused(cell + stride + 1, northValue, value, costs[cell + stride], costs, weight, dx + 1,
-                            dy + 1);
-                    cornerFocused(cell + stride - 1, northValue, value, costs[cell + stride], costs, weight, dx - 1,
-                            dy + 1);
-                }
-                if (southBits < 0 && southBits != IMPASSABLE && southValue > value) {
-                    cornerFocused(cell - stride + 1, southValue, value, costs[cell - stride], costs, weight, dx + 1,
-                            dy - 1);
-                    cornerFocused(cell - stride - 1, southValue, value, costs[cell - stride], costs, weight, dx - 1,
-                            dy - 1);
-                }
-            }
-            bucketSizes[slot] = 0;
-            currentBucket++;
-        }
-        finalizedCount += finalized - reopened;
-    }
-
-    /**
-     * {@link #relax} with the key N + h of the target at (dx, dy) cells from the start; a final target (of higher N
-     * than the source) is lowered and queued again when the update improves it beyond rounding.
-     */
-    private void relaxFocused(int target, int targetBits, float value, float corner, float ownHalfDensity,
-            float[] halfDensity, byte[] costs, float weight, int dx, int dy) {
-        float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
-        int bestBits = Float.floatToRawIntBits(best);
-        if (targetBits >= 0) {
-            if (bestBits >= targetBits) {
-                return;
-            }
-            potential[target] = bestBits;
-            float h = weight * (float) Math.sqrt(dx * dx + dy * dy);
-            if (targetBits == UNREACHED) {
-                if (touchedCount < touched.length) {
-                    touched[touchedCount] = target;
-                }
-                touchedCount++;
-            } else if ((int) ((Float.intBitsToFloat(targetBits) + h) * inverseFocusBucketWidth)
-                    == (int) ((best + h) * inverseFocusBucketWidth)) {
-                return; // already queued in the same bucket
-            }
-            push(target, best + h, inverseFocusBucketWidth);
-        } else if (bestBits < (targetBits & VALUE) - REOPEN_ULPS) {
-            potential[target] = bestBits;
-            reopened++;
-            push(target, best + weight * (float) Math.sqrt(dx * dx + dy * dy), inverseFocusBucketWidth);
-        }
-    }
-
-    /** Updates a diagonal neighbour of higher N than the axis cell through the triangle of a final axis cell and a final corner. */
-    private void cornerFocused(int target, float axisValue, float corner, byte axisCost, byte[] costs, float weight,
-            int dx, int dy) {
-        int targetBits = potential[target];
-        if (targetBits != IMPASSABLE && decode(targetBits) > axisValue) {
-            relaxFocused(target, targetBits, axisValue, corner, halfDensity[axisCost & 0xFF], halfDensity, costs,
-                    weight, dx, dy);
-        }
-    }
-
-    /** {@link #injectSeeds} for focused keys. */
-    private void injectFocusSeeds(float inverseWidth) {
-        if (queued == 0) {
-            currentBucket = Math.max(currentBucket, (int) (checkKeys[0] * inverseWidth));
-        }
-        int horizon = currentBucket + bucketMask;
-        while (checkSize > 0 && (int) (checkKeys[0] * inverseWidth) < horizon) {
-            float key = checkKeys[0];
-            push(popCheck(), key, inverseWidth);
-        }
+    private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
+        // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
+        int row = (int) ((cell + 0.5) * inverseStride);
+        float dx = cell - row * stride - focusColumn;
+        float dy = row - focusRow;
+        float reach = (focusBound - value) / minDensity;
+        return reach < 0 || dx * dx + dy * dy > reach * reach;
     }
 
     /**

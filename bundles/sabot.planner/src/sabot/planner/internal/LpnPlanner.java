@@ -34,7 +34,12 @@ public final class LpnPlanner implements Planner {
 
     /** The focused planner ({@link LpnNavigationFunction#computeFocused}), {@code lpn-focused}. */
     public static LpnPlanner focused(CostModel costModel) {
-        LpnPlanner planner = new LpnPlanner(costModel, false);
+        return focused(costModel, new LpnNavigationFunction(costModel));
+    }
+
+    /** The focused planner with a navigation function made for it (same cost model). */
+    public static LpnPlanner focused(CostModel costModel, LpnNavigationFunction navigationFunction) {
+        LpnPlanner planner = new LpnPlanner(costModel, false, false, navigationFunction);
         planner.focused = true;
         return planner;
     }

@@ -37,6 +37,11 @@ public final class XmppAccountStore {
     static final String KEY_JID = KEY_PREFIX + "jid";
     /** The robots to follow besides those already in the roster (fleet rule 12): bare JIDs, comma-separated. */
     static final String KEY_ROBOTS = KEY_PREFIX + "robots";
+    /**
+     * The fleet lobby (roster rule 11): the bare JID of a multi-user chat room, e.g.
+     * {@code fleet@conference.sabot.local}, where online robots are discovered; empty for none.
+     */
+    static final String KEY_LOBBY = KEY_PREFIX + "lobby";
     private static final Set<PosixFilePermission> OWNER_ONLY = EnumSet.of(PosixFilePermission.OWNER_READ,
             PosixFilePermission.OWNER_WRITE);
 
@@ -101,6 +106,34 @@ public final class XmppAccountStore {
             }
         }
         preferences.put(KEY_ROBOTS, String.join(",", robots));
+        flush();
+    }
+
+    /** @return the fleet lobby's room (bare JID) as stored, or "" when none is configured */
+    public String loadLobby() {
+        return preferences.get(KEY_LOBBY, "").strip();
+    }
+
+    /**
+     * Stores the fleet lobby (roster rule 11).
+     *
+     * @param room the room's bare JID, e.g. {@code fleet@conference.sabot.local}; "" or null for none
+     * @throws IllegalArgumentException when the room is not a bare JID (nothing is stored then)
+     * @throws IOException              when the preferences cannot be written
+     */
+    public void saveLobby(String room) throws IOException {
+        String r = room == null ? "" : room.strip();
+        if (!r.isEmpty()) {
+            String problem = new XmppAccount("server", XmppAccount.DEFAULT_PORT, r).problem();
+            if (problem != null) {
+                throw new IllegalArgumentException("lobby '" + r + "': " + problem);
+            }
+        }
+        if (r.isEmpty()) {
+            preferences.remove(KEY_LOBBY);
+        } else {
+            preferences.put(KEY_LOBBY, r);
+        }
         flush();
     }
 

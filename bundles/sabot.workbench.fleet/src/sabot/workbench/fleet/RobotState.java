@@ -9,7 +9,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Twist2D;
 
@@ -35,8 +35,8 @@ import sabot.model.geometry.Twist2D;
  * @param lastTelemetry when the workbench last received telemetry from it (workbench clock), or null
  */
 public record RobotState(String jid, String name, Availability availability, String reason, PoseEstimate pose,
-        Twist2D velocity, MissionStatus mission, Trajectory path, Obstacles obstacles, Goal goal, List<Point2D> trail,
-        Instant lastTelemetry) {
+        Twist2D velocity, MissionStatus mission, TrajectoryPayload path, Obstacles obstacles, Goal goal,
+        List<Point2D> trail, Instant lastTelemetry) {
 
     /**
      * Telemetry older than this makes a robot stale (drawn greyed): five periods of the slowest pose rate the
@@ -109,7 +109,7 @@ public record RobotState(String jid, String name, Availability availability, Str
     }
 
     /** @return this state with another planned path and goal (either may be null) */
-    public RobotState withPlan(Trajectory t, Goal g) {
+    public RobotState withPlan(TrajectoryPayload t, Goal g) {
         return new RobotState(jid, name, availability, reason, pose, velocity, mission, t, obstacles, g, trail,
                 lastTelemetry);
     }

@@ -30,7 +30,7 @@ import org.slf4j.LoggerFactory;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
-import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.fleet.FleetBinding;
 
 /**
  * The base of a plug-in's view about one robot: a robot chooser on top (it follows the robot selected in the Fleet
@@ -74,7 +74,7 @@ public abstract class RobotView extends ViewPart {
         messageLine = new CLabel(parent, SWT.NONE);
         messageLine.setLayoutData(new GridData(SWT.FILL, SWT.BOTTOM, true, false));
         getSite().getPage().addSelectionListener(selectionListener);
-        binding = new FleetBinding(parent.getDisplay(), this::fleetChanged);
+        binding = new FleetBinding(parent.getDisplay()::asyncExec, this::fleetChanged);
         fleetChanged();
         ISelection current = getSite().getPage().getSelection();
         if (current != null) {

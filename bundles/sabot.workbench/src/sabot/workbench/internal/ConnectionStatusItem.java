@@ -8,6 +8,7 @@ import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Label;
 
 import sabot.workbench.fleet.ConnectionStatus;
+import sabot.workbench.fleet.FleetBinding;
 
 /** The status line's connection state: the account and whether it is online, connecting or retrying (and why). */
 final class ConnectionStatusItem extends ContributionItem {
@@ -35,7 +36,7 @@ final class ConnectionStatusItem extends ContributionItem {
         StatusLineLayoutData line = new StatusLineLayoutData();
         line.heightHint = 20;
         separator.setLayoutData(line);
-        fleet = new FleetBinding(parent.getDisplay(), this::refresh);
+        fleet = new FleetBinding(parent.getDisplay()::asyncExec, this::refresh);
         label.addDisposeListener(e -> fleet.dispose());
         refresh();
     }

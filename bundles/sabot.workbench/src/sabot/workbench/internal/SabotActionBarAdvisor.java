@@ -1,6 +1,7 @@
 package sabot.workbench.internal;
 
 import org.eclipse.jface.action.GroupMarker;
+import org.eclipse.jface.action.ICoolBarManager;
 import org.eclipse.jface.action.IMenuManager;
 import org.eclipse.jface.action.IStatusLineManager;
 import org.eclipse.jface.action.MenuManager;
@@ -13,8 +14,14 @@ import org.eclipse.ui.actions.ContributionItemFactory;
 import org.eclipse.ui.application.ActionBarAdvisor;
 import org.eclipse.ui.application.IActionBarConfigurer;
 
-/** Menus: File (Exit), Window (Show View, Preferences), Help (About); plug-ins add under "additions". */
+/**
+ * Menus: File (Exit), Robot (Stop All Robots, contributed in plugin.xml), Window (Show View, Preferences), Help
+ * (About); plug-ins add under "additions". The main toolbar holds the commands contributed to it (Stop All Robots).
+ */
 final class SabotActionBarAdvisor extends ActionBarAdvisor {
+
+    /** The Robot menu's id: commands about robots are contributed to {@code menu:sabot.workbench.menu.robot}. */
+    static final String ROBOT_MENU = "sabot.workbench.menu.robot";
 
     private IWorkbenchAction quit;
     private IWorkbenchAction preferences;
@@ -37,6 +44,12 @@ final class SabotActionBarAdvisor extends ActionBarAdvisor {
     }
 
     @Override
+    protected void fillCoolBar(ICoolBarManager coolBar) {
+        // where the toolbars of plugin.xml (toolbar:org.eclipse.ui.main.toolbar?after=additions) go
+        coolBar.add(new GroupMarker(IWorkbenchActionConstants.MB_ADDITIONS));
+    }
+
+    @Override
     protected void fillStatusLine(IStatusLineManager statusLine) {
         statusLine.add(new ConnectionStatusItem());
     }
@@ -47,6 +60,9 @@ final class SabotActionBarAdvisor extends ActionBarAdvisor {
         file.add(new GroupMarker(IWorkbenchActionConstants.MB_ADDITIONS));
         file.add(new Separator());
         file.add(quit);
+
+        MenuManager robot = new MenuManager("&Robot", ROBOT_MENU);
+        robot.add(new GroupMarker(IWorkbenchActionConstants.MB_ADDITIONS));
 
         MenuManager window = new MenuManager("&Window", IWorkbenchActionConstants.M_WINDOW);
         MenuManager showView = new MenuManager("Show &View", "showView");
@@ -62,6 +78,7 @@ final class SabotActionBarAdvisor extends ActionBarAdvisor {
         help.add(about);
 
         menuBar.add(file);
+        menuBar.add(robot);
         menuBar.add(window);
         menuBar.add(new GroupMarker(IWorkbenchActionConstants.MB_ADDITIONS));
         menuBar.add(help);

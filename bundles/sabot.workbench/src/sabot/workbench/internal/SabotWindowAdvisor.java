@@ -21,6 +21,8 @@ import org.eclipse.ui.application.WorkbenchWindowAdvisor;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.workbench.views.WorkspaceView;
+
 final class SabotWindowAdvisor extends WorkbenchWindowAdvisor {
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.workbench");
@@ -42,7 +44,7 @@ final class SabotWindowAdvisor extends WorkbenchWindowAdvisor {
         IWorkbenchWindowConfigurer c = getWindowConfigurer();
         c.setInitialSize(new Point(1280, 800));
         c.setShowMenuBar(true);
-        c.setShowCoolBar(false);
+        c.setShowCoolBar(true); // Stop All Robots
         c.setShowStatusLine(true);
         c.setTitle("Sabot Workbench");
     }
@@ -55,27 +57,40 @@ final class SabotWindowAdvisor extends WorkbenchWindowAdvisor {
             return;
         }
         Display display = shell.getDisplay();
-        if (options.waitForLiveRobot()) {
-            long deadline = System.nanoTime() + LaunchOptions.LIVE_WAIT_S * 1_000_000_000L;
-            awaitLiveRobot(display, deadline, () -> capture(shell, display));
+        LaunchOptions.Wait wait = options.waitFor();
+        if (wait == LaunchOptions.Wait.NONE) {
+            capture(shell, display);
             return;
         }
-        capture(shell, display);
-    }
-
-    /** Looks every 100 ms (on the UI thread's timer) whether the workspace shows a live robot, then runs {@code then}. */
-    private void awaitLiveRobot(Display display, long deadline, Runnable then) {
         org.eclipse.ui.IWorkbenchPage page = getWindowConfigurer().getWindow().getActivePage();
-        sabot.workbench.views.WorkspaceView w = page == null ? null : (sabot.workbench.views.WorkspaceView) page
-                .findView(sabot.workbench.views.WorkspaceView.ID);
-        if (w != null && w.showsLiveRobot() || System.nanoTime() > deadline) {
-            if (w == null || !w.showsLiveRobot()) {
-                LOG.warn("no live robot on the map within {} s; screenshot taken anyway", LaunchOptions.LIVE_WAIT_S);
-            }
-            then.run();
+        WorkspaceView workspace = page == null ? null : (WorkspaceView) page.findView(WorkspaceView.ID);
+        if (workspace == null) {
+            LOG.warn("no Workspace view to wait on; screenshot taken at once");
+            capture(shell, display);
             return;
         }
-        display.timerExec(100, () -> awaitLiveRobot(display, deadline, then));
+        // the paints decide (each telemetry update repaints the map); the timer is only the deadline
+        boolean[] taken = { false };
+        Runnable once = () -> {
+            if (!taken[0]) {
+                taken[0] = true;
+                capture(shell, display);
+            }
+        };
+        WorkspaceView.DrawnCondition condition = wait == LaunchOptions.Wait.MISSION ? WorkspaceView::showsRunningMission
+                : r -> true;
+        workspace.whenDrawn(condition, () -> {
+            LOG.info("screenshot: {} on the map", wait == LaunchOptions.Wait.MISSION
+                    ? "a running mission (path and trail)" : "a live robot");
+            once.run();
+        });
+        display.timerExec(LaunchOptions.LIVE_WAIT_S * 1000, () -> {
+            if (!taken[0]) {
+                LOG.warn("no {} on the map within {} s; screenshot taken anyway", wait == LaunchOptions.Wait.MISSION
+                        ? "running mission" : "live robot", LaunchOptions.LIVE_WAIT_S);
+                once.run();
+            }
+        });
     }
 
     private void capture(Shell shell, Display display) {

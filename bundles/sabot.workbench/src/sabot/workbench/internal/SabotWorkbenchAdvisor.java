@@ -21,7 +21,7 @@ final class SabotWorkbenchAdvisor extends WorkbenchAdvisor {
 
     @Override
     public String getInitialWindowPerspectiveId() {
-        return FleetPerspective.ID;
+        return OperationPerspective.ID;
     }
 
     @Override

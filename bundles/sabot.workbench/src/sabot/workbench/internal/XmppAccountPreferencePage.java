@@ -28,6 +28,7 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
     private Text port;
     private Text jid;
     private Text password;
+    private Text lobby;
 
     /** @return the store the workbench uses for the operator's account */
     public static XmppAccountStore defaultStore() {
@@ -50,6 +51,8 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         jid = field(c, "&JID:", account.jid(), SWT.BORDER);
         password = field(c, "Pass&word:", "", SWT.BORDER | SWT.PASSWORD);
         password.setMessage(store.hasPassword() ? "(stored; type to replace)" : "(not stored)");
+        lobby = field(c, "Fleet &lobby:", store.loadLobby(), SWT.BORDER);
+        lobby.setMessage("(none) e.g. fleet@conference.sabot.local: online robots found there are followed");
         Label where = new Label(c, SWT.WRAP);
         where.setText("The password is kept in " + store.passwordFile() + ", readable by you only (mode 0600).");
         GridDataFactory.fillDefaults().span(2, 1).grab(true, false).hint(400, SWT.DEFAULT).applyTo(where);
@@ -76,6 +79,11 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         }
         XmppAccount account = new XmppAccount(server.getText(), p, jid.getText());
         String problem = account.problem();
+        String room = lobby == null ? "" : lobby.getText().strip();
+        if (problem == null && !room.isEmpty()) {
+            String roomProblem = new XmppAccount(account.server(), account.port(), room).problem();
+            problem = roomProblem == null ? null : "Fleet lobby " + roomProblem.replaceFirst("^JID ", "");
+        }
         setErrorMessage(problem);
         setValid(problem == null);
         return problem == null ? account : null;
@@ -89,6 +97,7 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         }
         char[] typed = password.getText().toCharArray();
         try {
+            store.saveLobby(lobby.getText());
             store.save(account, typed.length == 0 ? null : typed);
             password.setText("");
             return true;

@@ -16,24 +16,30 @@ import org.eclipse.jface.viewers.TableViewer;
 import org.eclipse.jface.viewers.TableViewerColumn;
 import org.eclipse.jface.viewers.Viewer;
 import org.eclipse.jface.viewers.ViewerComparator;
+import org.eclipse.jface.viewers.ViewerFilter;
+import org.eclipse.jface.layout.GridDataFactory;
+import org.eclipse.jface.layout.GridLayoutFactory;
 import org.eclipse.swt.SWT;
 import org.eclipse.swt.graphics.Color;
 import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Table;
 import org.eclipse.swt.widgets.TableColumn;
+import org.eclipse.swt.widgets.Text;
 import org.eclipse.ui.ISelectionListener;
 import org.eclipse.ui.IWorkbenchPart;
+import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.MissionStatus;
 import sabot.workbench.fleet.RobotState;
-import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.fleet.FleetBinding;
 
 /**
  * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
  * reason, pose, mission state and progress, and the age of its last telemetry; stale rows are grey. Click a header to
  * sort by it (again to reverse); the selection is the workbench's (the workspace map follows it); double-click centres
- * the map on the robot.
+ * the map on the robot. The filter field above the table keeps the rows whose robot name or JID, presence (level and
+ * reason) or mission (state, progress, detail) contains the typed text, ignoring case, as Eclipse's own views filter.
  */
 public final class FleetView extends ViewPart {
 
@@ -46,7 +52,12 @@ public final class FleetView extends ViewPart {
     /** How often the ages are refreshed without news (ms): stale robots turn grey without an event. */
     private static final int AGE_REFRESH_MS = 500;
 
+    /** Hint shown in the empty filter field. */
+    public static final String FILTER_HINT = "Filter: robot, presence or mission";
+
     private TableViewer viewer;
+    private Text filter;
+    private String filterText = "";
     private FleetBinding fleet;
     private int sortColumn = 0;
     private boolean descending;
@@ -84,10 +95,35 @@ public final class FleetView extends ViewPart {
         return ms < 10_000 ? String.format(Locale.ROOT, "%.1f s", ms / 1000.0) : ms / 1000 + " s";
     }
 
+    /**
+     * @return true when a row matches the filter text: its robot (name and JID), presence or mission column contains
+     *         {@code text}, ignoring case; a blank text matches every row
+     */
+    public static boolean matches(RobotState r, String text) {
+        String needle = text == null ? "" : text.strip().toLowerCase(Locale.ROOT);
+        if (needle.isEmpty()) {
+            return true;
+        }
+        List<String> t = texts(r, Instant.now());
+        return t.get(0).toLowerCase(Locale.ROOT).contains(needle) || t.get(1).toLowerCase(Locale.ROOT).contains(needle)
+                || t.get(3).toLowerCase(Locale.ROOT).contains(needle);
+    }
+
     @Override
     public void createPartControl(Composite parent) {
+        parent.setLayout(GridLayoutFactory.fillDefaults().spacing(0, 2).create());
+        filter = new Text(parent, SWT.SEARCH | SWT.ICON_SEARCH | SWT.ICON_CANCEL | SWT.BORDER);
+        filter.setMessage(FILTER_HINT);
+        GridDataFactory.fillDefaults().grab(true, false).applyTo(filter);
+        filter.addModifyListener(e -> setFilter(filter.getText()));
+        filter.addListener(SWT.DefaultSelection, e -> {
+            if (e.detail == SWT.ICON_CANCEL) {
+                filter.setText("");
+            }
+        });
         viewer = new TableViewer(parent, SWT.FULL_SELECTION | SWT.BORDER | SWT.V_SCROLL | SWT.H_SCROLL);
         Table table = viewer.getTable();
+        GridDataFactory.fillDefaults().grab(true, true).applyTo(table);
         table.setHeaderVisible(true);
         table.setLinesVisible(true);
         grey = new Color(150, 150, 150);
@@ -120,6 +156,12 @@ public final class FleetView extends ViewPart {
                 return descending ? -c : c;
             }
         });
+        viewer.setFilters(new ViewerFilter() {
+            @Override
+            public boolean select(Viewer v, Object parentElement, Object element) {
+                return matches((RobotState) element, filterText);
+            }
+        });
         viewer.setInput(List.of());
         viewer.addDoubleClickListener(e -> {
             if (e.getSelection() instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r) {
@@ -131,8 +173,9 @@ public final class FleetView extends ViewPart {
             }
         });
         getSite().setSelectionProvider(viewer);
+        getSite().getService(IContextService.class).activateContext(WorkspaceView.FLEET_CONTEXT);
         getSite().getPage().addSelectionListener(otherViews);
-        fleet = new FleetBinding(table.getDisplay(), this::refresh);
+        fleet = new FleetBinding(table.getDisplay()::asyncExec, this::refresh);
         tick();
     }
 
@@ -147,6 +190,28 @@ public final class FleetView extends ViewPart {
         @SuppressWarnings({ "unchecked", "rawtypes" })
         Comparator<RobotState> c = Comparator.comparing(r -> (Comparable) key.apply(r));
         return c.thenComparing(RobotState::jid);
+    }
+
+    /**
+     * Filters the rows (as typing into the filter field does); the field shows the text.
+     *
+     * @param text the text the rows must contain; blank shows every row
+     */
+    public void setFilter(String text) {
+        String t = text == null ? "" : text;
+        if (!filter.getText().equals(t)) {
+            filter.setText(t); // comes back here through the modify listener
+            return;
+        }
+        if (!t.equals(filterText)) {
+            filterText = t;
+            viewer.refresh();
+        }
+    }
+
+    /** @return the filter field (for tests) */
+    public Text filterField() {
+        return filter;
     }
 
     /** Sorts by a column; the same column again reverses the order. */

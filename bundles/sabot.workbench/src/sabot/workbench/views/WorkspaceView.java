@@ -33,6 +33,7 @@ import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.ui.ISelectionListener;
 import org.eclipse.ui.IWorkbenchPart;
+import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.Goal;
@@ -44,7 +45,7 @@ import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
-import sabot.workbench.internal.FleetBinding;
+import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.internal.FleetJobs;
 import sabot.workbench.map.MapViewport;
 
@@ -63,6 +64,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private static final org.slf4j.Logger LOG = org.slf4j.LoggerFactory.getLogger("sabot.workbench");
 
     public static final String ID = "sabot.workbench.views.workspace";
+    /**
+     * The key-binding context of the views that operate the fleet (Workspace, Fleet): active while one of them is the
+     * active part; Stop All Robots is bound in it (plugin.xml).
+     */
+    public static final String FLEET_CONTEXT = "sabot.workbench.context.fleet";
 
     /** Area shown at start and on Home: a 10 m × 10 m lab floor from the map origin. */
     private static final double[] HOME = { -1, -1, 11, 11 };
@@ -169,9 +175,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             canvas.redraw();
         });
         createContextMenu();
+        getSite().getService(IContextService.class).activateContext(FLEET_CONTEXT);
         getSite().setSelectionProvider(this);
         getSite().getPage().addSelectionListener(otherViews);
-        fleet = new FleetBinding(canvas.getDisplay(), this::fleetChanged);
+        fleet = new FleetBinding(canvas.getDisplay()::asyncExec, this::fleetChanged);
         canvas.addDisposeListener(e -> {
             if (mapImage != null) {
                 mapImage.dispose();
@@ -262,8 +269,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         return r == null ? jid : r.name();
     }
 
-    /** Shows a command's answer: in the status line (an error for a refusal) and on the map. */
-    void show(String text, boolean error) {
+    /**
+     * Shows a command's answer: in the status line (an error for a refusal) and on the map (UI thread).
+     *
+     * @param text  for the operator, e.g. {@code sabot-01: stop: done}
+     * @param error true for a refusal or failure
+     */
+    public void show(String text, boolean error) {
         message = text;
         messageIsError = error;
         IStatusLineManager status = getViewSite().getActionBars().getStatusLineManager();
@@ -282,6 +294,39 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     public boolean showsLiveRobot() {
         return liveShown;
     }
+
+    /** A robot drawn live (fresh telemetry, a pose) on the map, the condition {@link #whenDrawn} waits for. */
+    @FunctionalInterface
+    public interface DrawnCondition {
+        /** @param robot a robot just drawn live on the map; never null */
+        boolean holds(RobotState robot);
+    }
+
+    private record Waiter(DrawnCondition condition, Runnable then) {
+    }
+
+    private final List<Waiter> waiters = new ArrayList<>();
+
+    /**
+     * Runs {@code then} once on the UI thread right after the first paint in which a robot was drawn live on the map
+     * (map shown, pose known, telemetry fresh) and satisfied {@code condition}: no polling, the paints that telemetry
+     * causes decide (the demo's screenshot waits so for a running mission).
+     */
+    public void whenDrawn(DrawnCondition condition, Runnable then) {
+        waiters.add(new Waiter(Objects.requireNonNull(condition), Objects.requireNonNull(then)));
+        if (canvas != null && !canvas.isDisposed()) {
+            canvas.redraw();
+        }
+    }
+
+    /** @return true when a robot runs a mission whose planned path and trail (at least 20 cm of it) are drawn */
+    public static boolean showsRunningMission(RobotState r) {
+        return r.mission() != null && r.mission().state() == sabot.controlml.payload.MissionState.RUNNING && r
+                .path() != null && r.path().points().size() > 1 && r.trail().size() >= MISSION_TRAIL_POINTS;
+    }
+
+    /** Trail points that make a running mission visible in a picture: 4 spacings, at least 20 cm driven. */
+    static final int MISSION_TRAIL_POINTS = 5;
 
     /** @return the last command answer shown, or null (for tests) */
     public String lastMessage() {
@@ -528,9 +573,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawAxes(gc, area);
         Instant now = Instant.now();
         List<RobotState> drawn = fleet.robots();
+        List<RobotState> drawnLive = new ArrayList<>();
         for (RobotState r : drawn) {
             boolean stale = r.isStale(now);
             drawRobot(gc, r, stale);
+            if (!stale && r.pose() != null && map != null) {
+                drawnLive.add(r);
+            }
             if (!stale && r.pose() != null && map != null && !liveShown) {
                 liveShown = true;
                 // the figure "workbench start to first live robot on screen": from the JVM's start to this paint
@@ -546,6 +595,14 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         frameNanos[frames % FRAME_SAMPLES] = System.nanoTime() - t0;
         frames++;
         probe.painted(t0, drawn, fleet.fleet());
+        if (!waiters.isEmpty()) {
+            for (Waiter w : List.copyOf(waiters)) {
+                if (drawnLive.stream().anyMatch(w.condition()::holds)) {
+                    waiters.remove(w);
+                    d.asyncExec(w.then()); // after this paint has reached the screen
+                }
+            }
+        }
     }
 
     private void drawMap(GC gc) {

@@ -44,6 +44,7 @@ import sabot.controlml.RequestId;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.StaleCommandPolicy;
+import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
@@ -526,7 +527,7 @@ abstract class ControlMlOnServerTest {
         BlockingQueue<PoseEstimate> poses = new ArrayBlockingQueue<>(1000);
         AtomicInteger fromOthers = new AtomicInteger();
         Robot robot = robot(server().login(unique(info, "robot")), Map.of());
-        ControlMlManager.getInstanceFor(wb).addTelemetryListener(Resources.POSITION, (device, pose) -> {
+        TelemetryManager.getInstanceFor(wb).addListener(Resources.POSITION, (device, pose) -> {
             if (device.equals(robot.jid().asEntityBareJidIfPossible())) {
                 poses.offer(pose);
             } else {
@@ -538,12 +539,12 @@ abstract class ControlMlOnServerTest {
 
         ControlMlManager wbManager = ControlMlManager.getInstanceFor(wb);
         EntityBareJid robotBare = robot.jid().asEntityBareJidIfPossible();
-        Outcome<Void> early = wbManager.followTelemetry(robotBare, Resources.POSITION);
+        Outcome<Void> early = wbManager.telemetry().follow(robotBare, Resources.POSITION);
         assertEquals(StanzaError.Condition.item_not_found, assertInstanceOf(Outcome.Failure.class, early).error()
                 .condition(), "no node before the first publication: " + early);
 
         AtomicInteger tick = new AtomicInteger();
-        try (TelemetryPublication p = robot.manager().publishTelemetry(Resources.POSITION, () -> new PoseEstimate(
+        try (TelemetryPublication p = robot.manager().telemetry().publish(Resources.POSITION, () -> new PoseEstimate(
                 Samples.T.plusMillis(tick.incrementAndGet()), new Pose2D(tick.get(), 0, 0), Samples.POSE.covariance()),
                 50)) {
             // Besides +notify, an explicit XEP-0060 subscription to the robot's telemetry node: ejabberd 23.01 now
@@ -556,7 +557,8 @@ abstract class ControlMlOnServerTest {
             }
         }
         assertEquals(0, fromOthers.get());
-        assertEquals(0, robot.manager().statistics().telemetryFailed()); // acknowledgements are counted asynchronously
+        // acknowledgements are counted asynchronously
+        assertEquals(0, robot.manager().telemetry().statistics().failed());
     }
 
     /**
@@ -576,22 +578,22 @@ abstract class ControlMlOnServerTest {
             XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
                     PrivateXmppServer.DEFAULT_PASSWORD).build());
             closeAfterClass.add(wb);
-            ControlMlManager.getInstanceFor(wb).addTelemetryListener(Resources.POSITION, (device, pose) -> {
+            TelemetryManager.getInstanceFor(wb).addListener(Resources.POSITION, (device, pose) -> {
                 xs.add(pose.pose().x());
                 arrived.offer(pose.pose().x());
             });
             wb.connect().login();
             if (session == 0) {
                 Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
-                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(1));
+                robot.manager().telemetry().publishNow(Resources.POSITION, poseAt(1));
                 followOncePublished(ControlMlManager.getInstanceFor(wb), robotBare);
                 wb.disconnect();
                 continue;
             }
-            assertTrue(ControlMlManager.getInstanceFor(wb).followTelemetry(robotBare, Resources.POSITION)
+            assertTrue(TelemetryManager.getInstanceFor(wb).follow(robotBare, Resources.POSITION)
                     .isSuccess());
             for (int x = 101; x <= 106; x++) {
-                robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(x));
+                robot.manager().telemetry().publishNow(Resources.POSITION, poseAt(x));
             }
             long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
             Double x;
@@ -601,7 +603,7 @@ abstract class ControlMlOnServerTest {
             } while (x != 106);
             // an item delivered twice is sent before the next publication's: after 106 the second copy of each
             // earlier one would have arrived; publish once more and wait for it to be sure of 106's own copy
-            robot.manager().publishTelemetryNow(Resources.POSITION, poseAt(107));
+            robot.manager().telemetry().publishNow(Resources.POSITION, poseAt(107));
             do {
                 x = arrived.poll(Math.max(1, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
                 assertNotNull(x, "telemetry missing: " + xs);
@@ -619,7 +621,7 @@ abstract class ControlMlOnServerTest {
     private static void followOncePublished(ControlMlManager manager, EntityBareJid robot) {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
         while (true) {
-            Outcome<Void> followed = manager.followTelemetry(robot, Resources.POSITION);
+            Outcome<Void> followed = manager.telemetry().follow(robot, Resources.POSITION);
             if (followed.isSuccess()) {
                 return;
             }

@@ -108,7 +108,7 @@ abstract class InteropSuiteTest {
         AtomicLong tick = new AtomicLong();
         List<String> output = new java.util.concurrent.CopyOnWriteArrayList<>();
         int exit;
-        try (TelemetryPublication telemetry = device.publishTelemetry(Resources.POSITION, () -> new PoseEstimate(
+        try (TelemetryPublication telemetry = device.telemetry().publish(Resources.POSITION, () -> new PoseEstimate(
                 Samples.T, new Pose2D(tick.incrementAndGet(), 0, 0), Samples.POSE.covariance()), 20)) {
             exit = runSuite(List.of("--port", Integer.toString(server().port()), "--domain", PrivateXmppServer.DOMAIN,
                     "--robot", robot.getUser().toString(), "--operator", "operator-" + suffix, "--viewer", "viewer-"

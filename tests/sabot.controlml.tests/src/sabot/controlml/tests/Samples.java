@@ -14,7 +14,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
@@ -23,7 +23,7 @@ import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
@@ -43,7 +43,7 @@ final class Samples {
             Map.entry(Resources.POSITION, POSE),
             Map.entry(Resources.VELOCITY, new VelocityCommand(T, new Twist2D(0.3, -0.5))),
             Map.entry(Resources.GOAL, new Goal(new Pose2D(4, 2.5, Math.PI / 2), 0.05, 0.1)),
-            Map.entry(Resources.TRAJECTORY, new Trajectory(T, List.of(new TrajectoryPoint(0, 0, 0, 0, 0, 0),
+            Map.entry(Resources.TRAJECTORY, new TrajectoryPayload(T, List.of(new TrajectoryPoint(0, 0, 0, 0, 0, 0),
                     new TrajectoryPoint(0.5, 0.1, 0.01, 0.05, 0.2, 0.1), new TrajectoryPoint(1.0, 0.2, 0.03, 0.1, 0.2,
                             0.0)))),
             Map.entry(Resources.MAP, new GridMap(0.05, 3, 2, new Pose2D(-1, -2, 0), new byte[] { 0, 100, -1, 50, 0,
@@ -52,14 +52,14 @@ final class Samples {
                     0.35)))),
             Map.entry(Resources.PID, new PidGains(List.of(new MotorGains(0, 1.2, 0.05, 0.01), new MotorGains(1, 1.1,
                     0.04, 0.0)))),
-            Map.entry(Resources.LIMITS, new MotionLimits(0.5, 2.0, 0.5, 3.0)),
+            Map.entry(Resources.LIMITS, new LimitsPayload(0.5, 2.0, 0.5, 3.0)),
             Map.entry(Resources.MISSION, new MissionStatus(MissionState.RUNNING, false, 42.5, "to dock <B> & back")),
             Map.entry(Resources.TASKS, new TaskList(List.of(new TaskInfo("sabot.onboard.localizer", "0.1.0",
                     "active"), new TaskInfo("sabot.onboard.planner", "0.1.0", "resolved")))),
             Map.entry(Resources.FS_LIST, new DirectoryListing("maps", List.of(new FileEntry("lab.pgm", 10240, false),
                     new FileEntry("old", 0, true)))),
-            Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, Resources.sha256Hex(DATA), true)),
-            Map.entry(Resources.FS_WRITE, new FileChunk("logs/run.txt", 16, DATA, Resources.sha256Hex(DATA), false)),
+            Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, FileChunk.sha256Hex(DATA), true)),
+            Map.entry(Resources.FS_WRITE, new FileChunk("logs/run.txt", 16, DATA, FileChunk.sha256Hex(DATA), false)),
             Map.entry(Resources.FS_DELETE, new FileQuery("logs/run.txt", 0, 0)));
 
     static final FileQuery QUERY = new FileQuery("maps/lab.yaml", 0, 4096);

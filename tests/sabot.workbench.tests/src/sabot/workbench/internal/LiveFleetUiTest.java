@@ -26,6 +26,7 @@ import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.graphics.Rectangle;
 import org.eclipse.swt.widgets.Control;
 import org.eclipse.swt.widgets.Display;
+import org.eclipse.swt.widgets.Event;
 import org.eclipse.ui.IWorkbenchPage;
 import org.eclipse.ui.PlatformUI;
 import org.junit.jupiter.api.AfterAll;
@@ -148,6 +149,16 @@ class LiveFleetUiTest {
 
         screenshot("workbench.png");
         capture(fleetView().table(), "fleet.png");
+
+        // the filter above the table: on the robot's name, presence and mission, ignoring case
+        FleetView fleet = fleetView();
+        assertEquals(FleetView.FILTER_HINT, fleet.filterField().getMessage());
+        for (String[] c : new String[][] { { "SABOT-01", "1" }, { "free", "1" }, { "busy", "0" }, { "no-such", "0" },
+            { "", "1" } }) {
+            fleet.filterField().setText(c[0]); // as typed: the field's modify listener filters
+            flush();
+            assertEquals(Integer.parseInt(c[1]), fleet.table().getItemCount(), "rows for filter '" + c[0] + "'");
+        }
     }
 
     @Test
@@ -171,6 +182,16 @@ class LiveFleetUiTest {
         List<String> messages = new ArrayList<>();
         boolean[] pathShown = { false };
         boolean[] shot = { false };
+        // as ./sabot demo's screenshot: taken right after the paint that first shows the running mission's path and
+        // trail (WorkspaceView.whenDrawn, the hook of -sabot.screenshot.mission)
+        workspace.whenDrawn(WorkspaceView::showsRunningMission, () -> {
+            shot[0] = true;
+            try {
+                screenshot("workbench-goal.png");
+            } catch (Exception e) {
+                throw new AssertionError("screenshot: " + e, e);
+            }
+        });
         waitFor(() -> {
             RobotState now = robotRow();
             if (workspace.lastMessage() != null && (messages.isEmpty() || !messages.get(messages.size() - 1).equals(
@@ -181,19 +202,12 @@ class LiveFleetUiTest {
                 progress.add(FleetView.texts(now, Instant.now()).get(3));
                 if (now.path() != null && now.goal() != null) {
                     pathShown[0] = true;
-                    if (!shot[0] && now.mission().progress() > 20) {
-                        shot[0] = true;
-                        try {
-                            screenshot("workbench-goal.png");
-                        } catch (Exception e) {
-                            throw new AssertionError("screenshot: " + e, e);
-                        }
-                    }
                 }
             }
             return now.mission() != null && now.mission().state() == MissionState.DONE;
         }, 60, () -> "mission not done: " + robotRow() + "; " + workspace.lastMessage());
         assertTrue(pathShown[0], "the planned path and goal never reached the workspace");
+        assertTrue(shot[0], "the running mission (path and trail) was never drawn");
         assertTrue(progress.stream().anyMatch(p -> p.matches("running [1-9][0-9]? %.*")), "no progress shown: "
                 + progress);
         assertTrue(messages.stream().anyMatch(m -> m.matches(
@@ -201,6 +215,15 @@ class LiveFleetUiTest {
                 .toString());
 
         printFrameTimes(workspace.frameTimesNanos());
+
+        // the mission column is filtered too
+        fleetView().setFilter("DONE");
+        flush();
+        assertEquals(1, fleetView().table().getItemCount());
+        fleetView().setFilter("running");
+        flush();
+        assertEquals(0, fleetView().table().getItemCount());
+        fleetView().setFilter("");
 
         // the goal sent is the pressed pixel (about 3 cm a pixel at Home's zoom); the robot's tolerance is 0.1 m and
         // its localisation on a busy 2-core machine adds up to ~0.1 m (as the system tests allow)
@@ -223,7 +246,91 @@ class LiveFleetUiTest {
                 workspace.lastMessage());
     }
 
+    @Test
+    @Order(4)
+    void ctrlShiftHStopsADrivingRobot() throws Exception {
+        WorkspaceView workspace = workspace();
+        workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(START[0],
+                START[1], START[2]), 0.1, 0.2));
+        SimProcess.Truth[] moving = new SimProcess.Truth[1];
+        waitFor(() -> {
+            moving[0] = truth();
+            RobotState r = robotRow();
+            return Math.abs(moving[0].v()) > 0.1 && r.mission() != null && r.mission().state() == MissionState.RUNNING;
+        }, 30, () -> "robot not driving to the start: " + moving[0] + "; " + robotRow() + "; "
+                + workspace.lastMessage());
+        // the key goes where the operator's key goes: to the focus control, through the display's filters, where the
+        // workbench's key-binding dispatcher looks it up in the active contexts (the Workspace view is active)
+        page().activate(workspace);
+        workspace.canvas().setFocus();
+        flush();
+        Event key = new Event();
+        key.type = SWT.KeyDown;
+        key.keyCode = 'h';
+        key.character = (char) 0x08; // Ctrl+H as a control character, as GTK delivers it
+        key.stateMask = SWT.CTRL | SWT.SHIFT;
+        SimProcess.Truth atKey = truth();
+        Display.getCurrent().getFocusControl().notifyListeners(SWT.KeyDown, key);
+        SimProcess.Truth[] now = new SimProcess.Truth[1];
+        waitFor(() -> {
+            now[0] = truth();
+            RobotState r = robotRow();
+            return Math.abs(now[0].v()) < 0.005 && Math.abs(now[0].omega()) < 0.01 && r.mission() != null && r
+                    .mission().state() == MissionState.ABORTED;
+        }, 10, () -> "robot not stopped by Ctrl+Shift+H: " + now[0] + "; " + robotRow() + "; "
+                + workspace.lastMessage());
+        System.out.printf(Locale.ROOT, "[figure] Ctrl+Shift+H to standstill (simulator clock): %.3f s from %.3f m/s%n",
+                now[0].t() - atKey.t(), atKey.v());
+        waitFor(() -> String.valueOf(workspace.lastMessage()).startsWith(FleetJobs.STOP_ALL), 10,
+                workspace::lastMessage);
+        assertEquals(FleetJobs.STOP_ALL + ": 1 of 1 robot(s) stopped", workspace.lastMessage());
+        assertTrue(truth().distanceTo(START[0], START[1]) > 0.2, "it was not stopped: it arrived");
+    }
+
+    @Test
+    @Order(5)
+    void theFleetLobbyBringsAnOnlineRobotIntoTheFleet() throws Exception {
+        String room = "fleet@conference." + PrivateXmppServer.DOMAIN;
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        // forget the robot: not configured (rule 12), not in the operator's roster
+        store.saveRobots(List.of());
+        org.jivesoftware.smack.tcp.XMPPTCPConnection admin = xmpp.connect(xmpp.configuration(OPERATOR,
+                PrivateXmppServer.DOMAIN, "operator-pw").setResource("admin").setSendPresence(false).build());
+        org.jivesoftware.smack.roster.Roster roster = org.jivesoftware.smack.roster.Roster.getInstanceFor(admin);
+        roster.reloadAndWait();
+        roster.removeEntry(roster.getEntry(org.jxmpp.jid.impl.JidCreate.entityBareFrom(ROBOT_JID)));
+        waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "robot still in the fleet: " + fleetView().rows());
+        // The onboard product does not join the lobby yet: the robot's account joins it with a second resource that
+        // sends no presence of its own (the robot's presence stays the onboard product's)
+        org.jivesoftware.smack.tcp.XMPPTCPConnection robotInLobby = xmpp.connect(xmpp.configuration(ROBOT,
+                PrivateXmppServer.DOMAIN, "robot-pw").setResource("lobby").setSendPresence(false).build());
+        new sabot.fleet.FleetLobby(robotInLobby, org.jxmpp.jid.impl.JidCreate.entityBareFrom(room)).join();
+        try {
+            long t0 = System.nanoTime();
+            store.saveLobby(room);
+            waitFor(() -> live(robotRow()), 30, () -> "robot not discovered in the lobby: " + fleetView().rows());
+            System.out.printf(Locale.ROOT, "[figure] lobby configured to robot live in Fleet: %d ms%n",
+                    TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
+            assertTrue(roster.getGroup(sabot.workbench.controlml.internal.ControlMlFleet.ROBOTS_GROUP) != null
+                    && roster.getGroup(sabot.workbench.controlml.internal.ControlMlFleet.ROBOTS_GROUP).getEntries()
+                            .stream().anyMatch(e -> e.getJid().toString().equals(ROBOT_JID)), "not in the group");
+        } finally {
+            store.saveLobby("");
+            store.saveRobots(List.of(ROBOT_JID)); // as before: the class's end empties it, and the fleet with it
+            robotInLobby.instantShutdown();
+            admin.instantShutdown();
+        }
+    }
+
     // ------------------------------------------------------------------------------------------------ helpers
+
+    private static SimProcess.Truth truth() {
+        try {
+            return sim.truth();
+        } catch (java.io.IOException e) {
+            throw new AssertionError("simulator truth: " + e, e);
+        }
+    }
 
     /** The figure of docs/WORKBENCH.md: paint time of the workspace (map, grid, robot, path, trail) while it drove. */
     private static void printFrameTimes(long[] nanos) {

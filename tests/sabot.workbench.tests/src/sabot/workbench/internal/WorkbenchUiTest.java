@@ -74,7 +74,7 @@ class WorkbenchUiTest {
 
         Shell shell = window().getShell();
         List<String> menus = Arrays.stream(shell.getMenuBar().getItems()).map(MenuItem::getText).toList();
-        assertEquals(List.of("&File", "&Window", "&Help"), menus);
+        assertEquals(List.of("&File", "&Robot", "&Window", "&Help"), menus);
         assertEquals("Sabot Workbench", shell.getText());
 
         flush();
@@ -132,7 +132,7 @@ class WorkbenchUiTest {
         try {
             XmppAccountPreferencePage page = (XmppAccountPreferencePage) dialog.getSelectedPage();
             List<Text> fields = all(page.getControl(), Text.class);
-            assertEquals(4, fields.size());
+            assertEquals(5, fields.size());
             fields.get(0).setText("");
             assertFalse(page.isValid());
             assertEquals("Server is empty", page.getErrorMessage());
@@ -145,6 +145,11 @@ class WorkbenchUiTest {
             assertEquals("JID must look like name@domain (no resource, no spaces)", page.getErrorMessage());
             fields.get(2).setText("operator@sabot.local");
             fields.get(3).setText("s3cret-pw");
+            fields.get(4).setText("fleet@conference.sabot.local/nick");
+            assertFalse(page.isValid());
+            assertTrue(page.getErrorMessage().startsWith("Fleet lobby must look like name@domain"), page
+                    .getErrorMessage());
+            fields.get(4).setText("fleet@conference.sabot.local");
             assertTrue(page.isValid());
             assertTrue(page.performOk());
         } finally {
@@ -154,6 +159,9 @@ class WorkbenchUiTest {
         Preferences prefs = InstanceScope.INSTANCE.getNode("sabot.workbench");
         assertEquals("operator@sabot.local", prefs.get("xmpp.jid", null));
         assertEquals(15222, prefs.getInt("xmpp.port", 0));
+        assertEquals("fleet@conference.sabot.local", store.loadLobby());
+        store.saveLobby("");
+        assertEquals("", store.loadLobby());
         for (String key : prefs.keys()) {
             assertFalse(prefs.get(key, "").contains("s3cret-pw"), "password leaked into preference " + key);
         }
@@ -166,6 +174,60 @@ class WorkbenchUiTest {
         assertTrue(loose.getMessage().contains("chmod 600"), loose.getMessage());
         store.forgetPassword();
         assertNull(store.loadPassword());
+    }
+
+    @Test
+    void operationPerspectiveIsTheDefaultWithWorkspaceCentreFleetBelowAndPluginFolder() {
+        IWorkbenchPage page = window().getActivePage();
+        assertEquals(OperationPerspective.ID, PlatformUI.getWorkbench().getPerspectiveRegistry()
+                .getDefaultPerspective());
+        assertEquals(OperationPerspective.ID, page.getPerspective().getId());
+        assertEquals("Operation", page.getPerspective().getLabel());
+        WorkspaceView workspace = (WorkspaceView) page.findView(WorkspaceView.ID);
+        FleetView fleet = (FleetView) page.findView(FleetView.ID);
+        flush();
+        org.eclipse.swt.graphics.Rectangle map = workspace.canvas().getDisplay().map(workspace.canvas(), null,
+                workspace.canvas().getBounds());
+        org.eclipse.swt.graphics.Rectangle table = fleet.table().getDisplay().map(fleet.table(), null, fleet.table()
+                .getBounds());
+        assertTrue(table.y >= map.y + map.height, "Fleet " + table + " is not below the Workspace " + map);
+        assertTrue(map.width > 800, "the Workspace takes the width: " + map);
+        // Window > Show View: the shortcuts of the perspective, and the Sabot category of the view registry
+        assertTrue(List.of(page.getShowViewShortcuts()).containsAll(List.of(WorkspaceView.ID, FleetView.ID)), List.of(
+                page.getShowViewShortcuts()).toString());
+        org.eclipse.ui.views.IViewCategory sabot = Arrays.stream(PlatformUI.getWorkbench().getViewRegistry()
+                .getCategories()).filter(c -> c.getLabel().equals("Sabot")).findFirst().orElseThrow(
+                        () -> new AssertionError("no Sabot category in Show View"));
+        List<String> views = Arrays.stream(sabot.getViews()).map(v -> v.getId()).toList();
+        assertTrue(views.containsAll(List.of(WorkspaceView.ID, FleetView.ID)), views.toString());
+    }
+
+    @Test
+    void stopAllIsInTheRobotMenuTheToolbarAndBoundToCtrlShiftHWithoutClash() {
+        IWorkbenchWindow w = window();
+        org.eclipse.ui.keys.IBindingService bindings = w.getService(org.eclipse.ui.keys.IBindingService.class);
+        org.eclipse.jface.bindings.keys.KeySequence key = org.eclipse.jface.bindings.keys.KeySequence.getInstance(
+                org.eclipse.jface.bindings.keys.KeyStroke.getInstance(SWT.MOD1 | SWT.MOD2, 'H'));
+        List<org.eclipse.jface.bindings.Binding> onKey = Arrays.stream(bindings.getBindings()).filter(b -> b
+                .getTriggerSequence().equals(key) && b.getSchemeId().equals(bindings.getActiveScheme().getId()))
+                .toList();
+        assertEquals(1, onKey.size(), "bindings of Ctrl+Shift+H: " + onKey);
+        assertEquals(StopAllHandler.COMMAND_ID, onKey.get(0).getParameterizedCommand().getId());
+        assertEquals(WorkspaceView.FLEET_CONTEXT, onKey.get(0).getContextId());
+
+        MenuItem robot = Arrays.stream(w.getShell().getMenuBar().getItems()).filter(i -> i.getText().equals("&Robot"))
+                .findFirst().orElseThrow();
+        // the menu is filled when shown
+        robot.getMenu().notifyListeners(SWT.Show, new Event());
+        List<String> items = Arrays.stream(robot.getMenu().getItems()).map(MenuItem::getText).toList();
+        assertTrue(items.stream().anyMatch(t -> t.startsWith("&Stop All Robots")), items.toString());
+        robot.getMenu().notifyListeners(SWT.Hide, new Event());
+
+        List<org.eclipse.swt.widgets.ToolItem> tools = all(w.getShell(), org.eclipse.swt.widgets.ToolBar.class)
+                .stream().flatMap(t -> Arrays.stream(t.getItems())).toList();
+        assertTrue(tools.stream().anyMatch(t -> "Stop All Robots".equals(t.getText()) || String.valueOf(t
+                .getToolTipText()).startsWith("Stop all robots")), tools.stream().map(t -> t.getText() + "/" + t
+                        .getToolTipText()).toList().toString());
     }
 
     /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */

@@ -287,7 +287,7 @@ public final class ControlMlEndpoint {
 
     private <T> void publish(Resource<T, ?> resource, Supplier<T> read, double rateHz) {
         if (rateHz > 0) {
-            publications.add(manager.publishTelemetry(resource, new OnlineSource<>(resource, read), rateHz));
+            publications.add(manager.telemetry().publish(resource, new OnlineSource<>(resource, read), rateHz));
         }
     }
 

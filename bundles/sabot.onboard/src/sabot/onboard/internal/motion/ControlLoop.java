@@ -31,12 +31,13 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.localization.MeasurementResult;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 import sabot.planner.PlanResult;
@@ -89,7 +90,7 @@ final class ControlLoop {
     }
 
     /** A planned path turned into a trajectory, or why not. */
-    record Plan(sabot.model.path.Trajectory trajectory, double length, String refusal) {
+    record Plan(Trajectory trajectory, double length, String refusal) {
     }
 
     private final MotionTask owner;
@@ -116,8 +117,8 @@ final class ControlLoop {
     private Mode pausedFrom;
     private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "idle");
     private Goal goal;
-    private sabot.model.path.Trajectory trajectory;
-    private Trajectory trajectoryPayload = new Trajectory(Instant.EPOCH, List.of());
+    private Trajectory trajectory;
+    private TrajectoryPayload trajectoryPayload = new TrajectoryPayload(Instant.EPOCH, List.of());
     private double trajectoryStart;
     private double modeSince;
     private double lastReplan = Double.NEGATIVE_INFINITY;
@@ -207,6 +208,11 @@ final class ControlLoop {
             LOG.info("ready to move ({})", localizerTask.config().useImu() ? "inertial biases settled after "
                     + localizerTask.config().imuSettleTime() + " s at rest" : "odometry only");
         }
+        if (mode == Mode.TELEOP && !wroteTwist) {
+            // a twist that arrived during this period's encoder read goes out with this period's wheel write, not at
+            // the start of the next period
+            owner.applyCommands();
+        }
         Twist2D command = command(t);
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
         if (!applied.isFinite()) {
@@ -219,6 +225,9 @@ final class ControlLoop {
             WheelSpeeds w = drive.toWheelSpeeds(applied);
             try {
                 boards.writeWheelSpeeds(w.left(), w.right());
+                if (mode == Mode.TELEOP && teleopSent != null) {
+                    teleopWritten();
+                }
             } catch (RobotBoards.MotorFaultException e) {
                 fault(e.getMessage());
             } catch (IOException e) {
@@ -596,7 +605,7 @@ final class ControlLoop {
                 + MotionTask.fmt(g.pose().y()) + ")");
         if (plan.trajectory() == null) {
             trajectory = null;
-            trajectoryPayload = new Trajectory(Instant.now(), List.of());
+            trajectoryPayload = new TrajectoryPayload(Instant.now(), List.of());
             stabilizer.reset();
             positionSettled = false;
             setMode(Mode.SETTLE, t);
@@ -605,11 +614,11 @@ final class ControlLoop {
         setTrajectory(plan, t);
     }
 
-    void followImposed(Trajectory imposed) {
+    void followImposed(TrajectoryPayload imposed) {
         double t = now();
         clearFault();
         this.goal = null;
-        sabot.model.path.Trajectory path = new SampledTrajectory(imposed.points());
+        Trajectory path = new SampledTrajectory(imposed.points());
         goalChecker = new GoalChecker(config.goalTolerance(), Math.PI, true);
         setMission(MissionState.RUNNING, 0, "imposed trajectory");
         setTrajectory(new Plan(path, path.length(), null), t);
@@ -617,7 +626,7 @@ final class ControlLoop {
 
     private void setTrajectory(Plan plan, double t) {
         trajectory = plan.trajectory();
-        trajectoryPayload = new Trajectory(Instant.now(), MotionTask.sample(trajectory));
+        trajectoryPayload = new TrajectoryPayload(Instant.now(), MotionTask.sample(trajectory));
         progressChecker = new ProgressChecker(trackerTask.config().progressRadius(), trackerTask.config()
                 .progressTime());
         double error = Pose2D.normalizeAngle(trajectory.startPose().theta() - pose.theta());
@@ -678,14 +687,19 @@ final class ControlLoop {
         return left >= silence + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
     }
 
+    /** The newest joystick twist has reached the board (through the smoother): its latency is recorded. */
+    private void teleopWritten() {
+        teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
+        teleopSent = null;
+    }
+
     /** Writes the joystick's twist through the smoother; records its latency. @return true when written */
     private boolean writeTwist(double t) {
         Twist2D applied = smoother.smooth(t, teleopTwist);
         WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
         try {
             boards.writeWheelSpeeds(w.left(), w.right());
-            teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
-            teleopSent = null;
+            teleopWritten();
             return true;
         } catch (RobotBoards.MotorFaultException e) {
             teleopSent = null;

@@ -30,6 +30,7 @@ import sabot.control.MotionLimits;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
@@ -40,7 +41,7 @@ import sabot.pidstep.StepSample;
 import sabot.pidstep.controlml.StepTest;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Point2D;
@@ -48,6 +49,8 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
+import sabot.model.path.Trajectory;
+import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.internal.NamedThreads;
@@ -157,7 +160,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     /** What other threads read: the loop's state at the end of its last period. Immutable. */
     record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
-            Trajectory trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing) {
+            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing) {
     }
 
     @Activate
@@ -251,7 +254,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
-    private void applyCommands() {
+    /** Applies the commands queued so far; on the loop's thread only (between periods, or mid-period by the loop). */
+    void applyCommands() {
         Consumer<ControlLoop> command;
         boolean applied = false;
         while ((command = commands.poll()) != null) {
@@ -424,12 +428,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     @Override
-    public Trajectory trajectory() {
+    public TrajectoryPayload trajectory() {
         return snapshot.trajectory();
     }
 
     @Override
-    public void follow(Trajectory trajectory) throws CommandRefused {
+    public void follow(TrajectoryPayload trajectory) throws CommandRefused {
         if (trajectory.points().size() < 2) {
             throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "a trajectory needs at least two points");
         }
@@ -478,14 +482,14 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     @Override
-    public sabot.controlml.payload.MotionLimits limits() {
+    public LimitsPayload limits() {
         MotionLimits l = limits;
-        return new sabot.controlml.payload.MotionLimits(l.maxLinearSpeed(), l.maxAngularSpeed(),
+        return new LimitsPayload(l.maxLinearSpeed(), l.maxAngularSpeed(),
                 l.maxLinearAcceleration(), l.maxAngularAcceleration());
     }
 
     @Override
-    public void setLimits(sabot.controlml.payload.MotionLimits requested) throws CommandRefused {
+    public void setLimits(LimitsPayload requested) throws CommandRefused {
         MotionLimits p = physicalLimits;
         check(requested.maxLinearSpeed(), p.maxLinearSpeed(), "maxLinearSpeed", "m/s");
         check(requested.maxAngularSpeed(), p.maxAngularSpeed(), "maxAngularSpeed", "rad/s");
@@ -673,12 +677,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     /** Sampling step of cm.trajectory answers, s. */
     private static final double TRAJECTORY_REPORT_STEP = 0.1;
 
-    static List<TrajectoryPoint> sample(sabot.model.path.Trajectory t) {
+    static List<TrajectoryPoint> sample(Trajectory t) {
         List<TrajectoryPoint> points = new ArrayList<>();
         int n = (int) Math.min(4095, Math.ceil(t.duration() / TRAJECTORY_REPORT_STEP));
         double step = n == 0 ? 0 : t.duration() / n;
         for (int i = 0; i <= n; i++) {
-            sabot.model.path.TrajectorySample s = t.sample(i * step);
+            TrajectorySample s = t.sample(i * step);
             points.add(new TrajectoryPoint(i * step, s.x(), s.y(), s.theta(), s.linearVelocity(),
                     s.angularVelocity()));
         }

@@ -234,7 +234,7 @@ public final class RemoteFileService {
                 // a short read is continued; -1 (the file shrank meanwhile) ends the chunk early
             }
             byte[] data = Arrays.copyOf(buffer.array(), buffer.position());
-            return Outcome.success(new FileChunk(query.path(), query.offset(), data, Resources.sha256Hex(data), query
+            return Outcome.success(new FileChunk(query.path(), query.offset(), data, FileChunk.sha256Hex(data), query
                     .offset() + data.length >= size));
         } catch (NoSuchFileException e) {
             return notFound("no file '" + query.path() + "'");
@@ -265,7 +265,7 @@ public final class RemoteFileService {
             return Outcome.failure(ControlMlCondition.PAYLOAD_TOO_LARGE, "chunk of " + data.length
                     + " bytes; this robot takes at most " + limits.maxChunk() + " bytes a chunk");
         }
-        if (!Resources.sha256Hex(data).equals(chunk.sha256())) {
+        if (!FileChunk.sha256Hex(data).equals(chunk.sha256())) {
             return Outcome.failure(ControlMlCondition.INVALID_VALUE, "sha256 does not match the chunk's data");
         }
         if (chunk.offset() < 0) {

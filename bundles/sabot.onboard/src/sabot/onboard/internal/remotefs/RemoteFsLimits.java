@@ -1,11 +1,11 @@
 package sabot.onboard.internal.remotefs;
 
-import sabot.controlml.Resources;
+import sabot.controlml.payload.FileChunk;
 
 /**
  * The remote-FS service's limits.
  *
- * @param maxChunk          largest chunk read or written, bytes: 1 to {@value Resources.FileChunkLimits#MAX_CHUNK}
+ * @param maxChunk          largest chunk read or written, bytes: 1 to {@value FileChunk#MAX_CHUNK}
  *                          (what one ControlML payload carries)
  * @param maxFileSize       largest file a write may produce, bytes, &ge; 0
  * @param maxListPage       most entries in one {@code cm.fs.list} answer: 1 to {@value #MAX_LIST_PAGE}; a page holds
@@ -24,12 +24,12 @@ public record RemoteFsLimits(int maxChunk, long maxFileSize, int maxListPage, in
      * 32 KiB chunks, files up to 64 MiB, 128 entries a page (names of up to 100 plain characters fill it), 16
      * transfers at once, writable.
      */
-    public static final RemoteFsLimits DEFAULT = new RemoteFsLimits(Resources.FileChunkLimits.MAX_CHUNK,
+    public static final RemoteFsLimits DEFAULT = new RemoteFsLimits(FileChunk.MAX_CHUNK,
             64L * 1024 * 1024, 128, 16, false);
 
     public RemoteFsLimits {
-        if (maxChunk < 1 || maxChunk > Resources.FileChunkLimits.MAX_CHUNK) {
-            throw new IllegalArgumentException("maxChunk must be 1.." + Resources.FileChunkLimits.MAX_CHUNK
+        if (maxChunk < 1 || maxChunk > FileChunk.MAX_CHUNK) {
+            throw new IllegalArgumentException("maxChunk must be 1.." + FileChunk.MAX_CHUNK
                     + " bytes, was " + maxChunk);
         }
         if (maxFileSize < 0) {

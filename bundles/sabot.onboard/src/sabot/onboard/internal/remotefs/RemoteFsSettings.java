@@ -7,7 +7,7 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 
-import sabot.controlml.Resources;
+import sabot.controlml.payload.FileChunk;
 import sabot.onboard.internal.InvalidSettings;
 import sabot.onboard.internal.TaskProperties;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
@@ -62,7 +62,7 @@ public record RemoteFsSettings(Path root, RemoteFsLimits limits) {
                         + System.getProperty("user.name") + ")"));
             }
         }
-        long maxChunk = integer(p, "maxChunk", d.maxChunk(), 1, Resources.FileChunkLimits.MAX_CHUNK, problems);
+        long maxChunk = integer(p, "maxChunk", d.maxChunk(), 1, FileChunk.MAX_CHUNK, problems);
         long maxFileSize = integer(p, "maxFileSize", d.maxFileSize(), 0, Long.MAX_VALUE, problems);
         long pageSize = integer(p, "pageSize", d.maxListPage(), 1, RemoteFsLimits.MAX_LIST_PAGE, problems);
         long maxTransfers = integer(p, "maxTransfers", d.maxOpenTransfers(), 1, Integer.MAX_VALUE, problems);

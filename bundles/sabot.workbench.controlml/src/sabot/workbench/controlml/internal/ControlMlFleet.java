@@ -30,6 +30,9 @@ import org.eclipse.core.runtime.preferences.IEclipsePreferences.IPreferenceChang
 import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.ConnectionListener;
 import org.jivesoftware.smack.ReconnectionManager;
+import org.jivesoftware.smack.SmackException;
+import org.jivesoftware.smack.XMPPException;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.Roster;
@@ -37,6 +40,9 @@ import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
 import org.jivesoftware.smack.roster.RosterListener;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smackx.muc.MultiUserChatManager;
+import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
@@ -61,11 +67,18 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.FleetConnections;
+import sabot.fleet.FleetException;
+import sabot.fleet.FleetLobby;
+import sabot.fleet.RosterCompiler;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.SubscriptionGate;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceVCards;
+import sabot.identity.IdentityResult;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.MapServerFormat;
 import sabot.model.map.OccupancyGrid;
@@ -77,6 +90,7 @@ import sabot.workbench.fleet.ConnectionStatus.State;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
+import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
 
 /**
@@ -149,6 +163,8 @@ public final class ControlMlFleet implements FleetState {
 
     @Activate
     void activate() {
+        // vcard-temp parsed with the device fields (GEO, FN, ROLE) that Smack's own provider drops
+        DeviceIdentityManager.registerProvider();
         node = XmppAccountStore.workbenchNode();
         node.addPreferenceChangeListener(accountChanged);
         connector.execute(this::connect);
@@ -341,6 +357,73 @@ public final class ControlMlFleet implements FleetState {
         return request(robot, (m, jid) -> m.set(jid, resource, value));
     }
 
+    /**
+     * The robot's vCard (vcard-temp, stored by the server, so it is read while the robot is offline too), parsed with
+     * {@code sabot.identity}'s device profile, on the request pool.
+     */
+    @Override
+    public CompletableFuture<RobotIdentity> identity(String robot) {
+        CompletableFuture<RobotIdentity> f = new CompletableFuture<>();
+        try {
+            requests.execute(() -> {
+                try {
+                    f.complete(fetchIdentity(robot));
+                } catch (FleetCommandException e) {
+                    f.completeExceptionally(e);
+                } catch (RuntimeException e) {
+                    f.completeExceptionally(new FleetCommandException(ControlMlCondition.UNSPECIFIED, e.toString()));
+                }
+            });
+        } catch (java.util.concurrent.RejectedExecutionException stopped) {
+            f.completeExceptionally(new FleetCommandException(ControlMlCondition.NOT_CONNECTED,
+                    "the ControlML plug-in has stopped"));
+        }
+        return f;
+    }
+
+    /** Request pool: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
+    private RobotIdentity fetchIdentity(String robot) {
+        Session s = session;
+        if (s == null || !s.connection().isAuthenticated()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
+                    + status.summary() + ")");
+        }
+        if (!robots.containsKey(robot)) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
+                    + " is not a robot of this workbench's fleet");
+        }
+        VCard card;
+        try {
+            card = VCardManager.getInstanceFor(s.connection()).loadVCard(JidCreate.entityBareFrom(robot));
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        } catch (XMPPException.XMPPErrorException e) {
+            StanzaError.Condition c = e.getStanzaError().getCondition();
+            if (c == StanzaError.Condition.item_not_found || c == StanzaError.Condition.service_unavailable) {
+                throw new FleetCommandException(ControlMlCondition.UNKNOWN_RESOURCE, robot + " has no vCard");
+            }
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": " + c);
+        } catch (SmackException.NoResponseException e) {
+            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no vCard of " + robot + " within "
+                    + s.connection().getReplyTimeout() + " ms");
+        } catch (SmackException e) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "vCard of " + robot + ": " + e);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": interrupted");
+        }
+        IdentityResult<DeviceProfile> parsed = DeviceVCards.profileOf(card);
+        if (parsed instanceof IdentityResult.Err<DeviceProfile> e) {
+            ControlMlCondition c = e.problem() == IdentityResult.Problem.NO_VCARD ? ControlMlCondition.UNKNOWN_RESOURCE
+                    : ControlMlCondition.INVALID_VALUE;
+            throw new FleetCommandException(c, robot + "'s vCard: " + e.text());
+        }
+        DeviceProfile p = parsed.orElseThrow();
+        return new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(), p
+                .latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), card.getAvatar());
+    }
+
     @FunctionalInterface
     private interface Call<T> {
         Outcome<T> on(ControlMlManager manager, Jid robot);
@@ -454,6 +537,10 @@ public final class ControlMlFleet implements FleetState {
                 }
             }
             refreshRoster(s);
+            String lobby = store.loadLobby();
+            if (!lobby.isEmpty()) {
+                joinLobby(s, lobby);
+            }
             backoff.reset();
             setStatus(State.ONLINE, account.jid(), account.server() + ":" + account.port());
             LOG.info("connected as {} to {}:{}; following {} robot(s)", c.getUser(), account.server(), account
@@ -543,6 +630,49 @@ public final class ControlMlFleet implements FleetState {
             if (!now.contains(jid)) {
                 remove(jid);
             }
+        }
+    }
+
+    /** The vCard ROLE of the devices roster rule 11 follows (docs/IDENTITY.md; the onboard product publishes it). */
+    static final String ROBOT_ROLE = "robot";
+
+    /**
+     * Connection thread: roster rule 11. Joins the fleet lobby (a XEP-0045 room every online device joins) and
+     * subscribes to the occupants whose vCard says they are robots ({@link #ROBOT_ROLE}), now and whenever an occupant
+     * comes in. A lobby that cannot be joined leaves the workbench with its roster (rule 12); the reason is logged and
+     * shown in the status line's detail.
+     */
+    private void joinLobby(Session s, String room) {
+        try {
+            EntityBareJid jid = JidCreate.entityBareFrom(room);
+            FleetLobby lobby = new FleetLobby(s.connection(), jid);
+            lobby.join();
+            MultiUserChatManager.getInstanceFor(s.connection()).getMultiUserChat(jid).addParticipantListener(p -> {
+                if (p.isAvailable()) {
+                    connector.execute(() -> compileRoster(s, lobby));
+                }
+            });
+            LOG.info("joined the fleet lobby {}", room);
+            compileRoster(s, lobby);
+        } catch (FleetException | XmppStringprepException e) {
+            LOG.warn("fleet lobby {}: {}", room, e.getMessage());
+        }
+    }
+
+    /** Connection thread: subscribes to the lobby's robots not yet in the roster (they then join the fleet). */
+    private void compileRoster(Session s, FleetLobby lobby) {
+        if (session != s) {
+            return;
+        }
+        try {
+            RosterCompiler.Report report = new RosterCompiler(s.connection(), lobby, new RosterCompiler.Rules(
+                    p -> ROBOT_ROLE.equals(p.role()), Set.of(), ROBOTS_GROUP)).compile();
+            if (!report.subscribed().isEmpty()) {
+                LOG.info("fleet lobby: subscribed to {}", report.subscribed());
+            }
+            report.rejected().forEach((jid, why) -> LOG.debug("fleet lobby: {} not followed: {}", jid, why));
+        } catch (FleetException e) {
+            LOG.warn("fleet lobby: {}", e.getMessage());
         }
     }
 
@@ -649,7 +779,7 @@ public final class ControlMlFleet implements FleetState {
         }
         List<String> missing = new ArrayList<>();
         for (Resource<?, ?> r : TELEMETRY) {
-            Outcome<Void> o = s.manager().followTelemetry(robot, r);
+            Outcome<Void> o = s.manager().telemetry().follow(robot, r);
             if (!o.isSuccess()) {
                 missing.add(r.name() + " (" + o.errorOrNull() + ")");
             }
@@ -666,13 +796,13 @@ public final class ControlMlFleet implements FleetState {
 
     private void listenTelemetry(Session s) {
         ControlMlManager m = s.manager();
-        m.addTelemetryListener(Resources.POSITION, (device, pose) -> update(device.toString(), r -> r.withPose(pose,
+        m.telemetry().addListener(Resources.POSITION, (device, pose) -> update(device.toString(), r -> r.withPose(pose,
                 clock.instant())));
-        m.addTelemetryListener(Resources.VELOCITY, (device, v) -> update(device.toString(), r -> r.withVelocity(v
+        m.telemetry().addListener(Resources.VELOCITY, (device, v) -> update(device.toString(), r -> r.withVelocity(v
                 .twist(), clock.instant())));
-        m.addTelemetryListener(Resources.OBSTACLES, (device, o) -> update(device.toString(), r -> r.withObstacles(o,
+        m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> update(device.toString(), r -> r.withObstacles(o,
                 clock.instant())));
-        m.addTelemetryListener(Resources.MISSION, (device, mission) -> {
+        m.telemetry().addListener(Resources.MISSION, (device, mission) -> {
             String jid = device.toString();
             RobotState before = robots.get(jid);
             update(jid, r -> r.withMission(mission, clock.instant()));
@@ -687,7 +817,7 @@ public final class ControlMlFleet implements FleetState {
 
     /** Asks the robot for its planned trajectory and goal (a goal of none is not an error: no plan to show). */
     private void fetchPlan(String jid) {
-        CompletableFuture<Trajectory> path = get(jid, Resources.TRAJECTORY);
+        CompletableFuture<TrajectoryPayload> path = get(jid, Resources.TRAJECTORY);
         CompletableFuture<Goal> goal = get(jid, Resources.GOAL);
         path.handle((t, e) -> t).thenCombine(goal.handle((g, e) -> g), (t, g) -> {
             update(jid, r -> r.withPlan(t != null && !t.points().isEmpty() ? t : null, g));

@@ -18,7 +18,7 @@ import org.eclipse.swt.widgets.Event;
 import org.eclipse.swt.widgets.Label;
 
 import sabot.controlml.Resources;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetState;
@@ -43,7 +43,7 @@ public final class JoystickView extends RobotView {
 
     private Canvas pad;
     private Label readout;
-    private volatile MotionLimits limits;
+    private volatile LimitsPayload limits;
     private Job limitsRead;
     /** Knob deflection: x to the right, y up, each -1..1 (inside the unit circle). */
     private double knobX;
@@ -157,7 +157,7 @@ public final class JoystickView extends RobotView {
     /** Turns the knob into a twist and starts or stops sending. */
     private void update() {
         boolean nowHeld = mouseHeld || keysX != 0 || keysY != 0;
-        MotionLimits l = limits;
+        LimitsPayload l = limits;
         if (nowHeld && l == null) {
             showMessage("the robot's limits are not known yet: not driving", true);
             nowHeld = false;
@@ -292,7 +292,7 @@ public final class JoystickView extends RobotView {
     }
 
     /** @return the robot's limits the pad is scaled to, or null until read */
-    public MotionLimits limits() {
+    public LimitsPayload limits() {
         return limits;
     }
 

@@ -79,7 +79,7 @@ final class RemoteFiles {
                 check(progress);
                 byte[] data = in.readNBytes(CHUNK);
                 boolean last = offset + data.length >= size;
-                await(fleet.set(robot, Resources.FS_WRITE, new FileChunk(remotePath, offset, data, Resources
+                await(fleet.set(robot, Resources.FS_WRITE, new FileChunk(remotePath, offset, data, FileChunk
                         .sha256Hex(data), last)));
                 offset += data.length;
                 progress.worked(1);

@@ -60,14 +60,14 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.RecordBuilder;
 import sabot.controlml.payload.TaskInfo;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.controlml.swe.SweComponent;
@@ -162,7 +162,7 @@ class ControlMlEndpointOnProsodyTest {
                 Resources.OBSTACLES)) {
             BlockingQueue<Long> times = new LinkedBlockingQueue<>();
             arrivals.put(r.name(), times);
-            workbench.addTelemetryListener(r, (device, value) -> times.add(System.nanoTime()));
+            workbench.telemetry().addListener(r, (device, value) -> times.add(System.nanoTime()));
         }
         wbConnection.addAsyncStanzaListener(p -> robotPresences.add((Presence) p), p -> p instanceof Presence
                 && robotConnection != null && p.getFrom() != null && p.getFrom().asBareJid().equals(robotConnection
@@ -258,8 +258,9 @@ class ControlMlEndpointOnProsodyTest {
     @Test
     void trajectoryGetIsEmptyWithoutMissionAndSetIsFollowed() {
         assertEquals(List.of(), workbench.get(robotJid, Resources.TRAJECTORY).orElseThrow().points());
-        Trajectory imposed = new Trajectory(RecordedRobot.T0, List.of(new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0),
-                new TrajectoryPoint(1, 0.7, 0.5, 0, 0.2, 0), new TrajectoryPoint(2, 0.9, 0.6, 0.4, 0.2, 0.1)));
+        TrajectoryPayload imposed = new TrajectoryPayload(RecordedRobot.T0, List.of(
+                new TrajectoryPoint(0, 0.5, 0.5, 0, 0, 0), new TrajectoryPoint(1, 0.7, 0.5, 0, 0.2, 0),
+                new TrajectoryPoint(2, 0.9, 0.6, 0.4, 0.2, 0.1)));
 
         assertTrue(workbench.set(robotJid, Resources.TRAJECTORY, imposed).isSuccess());
 
@@ -301,7 +302,7 @@ class ControlMlEndpointOnProsodyTest {
     @Test
     void limitsGetAndSet() {
         assertEquals(robot.limits(), workbench.get(robotJid, Resources.LIMITS).orElseThrow());
-        MotionLimits slower = new MotionLimits(0.8, 2.0, 0.6, 3.0);
+        LimitsPayload slower = new LimitsPayload(0.8, 2.0, 0.6, 3.0);
 
         assertTrue(workbench.set(robotJid, Resources.LIMITS, slower).isSuccess());
 
@@ -385,11 +386,11 @@ class ControlMlEndpointOnProsodyTest {
                         Condition.unexpected_request, ControlMlCondition.INVALID_STATE, true),
                 refusal("map replaced during a mission", onMission, (w, r) -> w.set(r, Resources.MAP,
                         RecordedRobot.LAB), Condition.unexpected_request, ControlMlCondition.INVALID_STATE, true),
-                refusal("empty trajectory", idle, (w, r) -> w.set(r, Resources.TRAJECTORY, new Trajectory(
+                refusal("empty trajectory", idle, (w, r) -> w.set(r, Resources.TRAJECTORY, new TrajectoryPayload(
                         RecordedRobot.T0, List.of())), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
                         true),
                 refusal("limits above the physical ones", idle, (w, r) -> w.set(r, Resources.LIMITS,
-                        new MotionLimits(1.5, 1, 1, 1)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
+                        new LimitsPayload(1.5, 1, 1, 1)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE,
                         true),
                 refusal("gains read with the motor board silent", r -> r.boardAnswering(false), (w, r) -> w.get(r,
                         Resources.PID), Condition.service_unavailable, ControlMlCondition.DEVICE_FAULT, false),
@@ -501,13 +502,13 @@ class ControlMlEndpointOnProsodyTest {
         long checks = session.onlineChecks.get();
         awaitOnlineChecks(checks + 1);
         long reads = robot.telemetryReads();
-        long failed = robotManager.statistics().telemetryFailed();
+        long failed = robotManager.telemetry().statistics().failed();
 
         awaitOnlineChecks(session.onlineChecks.get() + 2 * Math.round(POSITION_HZ + VELOCITY_HZ + MISSION_HZ
                 + OBSTACLES_HZ)); // about two seconds of ticks
 
         assertEquals(reads, robot.telemetryReads(), "nothing read for telemetry while offline");
-        assertEquals(failed, robotManager.statistics().telemetryFailed(), "no failed publication while offline");
+        assertEquals(failed, robotManager.telemetry().statistics().failed(), "no failed publication while offline");
 
         robotConnection.connect().login();
         arrivals.get("cm.position").clear();
@@ -660,7 +661,7 @@ class ControlMlEndpointOnProsodyTest {
                 Resources.OBSTACLES)) {
             long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
             while (true) {
-                Outcome<Void> followed = workbench.followTelemetry(device, r);
+                Outcome<Void> followed = workbench.telemetry().follow(device, r);
                 if (followed.isSuccess()) {
                     break;
                 }

@@ -15,14 +15,14 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
@@ -44,21 +44,21 @@ import sabot.onboard.robot.RobotMotion;
 final class RecordedRobot implements RobotMotion {
 
     /** Everything a command may change; equal snapshots mean nothing changed. */
-    record State(PoseEstimate pose, Twist2D twist, Optional<Goal> goal, Trajectory trajectory, GridMap map,
-            MotionLimits limits, PidGains gains, MissionStatus mission, boolean boardAnswering) {
+    record State(PoseEstimate pose, Twist2D twist, Optional<Goal> goal, TrajectoryPayload trajectory, GridMap map,
+            LimitsPayload limits, PidGains gains, MissionStatus mission, boolean boardAnswering) {
     }
 
     static final Instant T0 = Instant.parse("2026-11-21T10:00:00Z");
     static final PoseCovariance INITIAL_COVARIANCE = PoseCovariance.diagonal(0.01, 0.01, 0.001);
-    static final MotionLimits PHYSICAL = new MotionLimits(1.0, 3.0, 1.0, 4.0);
+    static final LimitsPayload PHYSICAL = new LimitsPayload(1.0, 3.0, 1.0, 4.0);
     static final GridMap LAB = labMap();
 
     private PoseEstimate pose = new PoseEstimate(T0, new Pose2D(0.5, 0.5, 0), INITIAL_COVARIANCE);
     private Twist2D twist = Twist2D.ZERO;
     private Optional<Goal> goal = Optional.empty();
-    private Trajectory trajectory = new Trajectory(T0, List.of());
+    private TrajectoryPayload trajectory = new TrajectoryPayload(T0, List.of());
     private GridMap map = LAB;
-    private MotionLimits limits = new MotionLimits(0.5, 1.5, 0.5, 2.0);
+    private LimitsPayload limits = new LimitsPayload(0.5, 1.5, 0.5, 2.0);
     private PidGains gains = new PidGains(List.of(new MotorGains(0, 1.2, 0.3, 0.01), new MotorGains(1, 1.2, 0.3,
             0.01)));
     private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "");
@@ -145,7 +145,7 @@ final class RecordedRobot implements RobotMotion {
     }
 
     @Override
-    public synchronized Trajectory trajectory() {
+    public synchronized TrajectoryPayload trajectory() {
         return trajectory;
     }
 
@@ -161,7 +161,7 @@ final class RecordedRobot implements RobotMotion {
     }
 
     @Override
-    public synchronized MotionLimits limits() {
+    public synchronized LimitsPayload limits() {
         return limits;
     }
 
@@ -214,13 +214,14 @@ final class RecordedRobot implements RobotMotion {
                     + " obstacle", x, y));
         }
         goal = Optional.of(target);
-        trajectory = new Trajectory(T0, List.of(new TrajectoryPoint(0, pose.pose().x(), pose.pose().y(), 0, 0, 0),
+        trajectory = new TrajectoryPayload(T0, List.of(
+                new TrajectoryPoint(0, pose.pose().x(), pose.pose().y(), 0, 0, 0),
                 new TrajectoryPoint(5, x, y, target.pose().theta(), 0, 0)));
         changeMission(new MissionStatus(MissionState.RUNNING, false, 0, String.format("to (%.2f, %.2f)", x, y)));
     }
 
     @Override
-    public synchronized void follow(Trajectory imposed) throws CommandRefused {
+    public synchronized void follow(TrajectoryPayload imposed) throws CommandRefused {
         calls.add("follow " + imposed.points().size() + " points");
         requireNoMaintenance();
         requireBoard();
@@ -242,7 +243,7 @@ final class RecordedRobot implements RobotMotion {
     }
 
     @Override
-    public synchronized void setLimits(MotionLimits newLimits) throws CommandRefused {
+    public synchronized void setLimits(LimitsPayload newLimits) throws CommandRefused {
         calls.add("setLimits " + newLimits);
         if (newLimits.maxLinearSpeed() > PHYSICAL.maxLinearSpeed() || newLimits.maxAngularSpeed() > PHYSICAL
                 .maxAngularSpeed() || newLimits.maxLinearAcceleration() > PHYSICAL.maxLinearAcceleration()

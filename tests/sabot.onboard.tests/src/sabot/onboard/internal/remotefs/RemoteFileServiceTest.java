@@ -56,7 +56,7 @@ class RemoteFileServiceTest {
     }
 
     static FileChunk chunk(String path, long offset, byte[] data, boolean last) {
-        return new FileChunk(path, offset, data, Resources.sha256Hex(data), last);
+        return new FileChunk(path, offset, data, FileChunk.sha256Hex(data), last);
     }
 
     static byte[] seeded(int size, long seed) {
@@ -82,7 +82,7 @@ class RemoteFileServiceTest {
     void chunkWhoseChecksumDoesNotMatchIsRefusedAndNothingIsWritten() throws Exception {
         RemoteFileService fs = new RemoteFileService(root, RemoteFsLimits.DEFAULT);
         byte[] data = seeded(100, 1);
-        FileChunk bad = new FileChunk("a.bin", 0, data, Resources.sha256Hex(new byte[] { 1 }), true);
+        FileChunk bad = new FileChunk("a.bin", 0, data, FileChunk.sha256Hex(new byte[] { 1 }), true);
         assertRefused(fs.write(WB, bad), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE);
         assertEquals(List.of(), namesIn(root));
     }

@@ -92,7 +92,7 @@ abstract class RemoteFsOnServerTest {
     }
 
     static FileChunk chunk(String path, long offset, byte[] data, boolean last) {
-        return new FileChunk(path, offset, data, Resources.sha256Hex(data), last);
+        return new FileChunk(path, offset, data, FileChunk.sha256Hex(data), last);
     }
 
     Outcome<FileChunk> write(FileChunk chunk) {
@@ -147,7 +147,7 @@ abstract class RemoteFsOnServerTest {
                 } else if (Files.isDirectory(p, LinkOption.NOFOLLOW_LINKS)) {
                     s.put(key, "dir");
                 } else {
-                    s.put(key, Resources.sha256Hex(Files.readAllBytes(p)));
+                    s.put(key, FileChunk.sha256Hex(Files.readAllBytes(p)));
                 }
             }
         }
@@ -167,11 +167,11 @@ abstract class RemoteFsOnServerTest {
         serve(RemoteFsLimits.DEFAULT);
         byte[] content = seeded(100 * 1024, 20261121L);
 
-        upload("maps/lab/big.bin", content, Resources.FileChunkLimits.MAX_CHUNK); // 4 chunks, the last 4 KiB
+        upload("maps/lab/big.bin", content, FileChunk.MAX_CHUNK); // 4 chunks, the last 4 KiB
 
         assertArrayEquals(content, Files.readAllBytes(root.resolve("maps/lab/big.bin")));
         assertEquals(List.of("big.bin"), namesIn(root.resolve("maps/lab")), "no temporary file is left");
-        assertArrayEquals(content, download("maps/lab/big.bin", Resources.FileChunkLimits.MAX_CHUNK));
+        assertArrayEquals(content, download("maps/lab/big.bin", FileChunk.MAX_CHUNK));
         assertArrayEquals(content, download("maps/lab/big.bin", 10_000), "any chunking reads the same bytes");
         assertArrayEquals(content, download("maps/lab/big.bin", 0), "length 0 reads whole chunks");
 
@@ -423,7 +423,7 @@ abstract class RemoteFsOnServerTest {
                         t -> delete(t, "escape/secret.txt")),
                 // chunks
                 bad("wrong sha256", NOT_ACCEPTABLE, INVALID, t -> t.write(new FileChunk("upload.bin", 0, ten,
-                        Resources.sha256Hex(new byte[] { 1 }), true))),
+                        FileChunk.sha256Hex(new byte[] { 1 }), true))),
                 bad("chunk before the transfer started", Condition.unexpected_request,
                         ControlMlCondition.INVALID_STATE, t -> t.write(chunk("upload.bin", 10, ten, true))),
                 bad("out-of-order offset", started, Condition.unexpected_request, ControlMlCondition.INVALID_STATE,
@@ -431,7 +431,7 @@ abstract class RemoteFsOnServerTest {
                 bad("offset inside the bytes already written", started, Condition.unexpected_request,
                         ControlMlCondition.INVALID_STATE, t -> t.write(chunk("upload.bin", 5, ten, true))),
                 bad("chunk over the limit", started, NOT_ACCEPTABLE, ControlMlCondition.PAYLOAD_TOO_LARGE,
-                        t -> t.write(chunk("upload.bin", 10, new byte[Resources.FileChunkLimits.MAX_CHUNK + 1],
+                        t -> t.write(chunk("upload.bin", 10, new byte[FileChunk.MAX_CHUNK + 1],
                                 false))),
                 bad("write onto a directory", NOT_ACCEPTABLE, INVALID, t -> writeOne(t, "dir")),
                 bad("write under a file", NOT_ACCEPTABLE, INVALID, t -> writeOne(t, "keep.txt/new.txt")),

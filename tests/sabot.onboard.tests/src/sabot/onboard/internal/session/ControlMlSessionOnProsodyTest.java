@@ -231,7 +231,7 @@ class ControlMlSessionOnProsodyTest {
         new Random(20261121L).nextBytes(content);
         for (int offset = 0; offset < content.length; offset += 1024) {
             byte[] data = java.util.Arrays.copyOfRange(content, offset, Math.min(content.length, offset + 1024));
-            var o = wb.set(robotFull, Resources.FS_WRITE, new FileChunk("maps/lab.bin", offset, data, Resources
+            var o = wb.set(robotFull, Resources.FS_WRITE, new FileChunk("maps/lab.bin", offset, data, FileChunk
                     .sha256Hex(data), offset + data.length == content.length));
             assertTrue(o.isSuccess(), o::toString);
         }

@@ -62,6 +62,19 @@ final class ProductProcess implements AutoCloseable {
         return new ProductProcess(pb.start());
     }
 
+    /**
+     * Starts a product through a start script of its own (e.g. sabot-workbench), in the product folder, with JAVA_HOME
+     * set to this JVM's home so the script runs the same JDK as the tests.
+     */
+    static ProductProcess startScript(Path productDir, String script, List<String> args) throws IOException {
+        List<String> cmd = new ArrayList<>();
+        cmd.add(productDir.resolve(script).toString());
+        cmd.addAll(args);
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(productDir.toFile()).redirectErrorStream(true);
+        pb.environment().put("JAVA_HOME", System.getProperty("java.home"));
+        return new ProductProcess(pb.start());
+    }
+
     static Path launcherJar(Path productDir) throws IOException {
         try (DirectoryStream<Path> s = Files.newDirectoryStream(productDir.resolve("plugins"),
                 "org.eclipse.equinox.launcher_*.jar")) {
@@ -123,9 +136,15 @@ final class ProductProcess implements AutoCloseable {
 
     /** Waits for the process to end and for its console to be read completely; returns the exit status. */
     int waitFor() throws InterruptedException {
-        if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
+        return waitFor(TIMEOUT_S);
+    }
+
+    /** {@link #waitFor()} with a longer limit, for a run that restarts the product. */
+    int waitFor(long timeoutS) throws InterruptedException {
+        if (!process.waitFor(timeoutS, TimeUnit.SECONDS)) {
+            process.descendants().forEach(ProcessHandle::destroyForcibly);
             process.destroyForcibly();
-            throw new AssertionError("product did not exit within " + TIMEOUT_S + " s; output:\n" + output());
+            throw new AssertionError("product did not exit within " + timeoutS + " s; output:\n" + output());
         }
         reader.join(TimeUnit.SECONDS.toMillis(10));
         return process.exitValue();
@@ -143,6 +162,7 @@ final class ProductProcess implements AutoCloseable {
 
     @Override
     public void close() {
+        process.descendants().forEach(ProcessHandle::destroyForcibly); // a start script's JVM
         if (process.isAlive()) {
             process.destroyForcibly();
         }

@@ -54,6 +54,7 @@ import sabot.controlml.payload.PidGains;
 import sabot.identity.DeviceCard;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceUrn;
 import sabot.identity.IdentityResult;
 import sabot.identity.QrInventory;
 import sabot.testsupport.robot.OnboardProcess;
@@ -321,16 +322,15 @@ class PluginViewsLiveTest {
     void identityShowsTheRobotsVCardAndSavesItsQrCodeAsPng() throws Exception {
         IdentityView identity = open(IdentityView.ID, IdentityView.class);
         awaitLive(identity);
-        // FleetState.identity(robot) is new API the ControlML plug-in does not implement yet: its default refusal
-        // must reach the operator with its condition
+        // fetched by the view through FleetState.identity (the ControlML plug-in's connection, off the UI thread)
         identity.load();
-        waitFor(() -> identity.message().contains("identity:"), 20, identity::message);
-        assertTrue(identity.messageIsError() && identity.message().contains("unsupported-operation"), identity
-                .message());
+        waitFor(() -> identity.message().contains("identity: done") && identity.shown() != null, 20,
+                identity::message);
+        assertFalse(identity.messageIsError(), identity.message());
+        RobotIdentity card = identity.shown();
 
-        // the robot's real vCard, as any XMPP client reads it, shown by the view
+        // the oracle: the robot's vCard as any other XMPP client reads it from the server
         XMPPTCPConnection auditor = xmpp.login("auditor");
-        RobotIdentity card;
         try {
             IdentityResult<DeviceCard> fetched = DeviceIdentityManager.getInstanceFor(auditor).fetch(JidCreate
                     .entityBareFrom(ROBOT_JID));
@@ -339,12 +339,13 @@ class PluginViewsLiveTest {
             DeviceProfile p = d.profile();
             byte[] png = VCardManager.getInstanceFor(auditor).loadVCard(JidCreate.entityBareFrom(ROBOT_JID))
                     .getAvatar();
-            card = new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(), p
-                    .latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), png);
+            assertEquals(new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(),
+                    p.latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), png), card);
         } finally {
             auditor.instantShutdown();
         }
-        identity.display(card);
+        // the robot's serial is its bare JID (docs/IDENTITY.md): its UUID follows from it
+        assertEquals(DeviceUrn.urnOf(ROBOT_JID), card.uid());
         Map<String, String> shown = identity.shownTexts();
         assertEquals(ROBOT_JID, shown.get("JID"));
         assertEquals(card.uid(), shown.get("UUID"));

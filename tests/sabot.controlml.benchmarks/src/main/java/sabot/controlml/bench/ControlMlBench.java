@@ -45,6 +45,7 @@ import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resources;
+import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
@@ -391,7 +392,7 @@ public final class ControlMlBench {
             counts[s] = new AtomicLong();
             int sub = s;
             Map<EntityBareJid, Boolean> seen = new ConcurrentHashMap<>();
-            ControlMlManager.getInstanceFor(c).addTelemetryListener(Resources.POSITION, (device, p) -> {
+            TelemetryManager.getInstanceFor(c).addListener(Resources.POSITION, (device, p) -> {
                 long now = nanosOfInstant(Instant.now());
                 if (seen.putIfAbsent(device, Boolean.TRUE) == null) {
                     warm.countDown();
@@ -441,7 +442,7 @@ public final class ControlMlBench {
         for (XMPPTCPConnection c : robotConnections) {
             AtomicLong seq = new AtomicLong();
             ControlMlManager.getInstanceFor(c).setTextForm(textForm);
-            publications.add(ControlMlManager.getInstanceFor(c).publishTelemetry(Resources.POSITION, () -> {
+            publications.add(TelemetryManager.getInstanceFor(c).publish(Resources.POSITION, () -> {
                 Instant now = Instant.now();
                 if (window.contains(nanosOfInstant(now))) {
                     offered.increment();
@@ -486,8 +487,8 @@ public final class ControlMlBench {
         long[] lat = all.stream().mapToLong(Long::longValue).sorted().toArray();
         double serverCpuPct = 100.0 * (cpu1 - cpu0) / 100.0 / wallS; // /proc ticks are 1/100 s
         double clientCpuPct = 100.0 * (self1 - self0) / 1e9 / wallS;
-        long failed = robotConnections.stream().mapToLong(c -> ControlMlManager.getInstanceFor(c).statistics()
-                .telemetryFailed()).sum();
+        long failed = robotConnections.stream().mapToLong(c -> TelemetryManager.getInstanceFor(c).statistics()
+                .failed()).sum();
         System.out.printf("[bench] telemetry: offered %d items x %d subscribers = %d, delivered %d (%.2f %%), "
                 + "publish failures %d%n", offered.sum(), subscribers, expected, got, 100.0 * got / Math.max(1,
                         expected), failed);

@@ -34,7 +34,7 @@ import sabot.planner.Planners;
  * {@code calcNavFnDijkstra(false)} from the goal; Sabot {@code lpn}, one thread);</li>
  * <li><b>plan</b>: the robot's question, start to goal (navfn as {@code NavfnROS::makePlan} calls it:
  * {@code calcNavFnDijkstra(true)} propagating from the robot, stopped when the goal cell has a value; Sabot
- * {@code lpn-bounded} by default).</li>
+ * {@code lpn-focused} by default).</li>
  * </ul>
  * Each round runs a batch of calls per grid and question, navfn then Sabot in odd rounds and the other way round in
  * even ones; the first round warms both up and is not counted. Reported: the best round's median per call (best of
@@ -81,7 +81,7 @@ public final class NavfnComparison {
         int rounds = 5;
         List<String> grids = List.of("random-100", "random-1000", "random-2000", "maze-1000", "enclosed-1000");
         String wholePlanner = "lpn";
-        String planPlanner = "lpn-bounded";
+        String planPlanner = "lpn-focused";
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--navfn" -> navfn = Path.of(args[++i]);

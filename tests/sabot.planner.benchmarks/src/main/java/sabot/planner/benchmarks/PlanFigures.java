@@ -15,7 +15,7 @@ import sabot.planner.costmap.CostmapLayers;
 import sabot.planner.costmap.InflationParameters;
 import sabot.planner.costmap.MovingObstacle;
 import sabot.planner.costmap.MovingObstacleModel;
-import sabot.planner.render.PlanImage;
+import sabot.tools.render.PlanImage;
 
 /**
  * Renders the pictures of docs/PLANNER.md:

@@ -1,0 +1,295 @@
+package sabot.controlml;
+
+import java.util.Map;
+import java.util.Set;
+import java.util.WeakHashMap;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
+import java.util.concurrent.ScheduledThreadPoolExecutor;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Supplier;
+
+import org.jivesoftware.smack.Manager;
+import org.jivesoftware.smack.SmackException.NotConnectedException;
+import org.jivesoftware.smack.StanzaCollector;
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.XMPPException.XMPPErrorException;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.StandardExtensionElement;
+import org.jivesoftware.smackx.pep.PepManager;
+import org.jivesoftware.smackx.pubsub.NodeExtension;
+import org.jivesoftware.smackx.pubsub.PayloadItem;
+import org.jivesoftware.smackx.pubsub.PublishItem;
+import org.jivesoftware.smackx.pubsub.SubscribeExtension;
+import org.jivesoftware.smackx.pubsub.UnsubscribeExtension;
+import org.jivesoftware.smackx.pubsub.packet.PubSub;
+import org.jxmpp.jid.EntityBareJid;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.controlml.payload.PayloadException;
+
+/**
+ * ControlML telemetry on one XMPP connection (section 6 of {@code docs/CONTROLML.md}), in Smack's manager style
+ * ({@link #getInstanceFor(XMPPConnection)}), beside {@link ControlMlManager} as Smack's {@code PepManager} is beside
+ * its IQ managers.
+ * <p>
+ * A device {@link #publish publishes} a resource's value to its PEP node {@link ControlMl#telemetryNode} at a fixed
+ * rate; a client {@link #addListener listens} to the resource (register before login so that the {@code +notify}
+ * feature is in the client's entity caps) and {@link #follow follows} each device for delivery that does not depend on
+ * it. Items are written in the form {@link ControlMlManager#setTextForm} chooses, with ids of the connection's
+ * {@link ControlMlManager}; pubsub requests wait up to its {@link ControlMlManager#setRequestTimeout request timeout}.
+ */
+public final class TelemetryManager extends Manager {
+
+    private static final Logger LOG = LoggerFactory.getLogger(TelemetryManager.class);
+    private static final Map<XMPPConnection, TelemetryManager> INSTANCES = new WeakHashMap<>();
+
+    private final ControlMlManager controlMl;
+    private final Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
+    private final AtomicInteger activePublications = new AtomicInteger();
+    private ScheduledExecutorService scheduler;
+
+    private final AtomicLong published = new AtomicLong();
+    private final AtomicLong failed = new AtomicLong();
+    private final AtomicLong received = new AtomicLong();
+    private final AtomicLong rejected = new AtomicLong();
+
+    /** @return the telemetry manager of a connection, created on first use (with its {@link ControlMlManager}) */
+    public static synchronized TelemetryManager getInstanceFor(XMPPConnection connection) {
+        return INSTANCES.computeIfAbsent(connection, TelemetryManager::new);
+    }
+
+    private TelemetryManager(XMPPConnection connection) {
+        super(connection);
+        this.controlMl = ControlMlManager.getInstanceFor(connection); // registers the providers, issues the ids
+    }
+
+    /** @return a snapshot of this connection's telemetry counters */
+    public TelemetryStatistics statistics() {
+        return new TelemetryStatistics(published.get(), failed.get(), received.get(), rejected.get());
+    }
+
+
+    /**
+     * Publishes a resource's value to this device's PEP node {@link ControlMl#telemetryNode} at a fixed rate. Each
+     * publication is sent without waiting for the server's acknowledgement (counted in {@link #statistics()}); a
+     * null from {@code source} skips that tick.
+     *
+     * @param rateHz publications per second, &gt; 0 and at most 1000
+     * @return the running publication
+     */
+    public <T> TelemetryPublication publish(Resource<T, ?> resource, Supplier<? extends T> source,
+            double rateHz) {
+        if (!(rateHz > 0 && rateHz <= 1000)) {
+            throw new IllegalArgumentException("rate must be in (0, 1000] Hz, was " + rateHz);
+        }
+        long period = Math.round(1e9 / rateHz);
+        ScheduledFuture<?> task;
+        synchronized (this) {
+            if (scheduler == null) {
+                ScheduledThreadPoolExecutor s = new ScheduledThreadPoolExecutor(1, r -> {
+                    Thread t = new Thread(r, "controlml-telemetry-" + connection().getXMPPServiceDomain());
+                    t.setDaemon(true);
+                    return t;
+                });
+                s.setRemoveOnCancelPolicy(true);
+                scheduler = s;
+            }
+            activePublications.incrementAndGet();
+            task = scheduler.scheduleAtFixedRate(() -> {
+                T value = source.get();
+                if (value != null) {
+                    publishNow(resource, value);
+                }
+            }, 0, period, TimeUnit.NANOSECONDS);
+        }
+        return new TelemetryPublication() {
+            private boolean stopped;
+
+            @Override
+            public String resource() {
+                return resource.name();
+            }
+
+            @Override
+            public long periodNanos() {
+                return period;
+            }
+
+            @Override
+            public void stop() {
+                synchronized (TelemetryManager.this) {
+                    if (stopped) {
+                        return;
+                    }
+                    stopped = true;
+                    task.cancel(false);
+                    if (activePublications.decrementAndGet() == 0 && scheduler != null) {
+                        scheduler.shutdown();
+                        scheduler = null;
+                    }
+                }
+            }
+        };
+    }
+
+    /**
+     * XEP-0060 publish-options of telemetry nodes: items are not persisted (a pose is stale 100 ms later, and
+     * Prosody would otherwise write every item to its storage: measured, 1,000 publications/s saturated it) and at
+     * most one is kept. The server creates the node with these options on first publication.
+     */
+    private static final StandardExtensionElement TELEMETRY_PUBLISH_OPTIONS = StandardExtensionElement.builder(
+            "publish-options", "http://jabber.org/protocol/pubsub").addElement(StandardExtensionElement.builder("x",
+                    "jabber:x:data").addAttribute("type", "submit").addElement(formField("FORM_TYPE",
+                            "http://jabber.org/protocol/pubsub#publish-options", true)).addElement(formField(
+                                    "pubsub#persist_items", "false", false)).addElement(formField("pubsub#max_items",
+                                            "1", false)).build()).build();
+
+    private static StandardExtensionElement formField(String var, String value, boolean hidden) {
+        StandardExtensionElement.Builder b = StandardExtensionElement.builder("field", "jabber:x:data").addAttribute(
+                "var", var);
+        if (hidden) {
+            b.addAttribute("type", "hidden");
+        }
+        return b.addElement("value", value).build();
+    }
+
+    /** Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. */
+    public <T> void publishNow(Resource<T, ?> resource, T value) {
+        ControlMlElement element = ControlMlElement.result(controlMl.nextId(), resource.name(), resource.codec().encode(
+                value)).withTextForm(controlMl.isTextForm());
+        String node = ControlMl.telemetryNode(resource.name());
+        // The options are needed only until the server has created the node with them: checking them costs the
+        // server a data-form comparison on every publication.
+        sendPublication(node, element, !publishWithoutOptions.contains(node));
+    }
+
+    private void sendPublication(String node, ControlMlElement element, boolean withOptions) {
+        PubSub publish = PubSub.createPubsubPacket(null, IQ.Type.set, new PublishItem<>(node, new PayloadItem<>(
+                "current", element)));
+        if (withOptions) {
+            publish.addExtension(TELEMETRY_PUBLISH_OPTIONS);
+        }
+        try {
+            connection().sendIqRequestAsync(publish).onSuccess(r -> {
+                published.incrementAndGet();
+                if (withOptions) {
+                    publishWithoutOptions.add(node); // the node exists with the options now
+                }
+            }).onError(
+                    e -> {
+                        if (withOptions && e instanceof XMPPErrorException x) {
+                            // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
+                            // publish with the server's defaults from now on, this item included
+                            if (publishWithoutOptions.add(node)) {
+                                LOG.info("server refused telemetry publish-options on {} ({}); publishing with its"
+                                        + " defaults", node, x.getStanzaError().getCondition());
+                            }
+                            sendPublication(node, element, false);
+                            return;
+                        }
+                        failed.incrementAndGet();
+                        LOG.debug("telemetry publication failed", e);
+                    });
+        } catch (RuntimeException e) {
+            failed.incrementAndGet();
+        }
+    }
+
+    /**
+     * Subscribes this client explicitly (XEP-0060 {@code subscribe}) to a device's telemetry node of a resource, so
+     * that its publications arrive at {@link #addListener listeners} even where the server does not honour
+     * the {@code +notify} of the entity capabilities (ejabberd 23.01 now and then never does for a contact, while it
+     * always delivers to explicit subscribers). Servers keep one subscription per JID, so calling again does no harm.
+     * The node exists once the device has published the resource: before that the answer is {@code item-not-found};
+     * call again when the device comes online or publishes.
+     *
+     * @param device the device's bare JID (the owner of the PEP node)
+     * @return done, or why not ({@code item-not-found}, {@code forbidden} without a presence subscription, timeout,
+     *         not connected)
+     */
+    public Outcome<Void> follow(EntityBareJid device, Resource<?, ?> resource) {
+        return pubsubRequest(device, new SubscribeExtension(connection().getUser(), ControlMl.telemetryNode(resource
+                .name())));
+    }
+
+    /** Ends a subscription made by {@link #follow}; same answers. */
+    public Outcome<Void> unfollow(EntityBareJid device, Resource<?, ?> resource) {
+        return pubsubRequest(device, new UnsubscribeExtension(connection().getUser().toString(), ControlMl
+                .telemetryNode(resource.name())));
+    }
+
+    private Outcome<Void> pubsubRequest(EntityBareJid device, NodeExtension request) {
+        // a plain request to the owner's PEP service: Smack's PubSubManager.getLeafNode() asks disco#info first, and
+        // ejabberd answers it for an auto-created PEP node without the identity Smack insists on
+        PubSub iq = PubSub.createPubsubPacket(device, IQ.Type.set, request);
+        IQ answer;
+        try (StanzaCollector collector = connection().createStanzaCollectorAndSend(iq)) {
+            answer = collector.nextResult(controlMl.requestTimeout().toMillis());
+        } catch (NotConnectedException e) {
+            return Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected: " + e.getMessage());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "interrupted while waiting for " + device);
+        }
+        if (answer == null) {
+            return Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from the PEP service of " + device
+                    + " within " + controlMl.requestTimeout().toMillis() + " ms");
+        }
+        if (answer.getType() == IQ.Type.error) {
+            return Outcome.failure(ControlMlError.fromStanzaError(answer.getError()));
+        }
+        return Outcome.done();
+    }
+
+    /**
+     * Section 6's deduplication: a telemetry item is taken only when its id is greater than the last one taken from
+     * the same publisher for the same resource (a publisher's ids increase, RequestIdGenerator).
+     */
+    private static boolean isNewer(Map<EntityBareJid, RequestId> lastAccepted, EntityBareJid from, RequestId id) {
+        boolean[] newer = { false };
+        lastAccepted.compute(from, (k, last) -> {
+            newer[0] = last == null || id.compareTo(last) > 0;
+            return newer[0] ? id : last;
+        });
+        return newer[0];
+    }
+
+    /**
+     * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
+     * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
+     * delivery that does not depend on it, also {@link #follow} each device.
+     */
+    public <T> void addListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
+        Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
+        PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
+                ControlMlElement.class, (from, element, itemId, message) -> {
+                    if (element.defect() != null || element.payload() == null || !resource.name().equals(element
+                            .res())) {
+                        rejected.incrementAndGet();
+                        LOG.debug("rejected telemetry {} from {}", element, from);
+                        return;
+                    }
+                    if (!isNewer(lastAccepted, from, element.id())) {
+                        // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
+                        // subscription) or an older one overtaken: section 6's rule, by the publication's id
+                        LOG.trace("duplicate telemetry {} from {}", element, from);
+                        return;
+                    }
+                    T value;
+                    try {
+                        value = element.value(resource);
+                    } catch (PayloadException e) {
+                        rejected.incrementAndGet();
+                        LOG.debug("rejected telemetry from {}: {}", from, e.getMessage());
+                        return;
+                    }
+                    received.incrementAndGet();
+                    listener.onTelemetry(from, value);
+                });
+    }
+}

@@ -1,0 +1,74 @@
+package sabot.planner.internal;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.model.map.CellRegion;
+import sabot.model.map.Costmap;
+import sabot.model.map.GridGeometry;
+import sabot.planner.CostModel;
+
+/**
+ * The work the navigation function reports ({@link LpnNavigationFunction#expandedCount}, {@code withdrawnCount},
+ * {@code deferredCount}): the focused propagation expands an ellipse around a straight path (its bound is 5 % plus a
+ * margin above the straight line's cost) with the whole grid's value at the start, and a repair after one new
+ * obstacle refills each cell it withdrew once, fewer cells than a computation expands.
+ */
+class PropagationWorkTest {
+
+    private static final CostModel MODEL = CostModel.standard();
+
+    @Test
+    void focusedPropagationExpandsAnEllipseAroundAStraightPathWithTheWholeGridsValue() {
+        // start and goal on the middle row: the ellipse (semi-axes about 220 and 100 cells) spans half the rows
+        Costmap costmap = Costmap.of(new GridGeometry(400, 400, 1.0, Pose2D.ORIGIN), new byte[400 * 400]);
+        Setup setup = new Setup(costmap, new Point2D(5.5, 200.5), new Point2D(394.5, 200.5));
+        setup.function.compute(setup.request.goalCells(), -1);
+        int whole = setup.function.expandedCount();
+        float wholeValue = LpnNavigationFunction.decode(setup.function.potential()[setup.request.startCell()]);
+        setup.function.computeFocused(setup.request.goalCells(), setup.request.startCell());
+        int focused = setup.function.expandedCount();
+        float focusedValue = LpnNavigationFunction.decode(setup.function.potential()[setup.request.startCell()]);
+        assertTrue(setup.function.isReached(setup.request.startCell()));
+        assertTrue(setup.function.deferredCount() > 0, "cells beside the band are left out");
+        assertTrue(focused < whole / 2, "focused " + focused + " of " + whole + " cells");
+        assertEquals(wholeValue, focusedValue, 1e-4 * wholeValue);
+    }
+
+    @Test
+    void aRepairAfterOneObstacleRefillsFewerCellsThanAComputation() {
+        Costmap costmap = Costmap.of(new GridGeometry(200, 200, 1.0, Pose2D.ORIGIN), new byte[200 * 200]);
+        Setup setup = new Setup(costmap, new Point2D(5.5, 100.5), new Point2D(194.5, 100.5));
+        setup.function.compute(setup.request.goalCells(), -1);
+        int whole = setup.function.expandedCount();
+        assertEquals(0, setup.function.withdrawnCount());
+        costmap.set(100, 100, Costmap.LETHAL);
+        CellRegion changed = setup.grid.sync(costmap);
+        assertTrue(setup.function.repair(setup.grid, changed, setup.request.goalCells()));
+        int withdrawn = setup.function.withdrawnCount();
+        int refilled = setup.function.expandedCount();
+        // on open ground the interpolated values behind the obstacle shift slightly over a wide cone, and the
+        // repair withdraws every cell whose value is no longer supported (by more than float rounding)
+        assertTrue(withdrawn > 0 && withdrawn < whole / 2, "withdrawn " + withdrawn + " of " + whole);
+        assertEquals(withdrawn - 1, refilled, "every withdrawn cell but the obstacle's own is refilled, once");
+    }
+
+    /** A grid synced from the costmap, a request for start and goal, and a navigation function on both. */
+    private static final class Setup {
+        final PlanningGrid grid = new PlanningGrid();
+        final PlanRequest request;
+        final LpnNavigationFunction function = new LpnNavigationFunction(MODEL);
+
+        Setup(Costmap costmap, Point2D start, Point2D goal) {
+            CellRegion changed = grid.sync(costmap);
+            request = PlanRequest.resolve(grid, start, List.of(goal));
+            function.gridChanged(grid, changed);
+        }
+    }
+}
