@@ -29,11 +29,11 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.MotionLimits;
+import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.controlml.payload.Trajectory;
+import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.PresenceLevels;
@@ -143,12 +143,12 @@ public final class FleetLoad implements AutoCloseable {
                     : Outcome.success(goal);
         }
 
-        synchronized Outcome<Trajectory> trajectory(Instant now) {
+        synchronized Outcome<TrajectoryPayload> trajectory(Instant now) {
             if (goal == null || !mission.state().isActive()) {
-                return Outcome.success(new Trajectory(now, List.of()));
+                return Outcome.success(new TrajectoryPayload(now, List.of()));
             }
             Pose2D p = pose(now).pose();
-            return Outcome.success(new Trajectory(now, List.of(new TrajectoryPoint(0, p.x(), p.y(), p.theta(), 0.3, 0),
+            return Outcome.success(new TrajectoryPayload(now, List.of(new TrajectoryPoint(0, p.x(), p.y(), p.theta(), 0.3, 0),
                     new TrajectoryPoint(MISSION_SECONDS, goal.pose().x(), goal.pose().y(), goal.pose().theta(), 0,
                             0))));
         }
@@ -211,13 +211,13 @@ public final class FleetLoad implements AutoCloseable {
                 serve(r, operator, grid);
                 c.connect().login();
                 c.sendStanza(PresenceLevels.presenceFor(c, MissionState.IDLE, false));
-                r.publications.add(r.manager.publishTelemetry(Resources.POSITION, () -> r.pose(Instant.now()),
+                r.publications.add(r.manager.telemetry().publish(Resources.POSITION, () -> r.pose(Instant.now()),
                         rateHz));
                 if (velocityRateHz > 0) {
-                    r.publications.add(r.manager.publishTelemetry(Resources.VELOCITY, () -> r.velocity(Instant.now()),
+                    r.publications.add(r.manager.telemetry().publish(Resources.VELOCITY, () -> r.velocity(Instant.now()),
                             velocityRateHz));
                 }
-                r.publications.add(r.manager.publishTelemetry(Resources.MISSION, () -> r.mission(Instant.now()), 1));
+                r.publications.add(r.manager.telemetry().publish(Resources.MISSION, () -> r.mission(Instant.now()), 1));
             }
         } catch (Exception | Error e) {
             load.close();
@@ -242,7 +242,7 @@ public final class FleetLoad implements AutoCloseable {
         m.onGet(Resources.TRAJECTORY, (q, n) -> r.trajectory(Instant.now()));
         m.onGet(Resources.MAP, (q, n) -> Outcome.success(grid));
         m.onGet(Resources.OBSTACLES, (q, n) -> Outcome.success(new Obstacles(Instant.now(), List.of())));
-        m.onGet(Resources.LIMITS, (q, n) -> Outcome.success(new MotionLimits(0.5, 1.5, 0.5, 2.0)));
+        m.onGet(Resources.LIMITS, (q, n) -> Outcome.success(new LimitsPayload(0.5, 1.5, 0.5, 2.0)));
         m.onSet(Resources.GOAL, (q, g) -> r.takeGoal(g));
         m.onSet(Resources.MISSION, (q, s) -> r.command(s));
         m.onSet(Resources.VELOCITY, (q, v) -> Outcome.done());
@@ -270,12 +270,12 @@ public final class FleetLoad implements AutoCloseable {
 
     /** @return the robots' telemetry publications that failed so far (refused, timed out or not sent) */
     public long telemetryFailed() {
-        return robots.stream().mapToLong(r -> r.manager.statistics().telemetryFailed()).sum();
+        return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().failed()).sum();
     }
 
     /** @return the robots' telemetry publications the server acknowledged so far */
     public long telemetryPublished() {
-        return robots.stream().mapToLong(r -> r.manager.statistics().telemetryPublished()).sum();
+        return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().published()).sum();
     }
 
     @Override

@@ -278,7 +278,7 @@ public final class WorkbenchBench {
         Window window = new Window();
         long[] ref = new long[(int) Math.min(50_000_000, robots * rate * (seconds + 30) + 1000)];
         AtomicLong refCount = new AtomicLong();
-        ControlMlManager.getInstanceFor(observer).addTelemetryListener(Resources.POSITION, (device, p) -> {
+        ControlMlManager.getInstanceFor(observer).telemetry().addListener(Resources.POSITION, (device, p) -> {
             long now = micros(Instant.now());
             long stamp = micros(p.time());
             if (window.contains(stamp)) {
@@ -290,7 +290,7 @@ public final class WorkbenchBench {
         });
         observer.connect().login();
         for (EntityBareJid r : load.jids()) {
-            ControlMlManager.getInstanceFor(observer).followTelemetry(r, Resources.POSITION);
+            ControlMlManager.getInstanceFor(observer).telemetry().follow(r, Resources.POSITION);
         }
         hold(wb, warmupSeconds);
         long acked0 = load.telemetryPublished();

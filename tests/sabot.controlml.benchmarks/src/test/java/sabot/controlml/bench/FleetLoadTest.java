@@ -62,7 +62,7 @@ class FleetLoadTest {
         Map<EntityBareJid, PoseEstimate> poses = new ConcurrentHashMap<>();
         CountDownLatch all = new CountDownLatch(3);
         ControlMlManager cm = ControlMlManager.getInstanceFor(wb);
-        cm.addTelemetryListener(Resources.POSITION, (device, p) -> {
+        cm.telemetry().addListener(Resources.POSITION, (device, p) -> {
             if (poses.put(device, p) == null) {
                 all.countDown();
             }
