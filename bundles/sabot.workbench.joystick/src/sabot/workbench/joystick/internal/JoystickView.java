@@ -40,6 +40,8 @@ public final class JoystickView extends RobotView {
     /** Deflection a held key stands for (of the full range): half speed, for fine moves. */
     static final double KEY_DEFLECTION = 0.5;
     private static final int MARGIN = 12;
+    /** Share of the pad's radius around each axis that counts as on the axis (as a game controller's dead zone). */
+    private static final double DEAD_ZONE = 0.03;
 
     private Canvas pad;
     private Label readout;
@@ -142,8 +144,10 @@ public final class JoystickView extends RobotView {
     private void moveKnob(int x, int y) {
         Point size = pad.getSize();
         double radius = radius(size);
-        double dx = (x - size.x / 2.0) / radius;
-        double dy = -(y - size.y / 2.0) / radius;
+        // from the pad's centre to the pointer's pixel centre; an axis within the dead zone is zero, so that a drag
+        // along the cross drives straight (or turns in place) whatever half pixel the pad's size puts the centre on
+        double dx = deadZone((x + 0.5 - size.x / 2.0) / radius);
+        double dy = deadZone(-(y + 0.5 - size.y / 2.0) / radius);
         double r = Math.hypot(dx, dy);
         if (r > 1) {
             dx /= r;
@@ -250,6 +254,10 @@ public final class JoystickView extends RobotView {
             }
             return Status.OK_STATUS;
         }
+    }
+
+    private static double deadZone(double axis) {
+        return Math.abs(axis) < DEAD_ZONE ? 0 : axis;
     }
 
     private static double radius(Point size) {
