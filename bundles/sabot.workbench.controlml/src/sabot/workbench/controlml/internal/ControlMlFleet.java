@@ -363,22 +363,7 @@ public final class ControlMlFleet implements FleetState {
      */
     @Override
     public CompletableFuture<RobotIdentity> identity(String robot) {
-        CompletableFuture<RobotIdentity> f = new CompletableFuture<>();
-        try {
-            requests.execute(() -> {
-                try {
-                    f.complete(fetchIdentity(robot));
-                } catch (FleetCommandException e) {
-                    f.completeExceptionally(e);
-                } catch (RuntimeException e) {
-                    f.completeExceptionally(new FleetCommandException(ControlMlCondition.UNSPECIFIED, e.toString()));
-                }
-            });
-        } catch (java.util.concurrent.RejectedExecutionException stopped) {
-            f.completeExceptionally(new FleetCommandException(ControlMlCondition.NOT_CONNECTED,
-                    "the ControlML plug-in has stopped"));
-        }
-        return f;
+        return onRequestPool(() -> fetchIdentity(robot));
     }
 
     /** Request pool: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
@@ -431,11 +416,19 @@ public final class ControlMlFleet implements FleetState {
 
     /** Runs a request on the request pool. */
     private <T> CompletableFuture<T> request(String robot, Call<T> call) {
+        return onRequestPool(() -> callNow(robot, call));
+    }
+
+    /**
+     * Runs work on the request pool; the future fails with a {@link FleetCommandException} (the robot's condition and
+     * text, or why it could not be asked), any other failure as UNSPECIFIED.
+     */
+    private <T> CompletableFuture<T> onRequestPool(java.util.function.Supplier<T> work) {
         CompletableFuture<T> f = new CompletableFuture<>();
         try {
             requests.execute(() -> {
                 try {
-                    f.complete(callNow(robot, call));
+                    f.complete(work.get());
                 } catch (FleetCommandException e) {
                     f.completeExceptionally(e);
                 } catch (RuntimeException e) {
