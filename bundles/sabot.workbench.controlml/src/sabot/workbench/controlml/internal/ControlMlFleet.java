@@ -366,8 +366,8 @@ public final class ControlMlFleet implements FleetState {
         return onRequestPool(() -> fetchIdentity(robot));
     }
 
-    /** Request pool: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
-    private RobotIdentity fetchIdentity(String robot) {
+    /** @return the session to ask {@code robot} through; throws why it cannot be asked (NOT_CONNECTED) */
+    private Session sessionFor(String robot) {
         Session s = session;
         if (s == null || !s.connection().isAuthenticated()) {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
@@ -377,6 +377,12 @@ public final class ControlMlFleet implements FleetState {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
                     + " is not a robot of this workbench's fleet");
         }
+        return s;
+    }
+
+    /** Request pool: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
+    private RobotIdentity fetchIdentity(String robot) {
+        Session s = sessionFor(robot);
         VCard card;
         try {
             card = VCardManager.getInstanceFor(s.connection()).loadVCard(JidCreate.entityBareFrom(robot));
@@ -448,15 +454,7 @@ public final class ControlMlFleet implements FleetState {
      * @throws FleetCommandException with the robot's condition and text, or why it could not be asked
      */
     private <T> T callNow(String robot, Call<T> call) {
-        Session s = session;
-        if (s == null || !s.connection().isAuthenticated()) {
-            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
-                    + status.summary() + ")");
-        }
-        if (!robots.containsKey(robot)) {
-            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
-                    + " is not a robot of this workbench's fleet");
-        }
+        Session s = sessionFor(robot);
         Presence p;
         try {
             p = s.roster().getPresence(JidCreate.entityBareFrom(robot));

@@ -241,10 +241,10 @@ class ControlMlSessionOnProsodyTest {
 
         remotefs.delete();
         remotefs = null;
-        // SCR unregisters the task's service before it calls deactivate: wait until no configuration of the
-        // component is left, which is after deactivate returned
         awaitNoComponent("sabot.task.remotefs");
-        assertFalse(wb.get(robotFull, Resources.FS_READ, new FileQuery("maps/lab.bin", 0, 0)).isSuccess(),
+        // SCR may drop the component's configuration from its records before its deactivate (which removes the
+        // handlers) has run: the robot stops serving cm.fs.* then, within the wait's deadline
+        awaitCondition(() -> !wb.get(robotFull, Resources.FS_READ, new FileQuery("maps/lab.bin", 0, 0)).isSuccess(),
                 "no cm.fs.* once the task stopped");
     }
 
