@@ -516,6 +516,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
+    /**
+     * Runs on the session's ordered request thread (Smack's sync IQ mode: one robot connection, its requests served
+     * one after the other), so no cm.mission set can end maintenance and start a mission while the step runs: the
+     * final brake cannot stop a mission. Other requests wait for the test (≈ 0.2 s, bounded by the recording); in
+     * maintenance they cannot move the robot anyway.
+     */
     @Override
     public StepTest stepTest(int motor, double step) throws CommandRefused {
         synchronized (stepTestLock) {
