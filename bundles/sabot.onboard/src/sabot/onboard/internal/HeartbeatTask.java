@@ -12,6 +12,9 @@ import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -19,17 +22,22 @@ import sabot.onboard.task.OnboardTask;
 
 /**
  * Diagnostic task: logs the process's uptime, the system load, heap and thread count every {@code period} seconds,
- * as a warning when the load per CPU exceeds {@code warnLoad}. Settings: OSGI-INF/metatype/heartbeat.xml.
+ * as a warning when the load per CPU exceeds {@code warnLoad}. Settings: {@link Config}.
  */
+@Designate(ocd = HeartbeatTask.Config.class, factory = false)
 @Component(name = "sabot.task.heartbeat", configurationPolicy = ConfigurationPolicy.REQUIRE, service = OnboardTask.class)
 public final class HeartbeatTask implements OnboardTask {
 
-    /** The task's settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.heartbeat", name = "Heartbeat task",
+            description = "Logs uptime, system load, heap and thread count at a fixed period.")
     public @interface Config {
-        /** @return seconds between two heartbeats */
+        @AttributeDefinition(name = "Period", description = "Seconds between two heartbeat log lines.", min = "1",
+                max = "3600")
         int period() default 10;
 
-        /** @return load average per CPU above which a beat is a warning */
+        @AttributeDefinition(name = "Load warning", min = "0", max = "1",
+                description = "System load average per CPU above which a heartbeat is logged as a warning.")
         double warnLoad() default 0.9;
     }
 

@@ -1,12 +1,13 @@
 package sabot.onboard.internal;
 
+import java.util.List;
 import java.util.Locale;
 
 import org.eclipse.equinox.metatype.EquinoxAttributeDefinition;
 import org.osgi.service.metatype.AttributeDefinition;
 
 /**
- * What a task accepts for one setting: its type and bounds, as declared in the task's Metatype description.
+ * What a task accepts for one setting: its type, bounds and options, as declared in the task's Metatype description.
  *
  * @param id   the setting's id (the part after {@code <task>.} in the configuration file)
  * @param type one of {@link AttributeDefinition#INTEGER}, {@link AttributeDefinition#LONG},
@@ -15,10 +16,20 @@ import org.osgi.service.metatype.AttributeDefinition;
  * @param min  inclusive lower bound for numbers, or null
  * @param max  inclusive upper bound for numbers, or null
  * @param mandatory true when the file must set it: Metatype {@code required} and no default
+ * @param options   the values it may take, as written in the file; empty: any value of its type and bounds
  */
-public record SettingSpec(String id, int type, Double min, Double max, boolean mandatory) {
+public record SettingSpec(String id, int type, Double min, Double max, boolean mandatory, List<String> options) {
 
-    /** A setting the file may leave out. */
+    public SettingSpec {
+        options = List.copyOf(options);
+    }
+
+    /** A setting without options. */
+    public SettingSpec(String id, int type, Double min, Double max, boolean mandatory) {
+        this(id, type, min, max, mandatory, List.of());
+    }
+
+    /** A setting without options that the file may leave out. */
     public SettingSpec(String id, int type, Double min, Double max) {
         this(id, type, min, max, false);
     }
@@ -35,8 +46,9 @@ public record SettingSpec(String id, int type, Double min, Double max, boolean m
             max = parseBound(eq.getMax());
         }
         String[] defaults = ad.getDefaultValue();
+        String[] options = ad.getOptionValues();
         return new SettingSpec(ad.getID(), ad.getType(), min, max, required && (defaults == null
-                || defaults.length == 0));
+                || defaults.length == 0), options == null ? List.of() : List.of(options));
     }
 
     private static Double parseBound(String bound) {
@@ -101,6 +113,9 @@ public record SettingSpec(String id, int type, Double min, Double max, boolean m
             }
             case AttributeDefinition.STRING -> value = v;
             default -> throw new IllegalArgumentException("setting type " + type + " is not supported in the file");
+        }
+        if (!options.isEmpty() && !options.contains(v)) {
+            throw new IllegalArgumentException("'" + v + "' is not one of " + String.join(", ", options));
         }
         return value;
     }

@@ -8,8 +8,11 @@ package sabot.onboard.task;
  * {@code configuration-policy = REQUIRE} that provides this service: the onboard application creates the
  * component's configuration (PID = component name) from the file's {@code <name>.<setting>} keys when the task is
  * listed in {@code tasks}, and deletes it otherwise, so DS activates exactly the configured tasks. The settings a
- * task accepts, with types and ranges, are declared in an OSGi Metatype description for that PID; the file is
- * checked against it before anything starts, and so are the checks a {@link TaskSettingsCheck} service adds.
+ * task accepts, with types, ranges ({@code min}, {@code max}) and options, are declared in an OSGi Metatype
+ * description for that PID: an {@code @ObjectClassDefinition} on the task's configuration annotation and
+ * {@code @Designate} on the component, from which bnd generates {@code OSGI-INF/metatype/<pid>.xml} at build time (a
+ * bundle's {@code pde.bnd} with {@code -metatypeannotations: *}). The file is checked against it before anything
+ * starts, and so are the checks a {@link TaskSettingsCheck} service adds.
  * Besides its own settings, every task's configuration carries {@link #ROBOT_NAME} (the file's {@code robot.name}).
  */
 public interface OnboardTask {

@@ -37,6 +37,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
+import sabot.onboard.internal.session.ControlMlSettings;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;
@@ -64,27 +65,6 @@ public final class ControlMlEndpoint {
     /** The configuration it shares with the session: the {@code controlml} task's. */
     public static final String CONFIGURATION_PID = OnboardTask.PID_PREFIX + "controlml";
 
-    /** Highest telemetry rate a publication takes (the manager's own bound). */
-    static final double MAX_RATE_HZ = 1000;
-
-    /**
-     * The endpoint's settings in the {@code controlml} task's configuration (the Metatype description is the
-     * session's, {@code OSGI-INF/metatype/controlml.xml}). A rate of 0 publishes nothing.
-     */
-    public @interface Config {
-        /** @return {@code cm.position} publications per second (Hz), 0..1000 */
-        double positionRate() default 10;
-
-        /** @return {@code cm.velocity} publications per second (Hz), 0..1000 */
-        double velocityRate() default 10;
-
-        /** @return {@code cm.mission} publications per second (Hz), 0..1000 */
-        double missionRate() default 1;
-
-        /** @return {@code cm.obstacles} publications per second (Hz), 0..1000 */
-        double obstaclesRate() default 2;
-    }
-
     /** The resources this endpoint serves (the remote FS task serves {@code cm.fs.*}). */
     static final List<Resource<?, ?>> SERVED = List.of(Resources.POSITION, Resources.VELOCITY, Resources.GOAL,
             Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.PID, Resources.LIMITS,
@@ -98,7 +78,7 @@ public final class ControlMlEndpoint {
 
     private final RobotSession session;
     private final RobotMotion motion;
-    private final Config config;
+    private final ControlMlSettings.Config config;
     private final Map<ServiceReference<OnboardTask>, OnboardTask> tasks = new ConcurrentHashMap<>();
     private final List<TelemetryPublication> publications = new ArrayList<>();
     private final MotionListener presence = this::missionChanged;
@@ -111,11 +91,11 @@ public final class ControlMlEndpoint {
     /**
      * @param session the robot's XMPP session
      * @param motion  the robot's motion (the control loop)
-     * @param config  the {@code controlml} task's settings
+     * @param config  the {@code controlml} task's settings (the endpoint reads the telemetry rates)
      */
     @Activate
     public ControlMlEndpoint(@Reference(name = "session") RobotSession session,
-            @Reference(name = "motion") RobotMotion motion, Config config) {
+            @Reference(name = "motion") RobotMotion motion, ControlMlSettings.Config config) {
         this.session = session;
         this.motion = motion;
         this.config = config;
@@ -126,9 +106,9 @@ public final class ControlMlEndpoint {
     }
 
     private static void checkRate(String setting, double hz) {
-        if (!(hz >= 0 && hz <= MAX_RATE_HZ)) {
-            throw new IllegalArgumentException("controlml." + setting + " must be 0 (off) to " + MAX_RATE_HZ
-                    + " Hz, was " + hz);
+        if (!(hz >= 0 && hz <= ControlMlSettings.Config.MAX_RATE_HZ)) {
+            throw new IllegalArgumentException("controlml." + setting + " must be 0 (off) to "
+                    + ControlMlSettings.Config.MAX_RATE_HZ + " Hz, was " + hz);
         }
     }
 

@@ -12,6 +12,10 @@ import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
+import org.osgi.service.metatype.annotations.Option;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -29,38 +33,51 @@ import sabot.onboard.task.OnboardTask;
  * Task {@code bus}: the robot's RS-485 line (Modbus RTU master on a serial device, or RTU framing over TCP) and the
  * board clients on it, registered as services ({@link SactClient}, {@link InsClient}, {@link SonarClient},
  * {@link LandmarkClient}: the landmark board is optional) and as the control loop's {@link RobotBoards}. Settings:
- * OSGI-INF/metatype/bus.xml.
+ * {@link Config}.
  */
+@Designate(ocd = BusTask.Config.class, factory = false)
 @Component(name = "sabot.task.bus", configurationPolicy = ConfigurationPolicy.REQUIRE, service = OnboardTask.class)
 public final class BusTask implements OnboardTask {
 
-    /** Settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.bus", name = "Bus task",
+            description = "The robot's RS-485 line: Modbus RTU master (0x14/0x15) of the motor, inertial and sonar "
+                    + "boards.")
     public @interface Config {
-        /** @return serial device, e.g. /dev/ttyUSB0 (empty when tcpHost is set) */
+        @AttributeDefinition(name = "Serial port", description = "Serial device, e.g. /dev/ttyUSB0 or the "
+                + "simulator's pty link; empty when tcpHost is set.")
         String port() default "";
 
-        /** @return host of an RTU-over-TCP gateway (empty for a serial line) */
+        @AttributeDefinition(name = "TCP host", description = "Host of an RTU-over-TCP gateway (or sabot-sim --tcp); "
+                + "empty for a serial line.")
         String tcpHost() default "";
 
-        /** @return TCP port of the gateway */
+        @AttributeDefinition(name = "TCP port", description = "TCP port of the gateway.", min = "1", max = "65535")
         int tcpPort() default 502;
 
-        /** @return baud rate, bit/s */
+        @AttributeDefinition(name = "Baud rate", description = "Bit rate of the line, bit/s.", min = "1200",
+                max = "4000000")
         int baud() default 115200;
 
-        /** @return parity: EVEN (the SACT bus), NONE (a pseudo-terminal refuses parity), ODD */
+        @AttributeDefinition(name = "Parity", description = "EVEN on the SACT bus; NONE on a pseudo-terminal (Linux "
+                + "refuses parity on ptys).", options = { @Option(label = "Even", value = "EVEN"),
+                        @Option(label = "None", value = "NONE"), @Option(label = "Odd", value = "ODD") })
         String parity() default "EVEN";
 
-        /** @return ms to wait for an answer */
+        @AttributeDefinition(name = "Response timeout", description = "Milliseconds to wait for a board's answer.",
+                min = "1", max = "10000")
         int responseTimeout() default 50;
 
-        /** @return retries after a timeout or a corrupt answer */
+        @AttributeDefinition(name = "Retries", description = "Retries after a timeout or a corrupt answer.",
+                min = "0", max = "10")
         int retries() default 1;
 
-        /** @return ms of silence between frames (t3.5 at 115200 baud is 1.75 ms) */
+        @AttributeDefinition(name = "Inter-frame delay", description = "Milliseconds of silence between frames "
+                + "(t3.5; 1.75 ms above 19200 baud).", min = "0", max = "1000")
         double interFrameDelay() default 1.75;
 
-        /** @return ms without a good answer after which a board is faulted (the robot stops) */
+        @AttributeDefinition(name = "Fault after", description = "Milliseconds without a good answer after which a "
+                + "board is faulted and the robot stops.", min = "1", max = "60000")
         int faultAfter() default 200;
     }
 

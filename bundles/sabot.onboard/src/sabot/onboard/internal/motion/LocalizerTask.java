@@ -5,6 +5,9 @@ import java.util.List;
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.model.geometry.Pose2D;
 import sabot.model.map.MapLandmark;
@@ -13,54 +16,68 @@ import sabot.onboard.task.OnboardTask;
 
 /**
  * Task {@code localizer}: the settings of the pose estimate (start pose, initial uncertainty, inertial fusion). The
- * control loop creates its {@link Localizer} from them. Settings: OSGI-INF/metatype/localizer.xml.
+ * control loop creates its {@link Localizer} from them. Settings: {@link Config}.
  */
+@Designate(ocd = LocalizerTask.Config.class, factory = false)
 @Component(name = "sabot.task.localizer", configurationPolicy = ConfigurationPolicy.REQUIRE,
         service = { OnboardTask.class, LocalizerTask.class })
 public final class LocalizerTask implements OnboardTask {
 
-    /** Settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.localizer", name = "Localizer task",
+            description = "Pose estimate: wheel odometry fused with the inertial board in an EKF.")
     public @interface Config {
-        /** @return start x in the map frame, m */
+        @AttributeDefinition(name = "Start x", description = "Start x in the map frame, m.")
         double startX() default 0;
 
-        /** @return start y in the map frame, m */
+        @AttributeDefinition(name = "Start y", description = "Start y in the map frame, m.")
         double startY() default 0;
 
-        /** @return start heading, rad */
+        @AttributeDefinition(name = "Start heading", description = "Start heading, rad.", min = "-3.1416",
+                max = "3.1416")
         double startTheta() default 0;
 
-        /** @return initial standard deviation of x and y, m */
+        @AttributeDefinition(name = "Initial position sigma", description = "Initial standard deviation of x and y, m.",
+                min = "0.001", max = "10")
         double initialSigmaXY() default 0.02;
 
-        /** @return initial standard deviation of the heading, rad */
+        @AttributeDefinition(name = "Initial heading sigma", description = "Initial standard deviation of the "
+                + "heading, rad.", min = "0.001", max = "3.1416")
         double initialSigmaTheta() default 0.02;
 
-        /** @return fuse the inertial board's gyro (yaw rate) */
+        @AttributeDefinition(name = "Use the inertial board", description = "Fuse the gyro (yaw rate) of the "
+                + "inertial board.")
         boolean useImu() default true;
 
-        /** @return also fuse the inertial board's longitudinal accelerometer */
+        @AttributeDefinition(name = "Use the accelerometer", description = "Also fuse the inertial board's "
+                + "longitudinal accelerometer (with useImu).")
         boolean useAccelerometer() default true;
 
-        /**
-         * @return seconds the robot stays still after the start while the estimator learns the inertial board's biases
-         *         (a MEMS gyro's turn-on offset is up to ±5 °/s; at rest odometry says the true rate is zero)
-         */
+        /** A MEMS gyro's turn-on offset is up to ±5 °/s; at rest odometry says the true rate is zero. */
+        @AttributeDefinition(name = "IMU settle time", description = "Seconds the robot stays still after the start "
+                + "while the estimator learns the inertial board's biases.", min = "0", max = "60")
         double imuSettleTime() default 3;
 
-        /** @return seconds without odometry after which the estimate is stale (the robot stops) */
+        @AttributeDefinition(name = "Odometry timeout", description = "Seconds without encoder readings after which "
+                + "the estimate is stale and the robot stops.", min = "0.02", max = "5")
         double odometryTimeout() default 0.2;
 
-        /** @return fuse sightings of the ceiling landmarks the map names (when the robot has the landmark board) */
+        @AttributeDefinition(name = "Use landmarks", description = "Fuse sightings of the ceiling landmarks the map "
+                + "names (sabot_landmarks) from the landmark board, when the robot has one.")
         boolean useLandmarks() default true;
 
-        /** @return standard deviation of a landmark's range, m (the board's 10 mm, plus the latency compensation's) */
+        /** The board's 10 mm, plus the latency compensation's. */
+        @AttributeDefinition(name = "Landmark range sigma", description = "Standard deviation of a landmark's range, "
+                + "m.", min = "0.001", max = "10")
         double landmarkRangeSigma() default 0.02;
 
-        /** @return standard deviation of a landmark's bearing, rad (the board's 0.5°, plus the compensation's) */
+        /** The board's 0.5°, plus the compensation's. */
+        @AttributeDefinition(name = "Landmark bearing sigma", description = "Standard deviation of a landmark's "
+                + "bearing, rad.", min = "0.0001", max = "3.14")
         double landmarkBearingSigma() default 0.02;
 
-        /** @return largest positional standard deviation, m, above which the robot stops (safety) */
+        @AttributeDefinition(name = "Largest position sigma", description = "Positional standard deviation, m, above "
+                + "which the robot stops (safety).", min = "0.01", max = "100")
         double maxPositionSigma() default 0.5;
     }
 

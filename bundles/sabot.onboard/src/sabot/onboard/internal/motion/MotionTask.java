@@ -23,6 +23,9 @@ import org.osgi.service.component.annotations.Deactivate;
 import org.osgi.service.component.annotations.Reference;
 import org.osgi.service.component.annotations.ReferenceCardinality;
 import org.osgi.service.component.annotations.ReferencePolicy;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -69,48 +72,56 @@ import sabot.onboard.task.OnboardTask;
  * smoother bounds it, and the wheel speeds are written; in the periods without an encoder read, the inertial board,
  * one sonar sensor or the landmark board is read after the write (its wire time is budgeted, so the loop does not
  * overrun on it). Nothing in the loop waits on the
- * network; planning runs on the thread {@code sabot-planner}. Settings: OSGI-INF/metatype/motion.xml.
+ * network; planning runs on the thread {@code sabot-planner}. Settings: {@link Config}.
  */
+@Designate(ocd = MotionTask.Config.class, factory = false)
 @Component(name = "sabot.task.motion", configurationPolicy = ConfigurationPolicy.REQUIRE,
         service = { OnboardTask.class, RobotMotion.class })
 public final class MotionTask implements OnboardTask, RobotMotion {
 
-    /** Settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.motion", name = "Motion task", description = "The fixed-rate control "
+            + "loop: encoders and inertial sample in, estimate, tracker, wheel speeds out.")
     public @interface Config {
-        /** @return control loop rate, Hz */
+        @AttributeDefinition(name = "Rate", description = "Control loop rate, Hz.", min = "5", max = "200")
         double rate() default 50;
 
-        /** @return the motor board's own deadman, s: no set-point for this long and the board stops the wheels */
+        @AttributeDefinition(name = "Board deadman", description = "The motor board stops the wheels by itself when "
+                + "no set-point arrives for this long, s.", min = "0.05", max = "60")
         double boardDeadman() default 0.3;
 
-        /** @return seconds between two status log lines (0: none) */
+        @AttributeDefinition(name = "Status period", description = "Seconds between two status log lines (0: none).",
+                min = "0", max = "3600")
         double statusPeriod() default 1;
 
-        /** @return brake when the XMPP connection is lost while moving */
+        @AttributeDefinition(name = "Stop on disconnect", description = "Brake when the XMPP connection is lost while "
+                + "moving.")
         boolean stopOnDisconnect() default true;
 
-        /** @return seconds a sonar echo stays in the obstacle list */
+        @AttributeDefinition(name = "Obstacle memory", description = "Seconds a sonar echo stays in the obstacle "
+                + "list.", min = "0.1", max = "600")
         double obstacleMemory() default 3;
 
-        /** @return how far ahead on the trajectory (s of driving) an obstacle blocks the path */
+        @AttributeDefinition(name = "Blocked lookahead", description = "Seconds of driving along the trajectory ahead "
+                + "checked against obstacles.", min = "0.1", max = "60")
         double blockedLookahead() default 3;
 
-        /** @return clearance (m) beyond the robot's radius that an obstacle must keep from the path ahead */
+        @AttributeDefinition(name = "Blocked clearance", description = "Clearance beyond the robot radius an obstacle "
+                + "must keep from the path ahead, m.", min = "0", max = "2")
         double blockedClearance() default 0.05;
 
-        /** @return default goal position tolerance, m (when a goal does not carry one) */
+        @AttributeDefinition(name = "Goal tolerance", description = "Position tolerance at a goal that does not carry "
+                + "its own, m.", min = "0.005", max = "5")
         double goalTolerance() default 0.1;
 
-        /**
-         * @return SCHED_FIFO priority of the control loop's thread, 1..99 (0: the ordinary policy); without the
-         *         privilege the loop runs at the ordinary policy and the log says why
-         */
+        @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
+                + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
+                + "at the ordinary policy.", min = "0", max = "99")
         int realtimePriority() default 0;
 
-        /**
-         * @return timer slack of the control loop's thread, µs: how late the kernel may wake it after a period's
-         *         timed wait (and each wait for a board's answer) to group wake-ups; Linux gives ordinary threads 50
-         */
+        @AttributeDefinition(name = "Timer slack", description = "How late the kernel may wake the control loop's "
+                + "thread after a timed wait (a period, a board's answer), µs; Linux gives ordinary threads 50 µs to "
+                + "group wake-ups.", min = "0.001", max = "50000")
         double timerSlack() default 1;
     }
 

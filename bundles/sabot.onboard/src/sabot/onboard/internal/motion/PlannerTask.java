@@ -8,6 +8,10 @@ import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
+import org.osgi.service.metatype.annotations.Option;
 
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
@@ -16,33 +20,43 @@ import sabot.onboard.task.OnboardTask;
 /**
  * Task {@code planner}: the map (ROS map_server YAML + image) and the path planner (LPN by default; any name of
  * {@code sabot.planner.Planners}). Swapping the algorithm is a configuration change. Settings:
- * OSGI-INF/metatype/planner.xml.
+ * {@link Config}.
  */
+@Designate(ocd = PlannerTask.Config.class, factory = false)
 @Component(name = "sabot.task.planner", configurationPolicy = ConfigurationPolicy.REQUIRE,
         service = { OnboardTask.class, PlannerTask.class })
 public final class PlannerTask implements OnboardTask {
 
-    /** Settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.planner", name = "Planner task",
+            description = "Map and path planner (LPN navigation function by default).")
     public @interface Config {
-        /** @return the map's YAML file (ROS map_server format) */
+        @AttributeDefinition(name = "Map", description = "The map: a ROS map_server YAML file.")
         String map();
 
-        /** @return planner name: lpn, lpn-bounded, lpn-incremental, reference, dijkstra */
+        /** The names are {@code Planners.NAMES}' (a test checks they agree). */
+        @AttributeDefinition(name = "Algorithm", description = "Path planner.", options = {
+                @Option(label = "LPN", value = "lpn"), @Option(label = "LPN bounded", value = "lpn-bounded"),
+                @Option(label = "LPN focused", value = "lpn-focused"),
+                @Option(label = "LPN incremental", value = "lpn-incremental"),
+                @Option(label = "Reference (A*)", value = "reference"), @Option(label = "Dijkstra", value = "dijkstra") })
         String algorithm() default "lpn";
 
-        /**
-         * @return threads of the navigation function: 1 or 2 accepted, every planner computes on the calling thread
-         *         (no helper thread competes with the control loop for the robot's CPU)
-         */
+        /** No helper thread competes with the control loop for the robot's CPU. */
+        @AttributeDefinition(name = "Threads", description = "Threads of the navigation function: accepted for old "
+                + "configurations; every planner computes on the calling thread.", min = "1", max = "2")
         int threads() default 1;
 
-        /** @return the robot's radius (footprint disc), m: cells closer to an obstacle are impassable */
+        @AttributeDefinition(name = "Robot radius", description = "Radius of the robot footprint, m: cells closer to "
+                + "an obstacle are impassable.", min = "0.01", max = "5")
         double robotRadius() default 0.25;
 
-        /** @return distance over which obstacle cost decays, m */
+        @AttributeDefinition(name = "Inflation radius", description = "Distance over which obstacle cost decays, m.",
+                min = "0.01", max = "10")
         double inflationRadius() default 0.55;
 
-        /** @return seconds the planner keeps retrying when the path is blocked before the mission fails */
+        @AttributeDefinition(name = "Blocked timeout", description = "Seconds the robot waits for a way around a "
+                + "blocked path before the mission fails.", min = "0.5", max = "600")
         double blockedTimeout() default 10;
     }
 

@@ -3,26 +3,35 @@ package sabot.onboard.internal.motion;
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.onboard.task.OnboardTask;
 
 /**
  * Task {@code teleop}: joystick twists (ControlML {@code cm.velocity} sets) are accepted only when this task runs;
- * the deadman timeout brings the robot to rest when they stop. Settings: OSGI-INF/metatype/teleop.xml.
+ * the deadman timeout brings the robot to rest when they stop. Settings: {@link Config}.
  */
+@Designate(ocd = TeleopTask.Config.class, factory = false)
 @Component(name = "sabot.task.teleop", configurationPolicy = ConfigurationPolicy.REQUIRE,
         service = { OnboardTask.class, TeleopTask.class })
 public final class TeleopTask implements OnboardTask {
 
-    /** Settings (names match the Metatype description). */
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.teleop", name = "Teleop task",
+            description = "Joystick twists with a deadman timeout.")
     public @interface Config {
-        /** @return seconds without a twist after which the robot brakes (deadman) */
+        @AttributeDefinition(name = "Deadman timeout", description = "Seconds without a joystick twist after which "
+                + "the robot brakes.", min = "0.05", max = "10")
         double timeout() default 0.5;
 
-        /** @return largest joystick linear speed, m/s (also bounded by the motion limits) */
+        @AttributeDefinition(name = "Largest linear speed", description = "Largest joystick linear speed, m/s (also "
+                + "bounded by the motion limits).", min = "0.01", max = "10")
         double maxLinear() default 0.5;
 
-        /** @return largest joystick angular speed, rad/s (also bounded by the motion limits) */
+        @AttributeDefinition(name = "Largest angular speed", description = "Largest joystick angular speed, rad/s "
+                + "(also bounded by the motion limits).", min = "0.01", max = "20")
         double maxAngular() default 1.5;
     }
 

@@ -11,7 +11,7 @@ import sabot.controlml.payload.FileChunk;
  * @param maxListPage       most entries in one {@code cm.fs.list} answer: 1 to {@value #MAX_LIST_PAGE}; a page holds
  *                          fewer when its names would not fit one payload
  * @param maxOpenTransfers  most writes in progress at once; starting one more abandons the one that waited longest
- *                          (its temporary file is deleted), &ge; 1
+ *                          (its temporary file is deleted), 1 to {@value #MAX_OPEN_TRANSFERS}
  * @param readOnly          true to refuse every write and delete with {@code forbidden}/{@code set-not-permitted}
  */
 public record RemoteFsLimits(int maxChunk, long maxFileSize, int maxListPage, int maxOpenTransfers,
@@ -20,12 +20,21 @@ public record RemoteFsLimits(int maxChunk, long maxFileSize, int maxListPage, in
     /** Most entries a {@code cm.fs.list} answer may carry (the protocol's limit). */
     public static final int MAX_LIST_PAGE = 1024;
 
+    /** Default largest file, bytes: 64 MiB. */
+    public static final long DEFAULT_MAX_FILE_SIZE = 64L * 1024 * 1024;
+    /** Default entries a page: names of up to 100 plain characters fill one payload. */
+    public static final int DEFAULT_LIST_PAGE = 128;
+    /** Most writes in progress at once (each holds a temporary file). */
+    public static final int MAX_OPEN_TRANSFERS = 1024;
+    /** Default writes in progress at once. */
+    public static final int DEFAULT_OPEN_TRANSFERS = 16;
+
     /**
-     * 32 KiB chunks, files up to 64 MiB, 128 entries a page (names of up to 100 plain characters fill it), 16
-     * transfers at once, writable.
+     * 32 KiB chunks ({@link FileChunk#MAX_CHUNK}), files up to {@link #DEFAULT_MAX_FILE_SIZE},
+     * {@link #DEFAULT_LIST_PAGE} entries a page, {@link #DEFAULT_OPEN_TRANSFERS} transfers at once, writable.
      */
-    public static final RemoteFsLimits DEFAULT = new RemoteFsLimits(FileChunk.MAX_CHUNK,
-            64L * 1024 * 1024, 128, 16, false);
+    public static final RemoteFsLimits DEFAULT = new RemoteFsLimits(FileChunk.MAX_CHUNK, DEFAULT_MAX_FILE_SIZE,
+            DEFAULT_LIST_PAGE, DEFAULT_OPEN_TRANSFERS, false);
 
     public RemoteFsLimits {
         if (maxChunk < 1 || maxChunk > FileChunk.MAX_CHUNK) {
@@ -38,8 +47,9 @@ public record RemoteFsLimits(int maxChunk, long maxFileSize, int maxListPage, in
         if (maxListPage < 1 || maxListPage > MAX_LIST_PAGE) {
             throw new IllegalArgumentException("maxListPage must be 1.." + MAX_LIST_PAGE + ", was " + maxListPage);
         }
-        if (maxOpenTransfers < 1) {
-            throw new IllegalArgumentException("maxOpenTransfers must be >= 1, was " + maxOpenTransfers);
+        if (maxOpenTransfers < 1 || maxOpenTransfers > MAX_OPEN_TRANSFERS) {
+            throw new IllegalArgumentException("maxOpenTransfers must be 1.." + MAX_OPEN_TRANSFERS + ", was "
+                    + maxOpenTransfers);
         }
     }
 

@@ -7,14 +7,18 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
+
 import sabot.controlml.payload.FileChunk;
 import sabot.onboard.internal.InvalidSettings;
 import sabot.onboard.internal.TaskProperties;
+import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
 
 /**
- * The settings of the {@code remotefs} task (OSGI-INF/metatype/remotefs.xml): the root directory and the
- * {@link RemoteFsLimits}. Defaults are {@link RemoteFsLimits#DEFAULT}'s (a test checks the Metatype says the same).
+ * The settings of the {@code remotefs} task (declared by {@link Config}): the root directory and the
+ * {@link RemoteFsLimits}. Defaults are {@link RemoteFsLimits#DEFAULT}'s.
  *
  * @param root   the directory the remote FS shows (absolute, existing)
  * @param limits the limits and the read-only flag
@@ -23,6 +27,39 @@ public record RemoteFsSettings(Path root, RemoteFsLimits limits) {
 
     /** The task's name. */
     public static final String TASK = "remotefs";
+
+    /**
+     * The task's settings: its Metatype description, generated from these annotations. The task reads its
+     * configuration through {@link RemoteFsSettings#of}, which checks it again for any other Config Admin client.
+     */
+    @ObjectClassDefinition(id = OnboardTask.PID_PREFIX + TASK, name = "Remote file system",
+            description = "Serves cm.fs.list, cm.fs.read, cm.fs.write and cm.fs.delete on one directory of the robot.")
+    public @interface Config {
+        @AttributeDefinition(name = "Root directory", description = "The directory the remote FS shows; it must "
+                + "exist. Nothing outside it can be read or written.")
+        String root();
+
+        @AttributeDefinition(name = "Read-only", description = "true: writes and deletes are refused (forbidden / "
+                + "set-not-permitted).")
+        boolean readOnly() default false;
+
+        @AttributeDefinition(name = "Largest chunk", description = "Bytes at most in one cm.fs.read answer or "
+                + "cm.fs.write chunk (one ControlML payload carries 32 KiB).", min = "1", max = "" + FileChunk.MAX_CHUNK)
+        int maxChunk() default FileChunk.MAX_CHUNK;
+
+        @AttributeDefinition(name = "Largest file", description = "Bytes at most in a file written through "
+                + "cm.fs.write.", min = "0")
+        long maxFileSize() default RemoteFsLimits.DEFAULT_MAX_FILE_SIZE;
+
+        @AttributeDefinition(name = "Listing page", description = "Entries at most in one cm.fs.list answer (fewer "
+                + "when long names would not fit one payload).", min = "1", max = "" + RemoteFsLimits.MAX_LIST_PAGE)
+        int pageSize() default RemoteFsLimits.DEFAULT_LIST_PAGE;
+
+        @AttributeDefinition(name = "Writes in progress", description = "Writes in progress at once; one more abandons "
+                + "the one that waited longest and deletes its temporary file.", min = "1",
+                max = "" + RemoteFsLimits.MAX_OPEN_TRANSFERS)
+        int maxTransfers() default RemoteFsLimits.DEFAULT_OPEN_TRANSFERS;
+    }
 
     /**
      * @param properties the task's configuration
@@ -65,7 +102,8 @@ public record RemoteFsSettings(Path root, RemoteFsLimits limits) {
         long maxChunk = integer(p, "maxChunk", d.maxChunk(), 1, FileChunk.MAX_CHUNK, problems);
         long maxFileSize = integer(p, "maxFileSize", d.maxFileSize(), 0, Long.MAX_VALUE, problems);
         long pageSize = integer(p, "pageSize", d.maxListPage(), 1, RemoteFsLimits.MAX_LIST_PAGE, problems);
-        long maxTransfers = integer(p, "maxTransfers", d.maxOpenTransfers(), 1, Integer.MAX_VALUE, problems);
+        long maxTransfers = integer(p, "maxTransfers", d.maxOpenTransfers(), 1, RemoteFsLimits.MAX_OPEN_TRANSFERS,
+                problems);
         boolean readOnly = d.readOnly();
         try {
             readOnly = p.bool("readOnly", d.readOnly());

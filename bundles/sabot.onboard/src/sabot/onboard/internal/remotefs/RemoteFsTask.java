@@ -8,6 +8,7 @@ import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
 import org.osgi.service.component.annotations.Reference;
+import org.osgi.service.metatype.annotations.Designate;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -17,8 +18,9 @@ import sabot.onboard.task.OnboardTask;
 /**
  * The {@code remotefs} task: serves {@code cm.fs.*} on the robot's session ({@link RemoteFileService}) from
  * activation to deactivation. The handlers live on the session's ControlML manager, so they keep serving across
- * reconnections. Settings: OSGI-INF/metatype/remotefs.xml, checked by {@link RemoteFsSettingsCheck}.
+ * reconnections. Settings: {@link RemoteFsSettings.Config}, checked by {@link RemoteFsSettingsCheck}.
  */
+@Designate(ocd = RemoteFsSettings.Config.class, factory = false)
 @Component(name = "sabot.task.remotefs", configurationPolicy = ConfigurationPolicy.REQUIRE, immediate = true,
         service = OnboardTask.class)
 public final class RemoteFsTask implements OnboardTask {

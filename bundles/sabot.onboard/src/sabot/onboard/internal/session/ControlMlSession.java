@@ -28,6 +28,7 @@ import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
 import org.osgi.service.component.annotations.Deactivate;
 import org.osgi.service.component.annotations.Reference;
+import org.osgi.service.metatype.annotations.Designate;
 import org.osgi.util.tracker.ServiceTracker;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -55,8 +56,9 @@ import sabot.onboard.task.OnboardTask;
  * changes), then sends the robot's presence (the last {@link #setPresence}; at first FREE "idle"). Listeners are told on the
  * thread {@code sabot-session-events}, in the order the changes happened.
  * <p>
- * Settings: OSGI-INF/metatype/controlml.xml, read by {@link ControlMlSettings}; authorization: {@link OperatorPolicy}.
+ * Settings: {@link ControlMlSettings.Config}, read by {@link ControlMlSettings}; authorization: {@link OperatorPolicy}.
  */
+@Designate(ocd = ControlMlSettings.Config.class, factory = false)
 @Component(name = "sabot.task.controlml", configurationPolicy = ConfigurationPolicy.REQUIRE, immediate = true,
         service = { OnboardTask.class, RobotSession.class })
 public final class ControlMlSession implements OnboardTask, RobotSession {

@@ -13,18 +13,18 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.stringprep.XmppStringprepException;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
-import sabot.controlml.StaleCommandPolicy;
 import sabot.onboard.internal.InvalidSettings;
 import sabot.onboard.internal.TaskProperties;
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
 
 /**
- * The settings of the {@code controlml} task that the session uses (OSGI-INF/metatype/controlml.xml; the telemetry
- * rates there belong to the ControlML endpoint). Types and ranges are the Metatype's; this adds what it cannot say:
- * JID syntax, the password file's existence and permissions, reconnectMin &le; reconnectMax. A test checks that the
- * Metatype defaults are the ones here.
+ * The settings of the {@code controlml} task that the session uses (all of {@link Config} but the telemetry rates,
+ * which belong to the ControlML endpoint). Types and ranges are the Metatype's; this adds what it cannot say: JID
+ * syntax, the password file's existence and permissions, reconnectMin &le; reconnectMax.
  *
  * @param server            the XMPP server's host name or IP address
  * @param port              its c2s port
@@ -49,12 +49,80 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     static final String DEFAULT_RESOURCE = "onboard";
     static final double DEFAULT_RECONNECT_MIN_S = 1;
     static final double DEFAULT_RECONNECT_MAX_S = 30;
-    static final double DEFAULT_STALE_COMMAND_AFTER_S = StaleCommandPolicy.DEFAULT.maxAge().toMillis() / 1000.0;
+    /** {@code StaleCommandPolicy.DEFAULT}'s age, s (a test checks they agree: a Metatype default is a constant). */
+    static final double DEFAULT_STALE_COMMAND_AFTER_S = 30;
+    /** Shortest reconnection delay, s. */
+    static final double MIN_RECONNECT_S = 0.001;
 
     /** Keys (setting ids) of the settings read here. */
     static final String SERVER = "server", PORT = "port", JID = "jid", PASSWORD_FILE = "passwordFile",
             RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
             OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter";
+
+    /**
+     * The {@code controlml} task's settings: its Metatype description, generated from these annotations. The session
+     * reads them through {@link ControlMlSettings#of}; the ControlML endpoint, which shares the configuration, takes
+     * the telemetry rates through this type.
+     */
+    @ObjectClassDefinition(id = OnboardTask.PID_PREFIX + TASK, name = "ControlML session", description = "The "
+            + "robot's XMPP account, its reconnection, who may command it, and the telemetry rates.")
+    public @interface Config {
+        /** Highest telemetry rate, Hz. */
+        double MAX_RATE_HZ = 100;
+
+        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address. To this "
+                + "machine (127.x, ::1, localhost) the session uses plain TCP; to any other server it requires TLS "
+                + "(STARTTLS with a certificate the JVM trusts).")
+        String server() default DEFAULT_SERVER;
+
+        @AttributeDefinition(name = "Port", description = "The server's client-to-server TCP port.", min = "1",
+                max = "65535")
+        int port() default DEFAULT_PORT;
+
+        @AttributeDefinition(name = "Account", description = "The robot's bare JID, e.g. sabot-01@sabot.local.")
+        String jid();
+
+        @AttributeDefinition(name = "Password file", description = "File whose first line is the account's password; "
+                + "a regular file readable by its owner only (chmod 600).")
+        String passwordFile();
+
+        @AttributeDefinition(name = "Resource", description = "The XMPP resource of the robot's session.")
+        String resource() default DEFAULT_RESOURCE;
+
+        @AttributeDefinition(name = "First reconnection delay", description = "Seconds before the first new attempt "
+                + "after a loss or a failed attempt; the delay doubles after each failure.", min = "" + MIN_RECONNECT_S,
+                max = "3600")
+        double reconnectMin() default DEFAULT_RECONNECT_MIN_S;
+
+        @AttributeDefinition(name = "Longest reconnection delay", description = "Seconds between two attempts at "
+                + "most; at least reconnectMin.", min = "" + MIN_RECONNECT_S, max = "3600")
+        double reconnectMax() default DEFAULT_RECONNECT_MAX_S;
+
+        @AttributeDefinition(name = "Operators", required = false, description = "Comma-separated bare JIDs that may "
+                + "send set requests (the robot's other contacts with a mutual subscription may only get). Empty: "
+                + "every contact with a mutual subscription in the robot's roster may set.")
+        String operators() default "";
+
+        @AttributeDefinition(name = "Stale command age", description = "Seconds a set may have waited at the server "
+                + "(offline delivery) before it is refused as stale.", min = "0", max = "86400")
+        double staleCommandAfter() default DEFAULT_STALE_COMMAND_AFTER_S;
+
+        @AttributeDefinition(name = "Position telemetry rate", description = "Hz at which cm.position is published "
+                + "to subscribers; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double positionRate() default 10;
+
+        @AttributeDefinition(name = "Velocity telemetry rate", description = "Hz at which cm.velocity is published; "
+                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double velocityRate() default 10;
+
+        @AttributeDefinition(name = "Mission telemetry rate", description = "Hz at which cm.mission is published; 0: "
+                + "not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double missionRate() default 1;
+
+        @AttributeDefinition(name = "Obstacles telemetry rate", description = "Hz at which cm.obstacles is published; "
+                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double obstaclesRate() default 2;
+    }
 
     public ControlMlSettings {
         operators = Set.copyOf(operators);
@@ -123,8 +191,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         if (resource.isEmpty() || resource.chars().anyMatch(c -> Character.isWhitespace(c) || c == '/')) {
             problems.add(new Problem(RESOURCE, "'" + resource + "' is not a resource (a word without spaces or /)"));
         }
-        Duration reconnectMin = seconds(p, RECONNECT_MIN, DEFAULT_RECONNECT_MIN_S, 0.001, problems);
-        Duration reconnectMax = seconds(p, RECONNECT_MAX, DEFAULT_RECONNECT_MAX_S, 0.001, problems);
+        Duration reconnectMin = seconds(p, RECONNECT_MIN, DEFAULT_RECONNECT_MIN_S, MIN_RECONNECT_S, problems);
+        Duration reconnectMax = seconds(p, RECONNECT_MAX, DEFAULT_RECONNECT_MAX_S, MIN_RECONNECT_S, problems);
         if (reconnectMin != null && reconnectMax != null && reconnectMax.compareTo(reconnectMin) < 0) {
             problems.add(new Problem(RECONNECT_MAX, "reconnectMax (" + seconds(reconnectMax)
                     + " s) is below reconnectMin (" + seconds(reconnectMin) + " s)"));

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import java.time.Duration;
 import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
@@ -18,11 +19,15 @@ import org.osgi.service.metatype.MetaTypeService;
 import org.osgi.service.metatype.ObjectClassDefinition;
 import org.osgi.util.tracker.ServiceTracker;
 
+import sabot.controlml.StaleCommandPolicy;
 import sabot.onboard.internal.OnboardApplication;
 import sabot.onboard.internal.remotefs.RemoteFsLimits;
 import sabot.onboard.task.TaskSettingsCheck;
 
-/** The Metatype descriptions of the controlml and remotefs tasks say what the code does: one truth for defaults. */
+/**
+ * The Metatype descriptions of the controlml and remotefs tasks, generated from their annotations, say what the code
+ * that reads their configuration does: one truth for defaults.
+ */
 class TaskMetatypeTest {
 
     private final BundleContext context = FrameworkUtil.getBundle(OnboardApplication.class).getBundleContext();
@@ -59,6 +64,9 @@ class TaskMetatypeTest {
         assertEquals(ControlMlSettings.DEFAULT_RECONNECT_MIN_S, Double.parseDouble(d.get("reconnectMin")));
         assertEquals(ControlMlSettings.DEFAULT_RECONNECT_MAX_S, Double.parseDouble(d.get("reconnectMax")));
         assertEquals(ControlMlSettings.DEFAULT_STALE_COMMAND_AFTER_S, Double.parseDouble(d.get("staleCommandAfter")));
+        // the annotation needs a constant; the controlml bundle's default policy is the other copy
+        assertEquals(StaleCommandPolicy.DEFAULT.maxAge(), Duration.ofMillis(Math.round(
+                ControlMlSettings.DEFAULT_STALE_COMMAND_AFTER_S * 1000)));
     }
 
     @Test
