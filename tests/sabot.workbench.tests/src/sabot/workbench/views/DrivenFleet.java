@@ -85,16 +85,16 @@ final class DrivenFleet implements FleetState, AutoCloseable {
 
     /**
      * A robot live at a pose, with what the workspace draws for a robot on a mission: a trail of
-     * {@link RobotState#TRAIL_POINTS} points (a loop around its pose), a planned path, its goal, three sonar obstacles
-     * and a covariance ellipse.
+     * {@link RobotState#TRAIL_POINTS} points (loops around its pose, within 0.45 m), a planned path, its goal, three
+     * sonar obstacles and a covariance ellipse.
      */
     static RobotState busy(int i, double x, double y, double theta, Instant at) {
         RobotState r = RobotState.unknown(jid(i), String.format("driven-%03d", i)).withPresence(Availability.BUSY,
                 "");
         // the trail: a lap of a 0.6 m circle, then the pose (spacing above TRAIL_SPACING_M keeps every point)
         for (int k = 0; k < RobotState.TRAIL_POINTS; k++) {
-            double a = 2 * Math.PI * k / 60.0 + 0.01 * k;
-            double rad = 0.3 + 0.5 * k / RobotState.TRAIL_POINTS;
+            double a = 2 * Math.PI * k / 30.0;
+            double rad = 0.3 + 0.15 * k / RobotState.TRAIL_POINTS;
             r = r.withPose(new PoseEstimate(at, new Pose2D(x + rad * Math.cos(a), y + rad * Math.sin(a), a),
                     PoseCovariance.ZERO), at);
         }
