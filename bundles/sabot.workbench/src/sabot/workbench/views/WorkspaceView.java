@@ -92,6 +92,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private final MapViewport viewport = new MapViewport(50, 5, 5);
     private final List<ISelectionChangedListener> selectionListeners = new ArrayList<>();
     private final long[] frameNanos = new long[FRAME_SAMPLES];
+    /** The paints' CPU time on the UI thread (ns), as {@link #frameNanos}. */
+    private final long[] frameCpuNanos = new long[FRAME_SAMPLES];
+    private final java.lang.management.ThreadMXBean threads = java.lang.management.ManagementFactory
+            .getThreadMXBean();
+    private long lastPaintEnd;
     /** ./sabot bench workbench's measurement hook (does nothing unless its system property is set). */
     private final sabot.workbench.internal.PaintProbe probe = sabot.workbench.internal.PaintProbe.fromSystemProperty();
     private int frames;
@@ -541,6 +546,26 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         return canvas;
     }
 
+    /** @return how many paints there were since the view opened */
+    public int frameCount() {
+        return frames;
+    }
+
+    /** @return {@link System#nanoTime()} at the end of the last paint, 0 before the first */
+    public long lastPaintEndNanos() {
+        return lastPaintEnd;
+    }
+
+    /** @return the UI-thread CPU time of the paints so far, ns, as {@link #frameTimesNanos()} */
+    public long[] frameCpuTimesNanos() {
+        int n = Math.min(frames, FRAME_SAMPLES);
+        long[] out = new long[n];
+        for (int i = 0; i < n; i++) {
+            out[i] = frameCpuNanos[(frames - n + i) % FRAME_SAMPLES];
+        }
+        return out;
+    }
+
     /** @return the durations of the paints so far, nanoseconds, at most the last {@value #FRAME_SAMPLES} */
     public long[] frameTimesNanos() {
         int n = Math.min(frames, FRAME_SAMPLES);
@@ -561,6 +586,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     private void paint(PaintEvent e) {
         long t0 = System.nanoTime();
+        long cpu0 = threads.getCurrentThreadCpuTime();
         probe.paintStarting();
         GC gc = e.gc;
         Display d = canvas.getDisplay();
@@ -592,7 +618,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawScaleBar(gc, area);
         drawPointer(gc, area);
         drawMessage(gc, area);
-        frameNanos[frames % FRAME_SAMPLES] = System.nanoTime() - t0;
+        lastPaintEnd = System.nanoTime();
+        frameNanos[frames % FRAME_SAMPLES] = lastPaintEnd - t0;
+        frameCpuNanos[frames % FRAME_SAMPLES] = threads.getCurrentThreadCpuTime() - cpu0;
         frames++;
         probe.painted(t0, drawn, fleet.fleet());
         if (!waiters.isEmpty()) {

@@ -19,9 +19,30 @@ import java.util.concurrent.TimeUnit;
 final class CpuLayout {
 
     private final String description;
+    /** CPUs for the processes this JVM starts afterwards (taskset's list), or null: this JVM's. */
+    private final String startedCpus;
 
     private CpuLayout(String description) {
+        this(description, null);
+    }
+
+    private CpuLayout(String description, String startedCpus) {
         this.description = description;
+        this.startedCpus = startedCpus;
+    }
+
+    /**
+     * @param command a process to start
+     * @return the command run on the CPUs this layout gives to the processes this JVM starts ({@code taskset -c}), or
+     *         the command itself when they share this JVM's
+     */
+    List<String> wrap(List<String> command) {
+        if (startedCpus == null) {
+            return command;
+        }
+        List<String> out = new ArrayList<>(List.of("taskset", "-c", startedCpus));
+        out.addAll(command);
+        return out;
     }
 
     /** @return how the processes were placed, for the report, e.g. {@code server cpu 1, clients cpu 0} */
@@ -79,6 +100,78 @@ final class CpuLayout {
             return shared("taskset: " + e.getMessage());
         }
         return new CpuLayout("server cpu " + server + ", clients cpu " + clients);
+    }
+
+    /**
+     * For a frame time without the load generator on the workbench's CPU: the server and this JVM (the load robots)
+     * on the last CPU, the processes this JVM starts later (the workbench, see {@link #wrap}) and the X server on the
+     * others.
+     *
+     * @param serverPid the server's process
+     * @param xServerPid the X server's process, or -1 when unknown (then it stays where it is, and the description
+     *                   says so)
+     * @return the layout, or {@link #shared} with the reason when fewer than two CPUs are allowed or taskset fails
+     */
+    static CpuLayout workbenchAlone(long serverPid, long xServerPid) {
+        long self = ProcessHandle.current().pid();
+        List<Integer> allowed;
+        try {
+            allowed = parseCpuList(run("taskset", "-pc", Long.toString(self)));
+        } catch (IOException | IllegalArgumentException e) {
+            return shared("taskset: " + e.getMessage());
+        }
+        if (allowed.size() < 2) {
+            return shared(allowed.size() + " CPU");
+        }
+        String load = Integer.toString(allowed.get(allowed.size() - 1));
+        String workbench = join(allowed.subList(0, allowed.size() - 1));
+        ProcessHandle serverProcess = ProcessHandle.of(serverPid).filter(ProcessHandle::isAlive).orElse(null);
+        if (serverProcess == null) {
+            return shared("no server process " + serverPid);
+        }
+        List<Long> tree = new ArrayList<>();
+        tree.add(serverPid);
+        tree.add(self);
+        serverProcess.descendants().forEach(d -> tree.add(d.pid()));
+        String x = "X server not found";
+        try {
+            for (long pid : tree) {
+                run("taskset", "-a", "-p", "-c", load, Long.toString(pid));
+            }
+            if (xServerPid > 0 && ProcessHandle.of(xServerPid).isPresent()) {
+                run("taskset", "-a", "-p", "-c", workbench, Long.toString(xServerPid));
+                x = "X server cpu " + workbench;
+            }
+        } catch (IOException | IllegalArgumentException e) {
+            for (long pid : tree) {
+                try {
+                    run("taskset", "-a", "-p", "-c", join(allowed), Long.toString(pid));
+                } catch (IOException gone) {
+                    // ended meanwhile
+                }
+            }
+            return shared("taskset: " + e.getMessage());
+        }
+        return new CpuLayout("server and load cpu " + load + ", workbench cpu " + workbench + ", " + x, workbench);
+    }
+
+    /**
+     * The X server of this process's display: the pid in {@code /tmp/.X<n>-lock} for {@code DISPLAY=:<n>}.
+     *
+     * @return its pid, or -1 without a local display or lock file
+     */
+    static long xServerPid() {
+        String display = System.getenv("DISPLAY");
+        if (display == null || !display.matches(":\\d+(\\.\\d+)?")) {
+            return -1;
+        }
+        String n = display.substring(1).replaceFirst("\\..*", "");
+        try {
+            return Long.parseLong(java.nio.file.Files.readString(java.nio.file.Paths.get("/tmp/.X" + n + "-lock"))
+                    .strip());
+        } catch (IOException | NumberFormatException e) {
+            return -1;
+        }
     }
 
     /**

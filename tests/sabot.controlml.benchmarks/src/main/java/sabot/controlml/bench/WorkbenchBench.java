@@ -50,7 +50,8 @@ public final class WorkbenchBench {
     private int seconds = 30;
     private int warmupSeconds = 10;
     private boolean memory;
-    private boolean sharedCpus;
+    /** Where the processes run: {@code split} (default), {@code workbench-alone} or {@code shared}. */
+    private String layout = "split";
     private int minutes = 60;
     private double rate = 10;
     /** Velocity telemetry rate, Hz; negative: as {@link #rate}. */
@@ -58,6 +59,7 @@ public final class WorkbenchBench {
     private long seed = 1;
     private Path product;
     private Path out;
+    private CpuLayout cpus = CpuLayout.shared("not placed yet");
 
     public static void main(String[] args) throws Exception {
         WorkbenchBench b = new WorkbenchBench();
@@ -84,12 +86,20 @@ public final class WorkbenchBench {
                 case "--velocity-rate" -> { velocityRate = Double.parseDouble(need(a, v)); i++; }
                 case "--seed" -> { seed = Long.parseLong(need(a, v)); i++; }
                 case "--memory" -> memory = true;
-                case "--shared-cpus" -> sharedCpus = true;
+                case "--shared-cpus" -> layout = "shared";
+                case "--layout" -> {
+                    layout = need(a, v);
+                    if (!List.of("split", "workbench-alone", "shared").contains(layout)) {
+                        throw new IllegalArgumentException("--layout '" + layout + "': expected split, "
+                                + "workbench-alone or shared");
+                    }
+                    i++;
+                }
                 case "--product" -> { product = Paths.get(need(a, v)); i++; }
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--shared-cpus] "
+                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -140,7 +150,14 @@ public final class WorkbenchBench {
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
             // ./sabot bench controlml does; the load, the workbench (started by this JVM) and Xvfb on the others
-            CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
+            // --layout workbench-alone: the server and the load robots together, the workbench and Xvfb on the other
+            // CPU, for a frame time the 100 clients do not take the workbench's CPU from
+            CpuLayout cpus = switch (layout) {
+                case "shared" -> CpuLayout.shared("--layout shared");
+                case "workbench-alone" -> CpuLayout.workbenchAlone(server.pid(), CpuLayout.xServerPid());
+                default -> CpuLayout.split(server.pid());
+            };
+            this.cpus = cpus;
             System.out.println("[bench] CPUs: " + cpus.description());
             figures.put("cpu_layout", cpus.description());
             String operatorPw = "operator-pw";
@@ -202,7 +219,7 @@ public final class WorkbenchBench {
             cmd.add("-D" + "sabot.workbench.paintProbe" + "=" + probe);
         }
         cmd.addAll(List.of("-jar", launcher.toString(), "-consoleLog", "-data", ws.toString()));
-        ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true)
+        ProcessBuilder pb = new ProcessBuilder(cpus.wrap(cmd)).directory(product.toFile()).redirectErrorStream(true)
                 .redirectOutput(dir.resolve("workbench.log").toFile());
         Process p = pb.start();
         System.out.printf("[bench] workbench pid %d, log %s%n", p.pid(), dir.resolve("workbench.log"));

@@ -65,6 +65,37 @@ class CpuLayoutTest {
         }
     }
 
+    @Test
+    void workbenchAloneGivesTheServerAndTheLoadTheLastCpuAndTheStartedProcessesAndXTheOthers() throws Exception {
+        long self = ProcessHandle.current().pid();
+        List<Integer> before = CpuLayout.parseCpuList(answerFor(self));
+        Process server = new ProcessBuilder("sleep", "60").start();
+        Process x = new ProcessBuilder("sleep", "60").start();
+        try {
+            CpuLayout layout = CpuLayout.workbenchAlone(server.pid(), x.pid());
+            if (before.size() < 2) {
+                assertEquals("shared (1 CPU)", layout.description());
+                return;
+            }
+            List<Integer> last = List.of(before.get(before.size() - 1));
+            List<Integer> others = before.subList(0, before.size() - 1);
+            assertEquals(last, CpuLayout.parseCpuList(answerFor(server.pid())));
+            assertEquals(last, CpuLayout.parseCpuList(answerFor(self)));
+            assertEquals(others, CpuLayout.parseCpuList(answerFor(x.pid())));
+            List<String> wrapped = layout.wrap(List.of("java", "-version"));
+            assertEquals(List.of("taskset", "-c"), wrapped.subList(0, 2));
+            assertEquals(others, CpuLayout.parseCpuList(":" + wrapped.get(2)));
+            assertEquals(List.of("java", "-version"), wrapped.subList(3, 5));
+            assertTrue(layout.description().contains("workbench cpu "), layout.description());
+        } finally {
+            server.destroy();
+            x.destroy();
+            StringBuilder all = new StringBuilder();
+            before.forEach(c -> all.append(all.length() == 0 ? "" : ",").append(c));
+            new ProcessBuilder("taskset", "-a", "-p", "-c", all.toString(), Long.toString(self)).start().waitFor();
+        }
+    }
+
     private static String answerFor(long pid) {
         try {
             Process p = new ProcessBuilder("taskset", "-pc", Long.toString(pid)).redirectErrorStream(true).start();
