@@ -1,5 +1,6 @@
--- Private, loopback-only Prosody 0.12 instance for Sabot (./sabot xmpp, ./sabot demo and the JUnit fixture
--- sabot.testsupport.xmpp.PrivateXmppServer). Never start Prosody without --config pointing here.
+-- Private, loopback-only Prosody 0.12 instance for Sabot, started by product/bin/sabot-xmpp (behind ./sabot xmpp,
+-- ./sabot demo and the JUnit fixture sabot.testsupport.xmpp.PrivateXmppServer). Never start Prosody without --config
+-- pointing here.
 -- Everything comes from the environment (Prosody's ENV_<name> globals; Lua's os.getenv is not reachable):
 --   SABOT_XMPP_RUN        absolute state directory (a relative one makes Prosody 0.12.3 hang on start)
 --   SABOT_C2S_PORT        client port on 127.0.0.1 (default 15222)

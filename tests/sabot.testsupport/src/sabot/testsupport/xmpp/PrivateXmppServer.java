@@ -1,19 +1,16 @@
 package sabot.testsupport.xmpp;
 
 import java.io.IOException;
-import java.io.InputStream;
-import java.io.OutputStream;
 import java.io.UncheckedIOException;
+import java.lang.ProcessBuilder.Redirect;
 import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
-import java.net.Socket;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.Paths;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
@@ -47,22 +44,22 @@ import sabot.fleet.NoDelaySocketFactory;
  * XMPPTCPConnection alice = xmpp.login("alice");   // account created by in-band registration on first use
  * </pre>
  *
- * The server's configuration is the project's own ({@code product/xmpp/}), the same one {@code ./sabot xmpp} uses;
- * the MAM archive is kept in memory. The system-wide server is never touched: every start passes the private
- * configuration. Usable outside JUnit through {@link #start()} and {@link #close()}.
+ * The server is started, awaited and stopped by {@code product/bin/sabot-xmpp}, the script behind
+ * {@code ./sabot xmpp}: one implementation of the private server for the tests, the benchmarks and the demo. Its
+ * configuration is the project's own ({@code product/xmpp/}); the MAM archive is kept in memory. The system-wide
+ * server is never touched. Usable outside JUnit through {@link #start()} and {@link #close()}.
  */
 public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallback, AutoCloseable {
 
     /** The server implementations the fixture can run. */
     public enum Kind {
-        PROSODY("/usr/bin/prosody", "prosody"), EJABBERD("/usr/sbin/ejabberdctl", "ejabberd");
+        PROSODY("prosody"), EJABBERD("ejabberd");
 
-        final String executable;
-        final String debianPackage;
+        /** The name sabot-xmpp's {@code --server} takes, also the Debian package's. */
+        final String serverName;
 
-        Kind(String executable, String debianPackage) {
-            this.executable = executable;
-            this.debianPackage = debianPackage;
+        Kind(String serverName) {
+            this.serverName = serverName;
         }
     }
 
@@ -75,10 +72,15 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     private static final Duration READY_TIMEOUT = Duration.ofSeconds(60);
     private static final Duration STOP_GRACE = Duration.ofSeconds(3);
+    /** The script's own deadlines (ready, then stop after a failure: grace and SIGKILL) plus a margin. */
+    private static final Duration SCRIPT_TIMEOUT = READY_TIMEOUT.plusSeconds(30);
+    /** Where the script writes what it says (its log lines and, on failure, the server's), in the state directory. */
+    private static final String SCRIPT_LOG = "sabot-xmpp.log";
 
     private final Kind kind;
     private final List<XMPPTCPConnection> connections = new ArrayList<>();
-    private Process process;
+    /** The server's process id while it runs, else 0. */
+    private long pid;
     private Path runDir;
     private int port;
     private Duration startupTime;
@@ -113,32 +115,33 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         close();
     }
 
-    /** Starts the server and waits until it answers a client stream header with its stream features. */
+    /**
+     * Starts the server on a free port and waits until it answers a client stream header with its stream features.
+     *
+     * @throws IOException when the server exits, logs a fatal error or is not ready within 60 s; the message holds
+     *                     the reason and the end of the server's log, and the server is stopped
+     */
     public synchronized PrivateXmppServer start() throws IOException, InterruptedException {
-        if (process != null) {
+        return start(0);
+    }
+
+    /**
+     * Starts the server on port {@code c2sPort} of 127.0.0.1 (0: a free port), as {@link #start()}: for tests of
+     * what happens when the port is taken.
+     */
+    public synchronized PrivateXmppServer start(int c2sPort) throws IOException, InterruptedException {
+        if (pid != 0) {
             return this;
         }
-        if (!Files.isExecutable(Paths.get(kind.executable))) {
-            throw new IllegalStateException(kind.executable + " not found: install it with 'apt-get install -y "
-                    + kind.debianPackage + "' (or run ./sabot test as root, which installs it)");
-        }
-        Path root = repositoryRoot();
-        runDir = root.resolve("target/xmpp-run/" + kind.name().toLowerCase() + "-" + UUID.randomUUID().toString()
+        runDir = repositoryRoot().resolve("target/xmpp-run/" + kind.serverName + "-" + UUID.randomUUID().toString()
                 .substring(0, 8)).toAbsolutePath();
-        Files.createDirectories(runDir.resolve("data"));
-        Files.createDirectories(runDir.resolve("certs"));
-        port = freeLoopbackPort();
         long t0 = System.nanoTime();
-        process = switch (kind) {
-            case PROSODY -> startProsody(root);
-            case EJABBERD -> startEjabberd(root);
-        };
-        shutdownHook = new Thread(this::stopProcess, "stop-private-" + kind.debianPackage);
-        Runtime.getRuntime().addShutdownHook(shutdownHook);
-        awaitReady();
+        launch(c2sPort);
         startupTime = Duration.ofNanos(System.nanoTime() - t0);
-        System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d after %d ms, dir %s%n",
-                kind.debianPackage, process.pid(), port, startupTime.toMillis(), runDir);
+        shutdownHook = new Thread(this::stopProcess, "stop-private-" + kind.serverName);
+        Runtime.getRuntime().addShutdownHook(shutdownHook);
+        System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d after %d ms, dir %s%n", kind.serverName,
+                pid, port, startupTime.toMillis(), runDir);
         return this;
     }
 
@@ -153,110 +156,81 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     /** Starts the server stopped by {@link #stopServer()} again, on the same port with the same state. */
     public synchronized PrivateXmppServer restart() throws IOException, InterruptedException {
-        if (process != null) {
+        if (pid != 0) {
             return this;
         }
         if (runDir == null) {
             return start();
         }
-        Path root = repositoryRoot();
-        process = switch (kind) {
-            case PROSODY -> startProsody(root);
-            case EJABBERD -> startEjabberd(root);
-        };
-        awaitReady();
-        System.out.printf("[xmpp] private %s pid %d restarted on 127.0.0.1:%d%n", kind.debianPackage, process.pid(),
-                port);
+        launch(port);
+        System.out.printf("[xmpp] private %s pid %d restarted on 127.0.0.1:%d%n", kind.serverName, pid, port);
         return this;
     }
 
-    private Process startProsody(Path root) throws IOException {
-        ProcessBuilder pb = new ProcessBuilder(kind.executable, "--config",
-                root.resolve("product/xmpp/prosody.cfg.lua").toString(), "-F");
-        Map<String, String> env = pb.environment();
-        env.put("SABOT_XMPP_RUN", runDir.toString());
-        env.put("SABOT_C2S_PORT", Integer.toString(port));
-        env.put("SABOT_ARCHIVE_STORE", "memory");
-        env.put("SABOT_DOMAIN", DOMAIN);
-        env.put("SABOT_DOMAIN2", SECOND_DOMAIN);
-        if ("root".equals(System.getProperty("user.name"))) {
-            env.put("SABOT_RUN_AS_ROOT", "1"); // Prosody refuses root, and then hangs, without run_as_root
+    /** Runs {@code sabot-xmpp start} and takes the server's pid and port from the line it prints when ready. */
+    private void launch(int c2sPort) throws IOException, InterruptedException {
+        Files.createDirectories(runDir);
+        Path log = runDir.resolve(SCRIPT_LOG);
+        Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
+                Integer.toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT
+                        .toSeconds())).redirectError(log.toFile()).start();
+        script.getOutputStream().close();
+        // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
+        // session, has its output in its state directory: nothing of it holds this pipe open
+        String out = new String(script.getInputStream().readAllBytes(), StandardCharsets.UTF_8).trim();
+        int status = awaitScript(script);
+        if (status != 0) {
+            throw new IOException("private " + kind.serverName + " did not start: " + failure(log) + "\n"
+                    + tail(log));
         }
-        pb.redirectErrorStream(true).redirectOutput(runDir.resolve("console.log").toFile());
-        return pb.start();
-    }
-
-    private Process startEjabberd(Path root) throws IOException {
-        int distPort = freeLoopbackPort();
-        String suffix = runDir.getFileName().toString().replace('-', '_');
-        Path template = root.resolve("product/xmpp");
-        Files.writeString(runDir.resolve("ejabberd.yml"), Files.readString(template.resolve("ejabberd.yml.in"))
-                .replace("@C2S_PORT@", Integer.toString(port)));
-        Files.writeString(runDir.resolve("ejabberdctl.cfg"), Files.readString(template.resolve(
-                "ejabberdctl.cfg.in")).replace("@NODE@", suffix + "@localhost")
-                .replace("@DIST_PORT@", Integer.toString(distPort)).replace("@COOKIE@", "c" + UUID.randomUUID()
-                        .toString().replace("-", "")));
-        Files.copy(Paths.get("/etc/ejabberd/inetrc"), runDir.resolve("inetrc"),
-                java.nio.file.StandardCopyOption.REPLACE_EXISTING); // (again on a restart)
-        // The packaged control script only runs as root or 'ejabberd' and then su's to 'ejabberd', which cannot
-        // write our directories. A private copy with INSTALLUSER emptied runs as the current user.
-        Path ctl = runDir.resolve("ejabberdctl");
-        Files.writeString(ctl, Files.readString(Paths.get(kind.executable)).replaceFirst("(?m)^INSTALLUSER=.*$",
-                "INSTALLUSER="));
-        ctl.toFile().setExecutable(true);
-        Files.createDirectories(runDir.resolve("spool"));
-        Files.createDirectories(runDir.resolve("logs"));
-        ProcessBuilder pb = new ProcessBuilder(ctl.toString(), "--config-dir", runDir.toString(), "--config",
-                runDir.resolve("ejabberd.yml").toString(), "--spool", runDir.resolve("spool").toString(), "--logs",
-                runDir.resolve("logs").toString(), "foreground");
-        pb.environment().put("HOME", runDir.toString());
-        pb.environment().put("EJABBERD_PID_PATH", runDir.resolve("ejabberd.pid").toString());
-        pb.redirectErrorStream(true).redirectOutput(runDir.resolve("console.log").toFile());
-        return pb.start();
-    }
-
-    /** Readiness = the c2s listener answers a stream header with {@code </stream:features>}. */
-    private void awaitReady() throws IOException, InterruptedException {
-        long deadline = System.nanoTime() + READY_TIMEOUT.toNanos();
-        byte[] header = ("<?xml version='1.0'?><stream:stream to='" + DOMAIN + "' version='1.0' "
-                + "xmlns='jabber:client' xmlns:stream='http://etherx.jabber.org/streams'>")
-                .getBytes(StandardCharsets.UTF_8);
-        while (System.nanoTime() < deadline) {
-            if (!process.isAlive()) {
-                throw new IOException(kind.debianPackage + " exited with status " + process.exitValue()
-                        + " before it was ready; see " + runDir.resolve("console.log") + ": " + tail("console.log"));
+        Map<String, String> ready = new HashMap<>();
+        for (String field : out.substring(out.lastIndexOf('\n') + 1).split(" ")) {
+            int eq = field.indexOf('=');
+            if (eq > 0) {
+                ready.put(field.substring(0, eq), field.substring(eq + 1));
             }
-            try (Socket s = new Socket()) {
-                s.connect(new InetSocketAddress(InetAddress.getLoopbackAddress(), port), 500);
-                s.setSoTimeout(2000);
-                OutputStream out = s.getOutputStream();
-                out.write(header);
-                out.flush();
-                InputStream in = s.getInputStream();
-                StringBuilder reply = new StringBuilder();
-                byte[] buf = new byte[4096];
-                int n;
-                while ((n = in.read(buf)) > 0) {
-                    reply.append(new String(buf, 0, n, StandardCharsets.UTF_8));
-                    if (reply.indexOf("</stream:features>") >= 0) {
-                        return;
-                    }
-                }
-            } catch (IOException notYet) {
-                // listener not open yet: retry below
-            }
-            // Polling an external process's socket: there is no event to wait on.
-            TimeUnit.MILLISECONDS.sleep(10);
         }
-        stopProcess();
-        throw new IOException(kind.debianPackage + " not ready within " + READY_TIMEOUT.toSeconds() + " s; see "
-                + runDir);
-    }
-
-    private String tail(String file) {
         try {
-            String s = Files.readString(runDir.resolve(file));
-            return s.substring(Math.max(0, s.length() - 2000));
+            pid = Long.parseLong(ready.get("pid"));
+            port = Integer.parseInt(ready.get("port"));
+        } catch (NumberFormatException | NullPointerException e) {
+            throw new IOException("sabot-xmpp start printed no 'pid=N port=N' line but '" + out + "'; see " + log, e);
+        }
+    }
+
+    /** The script's {@code [sabot] error:} line, the reason it gives for a failure. */
+    private static String failure(Path log) {
+        try {
+            return Files.readAllLines(log).stream().filter(l -> l.startsWith("[sabot] error: ")).reduce((a, b) -> b)
+                    .map(l -> l.substring("[sabot] error: ".length())).orElse("(no reason given; see " + log + ")");
+        } catch (IOException e) {
+            return "(no " + log + ")";
+        }
+    }
+
+    private ProcessBuilder script(String... arguments) {
+        Path script = repositoryRoot().resolve("product/bin/sabot-xmpp");
+        if (!Files.isExecutable(script)) {
+            throw new IllegalStateException(script + " is missing or not executable");
+        }
+        List<String> command = new ArrayList<>();
+        command.add(script.toString());
+        command.addAll(List.of(arguments));
+        return new ProcessBuilder(command);
+    }
+
+    private static int awaitScript(Process script) throws InterruptedException {
+        if (!script.waitFor(SCRIPT_TIMEOUT.toMillis(), TimeUnit.MILLISECONDS)) {
+            script.destroyForcibly();
+            script.waitFor();
+        }
+        return script.exitValue();
+    }
+
+    private static String tail(Path file) {
+        try {
+            String s = Files.readString(file);
+            return s.substring(Math.max(0, s.length() - 4000));
         } catch (IOException e) {
             return "(no " + file + ")";
         }
@@ -277,14 +251,14 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return runDir;
     }
 
-    /** @return time from process start to the first stream features */
+    /** @return time from the start (sabot-xmpp start) to the first stream features */
     public Duration startupTime() {
         return startupTime;
     }
 
     /** @return the operating-system process id of the server */
     public long pid() {
-        return process.pid();
+        return pid;
     }
 
     /**
@@ -382,33 +356,27 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         }
     }
 
+    /** Stops the server with {@code sabot-xmpp stop}: SIGTERM to its process group, SIGKILL after 3 s. */
     private void stopProcess() {
-        Process p = process;
-        if (p == null) {
+        if (pid == 0) {
             return;
         }
-        // ejabberd's control script runs the Erlang VM as a child: stop the whole tree.
-        List<ProcessHandle> tree = new ArrayList<>(p.descendants().toList());
-        tree.forEach(ProcessHandle::destroy);
-        p.destroy();
+        int status;
         try {
-            if (!p.waitFor(STOP_GRACE.toMillis(), TimeUnit.MILLISECONDS)) {
-                p.destroyForcibly();
-                p.waitFor(STOP_GRACE.toMillis(), TimeUnit.MILLISECONDS);
-            }
+            Process stop = script("stop", "--run", runDir.toString(), "--grace", Long.toString(STOP_GRACE
+                    .toSeconds())).redirectErrorStream(true).redirectOutput(Redirect.appendTo(runDir.resolve(
+                            SCRIPT_LOG).toFile())).start();
+            stop.getOutputStream().close();
+            status = awaitScript(stop);
+        } catch (IOException e) {
+            throw new UncheckedIOException("could not run sabot-xmpp stop for " + runDir, e);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
-            p.destroyForcibly();
+            throw new IllegalStateException("interrupted while stopping the server of " + runDir, e);
         }
-        tree.stream().filter(ProcessHandle::isAlive).forEach(ProcessHandle::destroyForcibly);
-        System.out.printf("[xmpp] private %s pid %d stopped, alive=%s%n", kind.debianPackage, p.pid(), p.isAlive());
-        process = null;
-    }
-
-    private static int freeLoopbackPort() throws IOException {
-        try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            return s.getLocalPort();
-        }
+        System.out.printf("[xmpp] private %s pid %d stopped%s%n", kind.serverName, pid, status == 0 ? ""
+                : ": sabot-xmpp stop failed with status " + status + ", see " + runDir.resolve(SCRIPT_LOG));
+        pid = 0;
     }
 
     /** The repository root: system property {@code sabot.root}, else the nearest parent holding product/xmpp. */

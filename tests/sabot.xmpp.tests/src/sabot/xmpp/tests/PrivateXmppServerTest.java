@@ -1,0 +1,117 @@
+package sabot.xmpp.tests;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.List;
+
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.junit.jupiter.api.Test;
+
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * The private server itself (product/bin/sabot-xmpp through the fixture): a server that cannot start fails fast with
+ * the server's own reason and leaves nothing running; a stopped server comes back with its accounts.
+ */
+class PrivateXmppServerTest {
+
+    /** Far below the 60 s ready timeout: the failure is seen in the server's exit or log, not by waiting it out. */
+    private static final Duration FAILS_WITHIN = Duration.ofSeconds(20);
+
+    @Test
+    void prosodyOnATakenPortFailsWithItsLogLine() throws Exception {
+        assertStartFailsOnATakenPort(PrivateXmppServer.Kind.PROSODY, "this port is in use by another application");
+    }
+
+    @Test
+    void ejabberdOnATakenPortFailsWithItsLogLine() throws Exception {
+        assertStartFailsOnATakenPort(PrivateXmppServer.Kind.EJABBERD, "address already in use");
+    }
+
+    /**
+     * Another program listens on the port and never answers: Prosody logs an error and keeps running without a
+     * listener, ejabberd exits. Either way the start must fail quickly, give the server's reason, and stop it.
+     */
+    private static void assertStartFailsOnATakenPort(PrivateXmppServer.Kind kind, String reason) throws Exception {
+        try (ServerSocket taken = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            PrivateXmppServer server = PrivateXmppServer.of(kind);
+            long t0 = System.nanoTime();
+            IOException e = assertThrows(IOException.class, () -> server.start(taken.getLocalPort()));
+            Duration took = Duration.ofNanos(System.nanoTime() - t0);
+            assertTrue(took.compareTo(FAILS_WITHIN) < 0, "failed after " + took.toMillis() + " ms");
+            String message = e.getMessage();
+            assertTrue(message.startsWith("private " + kind.name().toLowerCase() + " did not start: "), message);
+            assertTrue(message.contains("127.0.0.1:" + taken.getLocalPort()), message);
+            assertTrue(message.contains(reason), message);
+            assertEquals(List.of(), processesOf(server.runDir()), "server processes left running");
+            server.close(); // nothing to stop: must not fail
+        }
+    }
+
+    @Test
+    void prosodyRestartsOnItsPortWithItsAccounts() throws Exception {
+        try (PrivateXmppServer server = PrivateXmppServer.prosody().start()) {
+            int port = server.port();
+            long firstPid = server.pid();
+            server.login("alice").disconnect();
+            server.stopServer();
+            assertFalse(running(firstPid), "server still running after stopServer()");
+            server.restart();
+            assertEquals(port, server.port());
+            assertTrue(firstPid != server.pid(), "same pid after a restart");
+            // alice is still there: a login with her password works
+            XMPPTCPConnection alice = server.connect(server.configuration("alice", PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).build());
+            assertTrue(alice.isAuthenticated());
+        }
+    }
+
+    /**
+     * The live processes of a state directory: ejabberd's name it on their command line, Prosody's in their
+     * environment (SABOT_XMPP_RUN).
+     */
+    private static List<String> processesOf(Path runDir) {
+        String dir = runDir.toString();
+        byte[] env = ("SABOT_XMPP_RUN=" + dir + "\0").getBytes(StandardCharsets.UTF_8);
+        return ProcessHandle.allProcesses().filter(p -> running(p.pid())).filter(p -> p.info().commandLine().map(
+                c -> c.contains(dir)).orElse(false) || contains(read(Path.of("/proc/" + p.pid() + "/environ")), env))
+                .map(p -> p.pid() + " " + p.info().commandLine().orElse("")).toList();
+    }
+
+    /** Whether process {@code pid} runs (a zombie does not: whatever runs as pid 1 may be slow to reap it). */
+    private static boolean running(long pid) {
+        String stat = new String(read(Path.of("/proc/" + pid + "/stat")), StandardCharsets.UTF_8);
+        int end = stat.lastIndexOf(") ");
+        return end > 0 && end + 2 < stat.length() && stat.charAt(end + 2) != 'Z';
+    }
+
+    private static byte[] read(Path file) {
+        try {
+            return Files.readAllBytes(file);
+        } catch (IOException | SecurityException gone) {
+            return new byte[0];
+        }
+    }
+
+    private static boolean contains(byte[] haystack, byte[] needle) {
+        outer: for (int i = 0; i + needle.length <= haystack.length; i++) {
+            for (int j = 0; j < needle.length; j++) {
+                if (haystack[i + j] != needle[j]) {
+                    continue outer;
+                }
+            }
+            return true;
+        }
+        return false;
+    }
+}
