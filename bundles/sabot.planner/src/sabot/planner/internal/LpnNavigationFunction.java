@@ -638,7 +638,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
             final int[] touched = this.touched;
             int head = 0;
             int counted = 0;
-            // a repair's pushes may land in the bucket being expanded: expand it again up to its new end
+            // cells may be queued into the bucket being expanded (one lowered by the straight diagonal from a low
+            // corner lands at or below the current bucket; a repair's re-expansions): expand it again up to its new end
             for (int end = bucketSizes[slot]; head < end; end = bucketSizes[slot]) {
                 fillBound += pushed - counted;
                 counted = pushed;
