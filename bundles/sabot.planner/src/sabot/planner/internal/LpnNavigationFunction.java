@@ -67,6 +67,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private static final float BUCKET_MARGIN = 0.99f;
 
     private static final int INITIAL_BUCKET_CAPACITY = 1024;
+    /** Most cells one expansion queues: its four axis neighbours. */
+    private static final int PUSHES_PER_CELL = 4;
+    /** Most cells one expansion of a repair queues: its own four and those of four re-expanded neighbours. */
+    private static final int PUSHES_PER_REPAIRED_CELL = 20;
     /**
      * First excess of the focused propagation's bound over c_min times the straight distance from the start to the
      * nearest goal (see {@link #computeFocused}): 5 %; random grids between opposite corners need 4 %.
@@ -104,6 +108,11 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int[] buckets;
     private int bucketShift;
     private final int[] bucketSizes;
+    /**
+     * At least the largest {@link #bucketSizes} entry: room in the ring is made before a bucket is expanded (see
+     * {@link #makeRoom}) from this bound, which is recomputed exactly only when it says the ring may be too small.
+     */
+    private int fillBound;
     private final float minDensity;
 
     private PlanningGrid grid;
@@ -263,6 +272,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         deferred = 0;
         currentBucket = 0;
         Arrays.fill(bucketSizes, 0);
+        fillBound = 0;
         for (int goal : goals) {
             if (potential[goal] == UNREACHED) {
                 if (touchedCount < touched.length) {
@@ -446,6 +456,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
         queued = 0;
         Arrays.fill(bucketSizes, 0);
+        fillBound = 0;
         currentBucket = Integer.MAX_VALUE;
         for (int i = 0; i < invalidCount; i++) {
             int cell = invalid[i];
@@ -626,59 +637,78 @@ public final class LpnNavigationFunction implements AutoCloseable {
             int record = touchedCount;
             final int[] touched = this.touched;
             int head = 0;
-            for (; head < bucketSizes[slot]; head++) {
-                int cell = buckets[(slot << bucketShift) + head];
-                int bits = potential[cell];
-                if (bits < 0) {
-                    continue;
-                }
-                if (record < touched.length) {
-                    touched[record] = cell;
-                }
-                record++;
-                float value = Float.intBitsToFloat(bits);
-                if (value > focusFrom && outsideFocus(cell, value, stride, inverseStride)) {
-                    deferredHere++; // reached (recorded for the reset), left out
-                    continue;
-                }
-                potential[cell] = bits | FINAL;
-                finalized++;
-                if (cell == stopAtCell) {
-                    stopAbove = value + 2 * SQRT2 * maxDensity;
-                }
-                // expand(cell, ...) written out: the hot loop stays one compiled method with relax inlined
-                float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
-                int eastBits = potential[cell + 1];
-                int westBits = potential[cell - 1];
-                int northBits = potential[cell + stride];
-                int southBits = potential[cell - stride];
-                float northValue = decode(northBits);
-                float southValue = decode(southBits);
-                float eastValue = decode(eastBits);
-                float westValue = decode(westBits);
-                float northSouthCorner = northValue < southValue ? northValue : southValue;
-                float eastWestCorner = eastValue < westValue ? eastValue : westValue;
-                if (eastBits >= 0) {
-                    pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
-                }
-                if (westBits >= 0) {
-                    pushed += relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
-                }
-                if (northBits >= 0) {
-                    pushed += relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
-                }
-                if (southBits >= 0) {
-                    pushed += relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
-                }
-                if (repairing) {
-                    // a repaired cell is also the corner of triangles through its final axis neighbours, which a
-                    // fresh computation would expand after it: let them see its new value
-                    pushed += reexpand(cell + 1, value, potential, costs, stride);
-                    pushed += reexpand(cell - 1, value, potential, costs, stride);
-                    pushed += reexpand(cell + stride, value, potential, costs, stride);
-                    pushed += reexpand(cell - stride, value, potential, costs, stride);
+            int counted = 0;
+            // cells may be queued into the bucket being expanded (one lowered by the straight diagonal from a low
+            // corner lands at or below the current bucket; a repair's re-expansions): expand it again up to its new end
+            for (int end = bucketSizes[slot]; head < end; end = bucketSizes[slot]) {
+                fillBound += pushed - counted;
+                counted = pushed;
+                makeRoom((end - head) * (repairing ? PUSHES_PER_REPAIRED_CELL : PUSHES_PER_CELL));
+                // the ring cannot grow while the bucket is expanded, so its array and shift are loop invariants in
+                // registers: a growth call inside the loop (compiled in once a computation had to grow) made C2 reload
+                // them at every update, 20-25 % slower on 1000 x 1000 after a run on 2000 x 2000 had grown the ring
+                final int[] buckets = this.buckets;
+                final int shift = bucketShift;
+                final int current = currentBucket;
+                for (; head < end; head++) {
+                    int cell = buckets[(slot << shift) + head];
+                    int bits = potential[cell];
+                    if (bits < 0) {
+                        continue;
+                    }
+                    if (record < touched.length) {
+                        touched[record] = cell;
+                    }
+                    record++;
+                    float value = Float.intBitsToFloat(bits);
+                    if (value > focusFrom && outsideFocus(cell, value, stride, inverseStride)) {
+                        deferredHere++; // reached (recorded for the reset), left out
+                        continue;
+                    }
+                    potential[cell] = bits | FINAL;
+                    finalized++;
+                    if (cell == stopAtCell) {
+                        stopAbove = value + 2 * SQRT2 * maxDensity;
+                    }
+                    // expand(cell, ...) written out: the hot loop stays one compiled method with relax inlined
+                    float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
+                    int eastBits = potential[cell + 1];
+                    int westBits = potential[cell - 1];
+                    int northBits = potential[cell + stride];
+                    int southBits = potential[cell - stride];
+                    float northValue = decode(northBits);
+                    float southValue = decode(southBits);
+                    float eastValue = decode(eastBits);
+                    float westValue = decode(westBits);
+                    float northSouthCorner = northValue < southValue ? northValue : southValue;
+                    float eastWestCorner = eastValue < westValue ? eastValue : westValue;
+                    if (eastBits >= 0) {
+                        pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity,
+                                costs, buckets, shift, current);
+                    }
+                    if (westBits >= 0) {
+                        pushed += relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity,
+                                costs, buckets, shift, current);
+                    }
+                    if (northBits >= 0) {
+                        pushed += relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity,
+                                costs, buckets, shift, current);
+                    }
+                    if (southBits >= 0) {
+                        pushed += relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity,
+                                costs, buckets, shift, current);
+                    }
+                    if (repairing) {
+                        // a repaired cell is also the corner of triangles through its final axis neighbours, which a
+                        // fresh computation would expand after it: let them see its new value
+                        pushed += reexpand(cell + 1, value, potential, costs, stride);
+                        pushed += reexpand(cell - 1, value, potential, costs, stride);
+                        pushed += reexpand(cell + stride, value, potential, costs, stride);
+                        pushed += reexpand(cell - stride, value, potential, costs, stride);
+                    }
                 }
             }
+            fillBound += pushed - counted;
             queued += pushed - head;
             touchedCount = record;
             bucketSizes[slot] = 0;
@@ -792,16 +822,20 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float northSouthCorner = northValue < southValue ? northValue : southValue;
         float eastWestCorner = eastValue < westValue ? eastValue : westValue;
         if (eastBits >= 0) {
-            pushed += relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs, buckets,
+                    bucketShift, currentBucket);
         }
         if (westBits >= 0) {
-            pushed += relax(west, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(west, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs, buckets,
+                    bucketShift, currentBucket);
         }
         if (northBits >= 0) {
-            pushed += relax(north, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(north, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs, buckets,
+                    bucketShift, currentBucket);
         }
         if (southBits >= 0) {
-            pushed += relax(south, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs);
+            pushed += relax(south, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs, buckets,
+                    bucketShift, currentBucket);
         }
         return pushed;
     }
@@ -821,7 +855,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * queued when it stops), not here.
      */
     private int relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
-            float[] halfDensity, byte[] costs) {
+            float[] halfDensity, byte[] costs, int[] buckets, int shift, int currentBucket) {
         float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
         int bestBits = Float.floatToRawIntBits(best);
         boolean improved = bestBits < targetBits;
@@ -834,10 +868,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         potential[target] = Math.min(targetBits, bestBits);
         int slot = Math.max(bucket, currentBucket) & bucketMask;
         int size = bucketSizes[slot];
-        if (size == 1 << bucketShift) {
-            growBuckets();
-        }
-        buckets[(slot << bucketShift) + size] = target;
+        buckets[(slot << shift) + size] = target;
         bucketSizes[slot] = size + queue;
         return queue;
     }
@@ -876,7 +907,26 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
         buckets[(slot << bucketShift) + size] = cell;
         bucketSizes[slot] = size + 1;
+        fillBound = Math.max(fillBound, size + 1);
         queued++;
+    }
+
+    /**
+     * Grows the ring, if needed, so that every bucket has room for {@code pushes} more cells (and the slot
+     * {@link #relax} writes without queueing): the hot loop then never checks for room.
+     */
+    private void makeRoom(int pushes) {
+        if (fillBound + pushes < 1 << bucketShift) {
+            return;
+        }
+        int fill = 0;
+        for (int size : bucketSizes) {
+            fill = Math.max(fill, size);
+        }
+        fillBound = fill;
+        while (fillBound + pushes >= 1 << bucketShift) {
+            growBuckets();
+        }
     }
 
     /** Doubles the capacity of every bucket of the ring. */
