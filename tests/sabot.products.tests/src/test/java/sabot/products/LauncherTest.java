@@ -69,7 +69,7 @@ class LauncherTest {
             assertTrue(start.output().contains("ready"), start.output());
             Result status = sabot(env, "xmpp", "status");
             assertEquals(0, status.status(), status.output());
-            assertTrue(status.output().contains("running: pid") && status.output().contains("127.0.0.1:" + port),
+            assertTrue(status.output().contains("running: prosody, pid") && status.output().contains("127.0.0.1:" + port),
                     status.output());
             try (java.net.Socket s = new java.net.Socket(InetAddress.getLoopbackAddress(), port)) {
                 assertTrue(s.isConnected());
