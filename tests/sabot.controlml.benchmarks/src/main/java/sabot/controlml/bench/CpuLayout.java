@@ -55,49 +55,69 @@ final class CpuLayout {
         return new CpuLayout("shared (" + why + ")");
     }
 
-    /**
-     * Puts the server (and its descendants) on the last CPU this JVM may use and this JVM on the others.
-     *
-     * @return the layout, or {@link #shared} with the reason when fewer than two CPUs are allowed or taskset fails
-     */
-    static CpuLayout split(long serverPid) {
-        long self = ProcessHandle.current().pid();
-        List<Integer> allowed;
-        try {
-            allowed = parseCpuList(run("taskset", "-pc", Long.toString(self)));
-        } catch (IOException | IllegalArgumentException e) {
-            return shared("taskset: " + e.getMessage());
-        }
-        if (allowed.size() < 2) {
-            return shared(allowed.size() + " CPU");
-        }
-        int server = allowed.get(allowed.size() - 1);
-        String clients = join(allowed.subList(0, allowed.size() - 1));
-        ProcessHandle serverProcess = ProcessHandle.of(serverPid).filter(ProcessHandle::isAlive).orElse(null);
-        if (serverProcess == null) {
-            return shared("no server process " + serverPid);
-        }
-        List<Long> tree = new ArrayList<>();
-        tree.add(serverPid);
-        serverProcess.descendants().forEach(d -> tree.add(d.pid()));
-        try {
-            for (long pid : tree) {
-                run("taskset", "-a", "-p", "-c", Integer.toString(server), Long.toString(pid));
+    /** The CPUs this JVM may use and the server's process tree; or, when the layout cannot be made, why. */
+    private record Placement(List<Integer> allowed, List<Long> serverTree, CpuLayout refused) {
+
+        static Placement of(long serverPid) {
+            List<Integer> allowed;
+            try {
+                allowed = parseCpuList(run("taskset", "-pc", Long.toString(ProcessHandle.current().pid())));
+            } catch (IOException | IllegalArgumentException e) {
+                return failed(CpuLayout.shared("taskset: " + e.getMessage()));
             }
-            // taskset -a exits 0 for a process that ended meanwhile: read the server's CPUs back
-            if (!parseCpuList(run("taskset", "-pc", Long.toString(serverPid))).equals(List.of(server))) {
-                throw new IOException("the server did not move to cpu " + server);
+            if (allowed.size() < 2) {
+                return failed(CpuLayout.shared(allowed.size() + " CPU"));
             }
-            run("taskset", "-a", "-p", "-c", clients, Long.toString(self));
-        } catch (IOException | IllegalArgumentException e) {
-            for (long pid : tree) { // give the server back every CPU, so that the report's "shared" holds
+            ProcessHandle server = ProcessHandle.of(serverPid).filter(ProcessHandle::isAlive).orElse(null);
+            if (server == null) {
+                return failed(CpuLayout.shared("no server process " + serverPid));
+            }
+            List<Long> tree = new ArrayList<>();
+            tree.add(serverPid);
+            server.descendants().forEach(d -> tree.add(d.pid()));
+            return new Placement(allowed, tree, null);
+        }
+
+        private static Placement failed(CpuLayout refused) {
+            return new Placement(null, null, refused);
+        }
+
+        /** Gives every allowed CPU back to {@code pids}, so that the report's "shared" holds after a failure. */
+        CpuLayout undo(List<Long> pids, Exception why) {
+            for (long pid : pids) {
                 try {
                     run("taskset", "-a", "-p", "-c", join(allowed), Long.toString(pid));
                 } catch (IOException gone) {
                     // ended meanwhile
                 }
             }
-            return shared("taskset: " + e.getMessage());
+            return CpuLayout.shared("taskset: " + why.getMessage());
+        }
+    }
+
+    /**
+     * Puts the server (and its descendants) on the last CPU this JVM may use and this JVM on the others.
+     *
+     * @return the layout, or {@link #shared} with the reason when fewer than two CPUs are allowed or taskset fails
+     */
+    static CpuLayout split(long serverPid) {
+        Placement p = Placement.of(serverPid);
+        if (p.refused() != null) {
+            return p.refused();
+        }
+        int server = p.allowed().get(p.allowed().size() - 1);
+        String clients = join(p.allowed().subList(0, p.allowed().size() - 1));
+        try {
+            for (long pid : p.serverTree()) {
+                run("taskset", "-a", "-p", "-c", Integer.toString(server), Long.toString(pid));
+            }
+            // taskset -a exits 0 for a process that ended meanwhile: read the server's CPUs back
+            if (!parseCpuList(run("taskset", "-pc", Long.toString(serverPid))).equals(List.of(server))) {
+                throw new IOException("the server did not move to cpu " + server);
+            }
+            run("taskset", "-a", "-p", "-c", clients, Long.toString(ProcessHandle.current().pid()));
+        } catch (IOException | IllegalArgumentException e) {
+            return p.undo(p.serverTree(), e);
         }
         return new CpuLayout("server cpu " + server + ", clients cpu " + clients);
     }
@@ -113,29 +133,17 @@ final class CpuLayout {
      * @return the layout, or {@link #shared} with the reason when fewer than two CPUs are allowed or taskset fails
      */
     static CpuLayout workbenchAlone(long serverPid, long xServerPid) {
-        long self = ProcessHandle.current().pid();
-        List<Integer> allowed;
-        try {
-            allowed = parseCpuList(run("taskset", "-pc", Long.toString(self)));
-        } catch (IOException | IllegalArgumentException e) {
-            return shared("taskset: " + e.getMessage());
+        Placement p = Placement.of(serverPid);
+        if (p.refused() != null) {
+            return p.refused();
         }
-        if (allowed.size() < 2) {
-            return shared(allowed.size() + " CPU");
-        }
-        String load = Integer.toString(allowed.get(allowed.size() - 1));
-        String workbench = join(allowed.subList(0, allowed.size() - 1));
-        ProcessHandle serverProcess = ProcessHandle.of(serverPid).filter(ProcessHandle::isAlive).orElse(null);
-        if (serverProcess == null) {
-            return shared("no server process " + serverPid);
-        }
-        List<Long> tree = new ArrayList<>();
-        tree.add(serverPid);
-        tree.add(self);
-        serverProcess.descendants().forEach(d -> tree.add(d.pid()));
+        String load = Integer.toString(p.allowed().get(p.allowed().size() - 1));
+        String workbench = join(p.allowed().subList(0, p.allowed().size() - 1));
+        List<Long> moved = new ArrayList<>(p.serverTree());
+        moved.add(ProcessHandle.current().pid());
         String x = "X server not found";
         try {
-            for (long pid : tree) {
+            for (long pid : moved) {
                 run("taskset", "-a", "-p", "-c", load, Long.toString(pid));
             }
             if (xServerPid > 0 && ProcessHandle.of(xServerPid).isPresent()) {
@@ -143,14 +151,7 @@ final class CpuLayout {
                 x = "X server cpu " + workbench;
             }
         } catch (IOException | IllegalArgumentException e) {
-            for (long pid : tree) {
-                try {
-                    run("taskset", "-a", "-p", "-c", join(allowed), Long.toString(pid));
-                } catch (IOException gone) {
-                    // ended meanwhile
-                }
-            }
-            return shared("taskset: " + e.getMessage());
+            return p.undo(moved, e);
         }
         return new CpuLayout("server and load cpu " + load + ", workbench cpu " + workbench + ", " + x, workbench);
     }
