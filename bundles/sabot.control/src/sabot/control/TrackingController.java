@@ -1,5 +1,7 @@
 package sabot.control;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.path.TrajectorySample;
@@ -19,6 +21,7 @@ import sabot.model.path.TrajectorySample;
  * Implementations: {@link Controllers#pseudoinverse}, {@link Controllers#dynamicFeedbackLinearization},
  * {@link Controllers#dflPointStabilization}.
  */
+@ProviderType
 public interface TrackingController {
 
     /**

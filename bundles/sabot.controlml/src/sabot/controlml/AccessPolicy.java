@@ -1,12 +1,14 @@
 package sabot.controlml;
 
 import org.jxmpp.jid.Jid;
+import org.osgi.annotation.versioning.ConsumerType;
 
 /**
  * Decides what a requester may do; consulted by the endpoint before any handler runs. Implementations must be
  * thread-safe and fast (called once per request).
  */
 @FunctionalInterface
+@ConsumerType
 public interface AccessPolicy {
 
     /** Everyone may get and set: for tests and closed labs only. */

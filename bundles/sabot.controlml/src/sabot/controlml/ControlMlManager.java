@@ -34,6 +34,7 @@ import org.jivesoftware.smackx.delay.DelayInformationManager;
 import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
+import org.osgi.annotation.versioning.ConsumerType;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -177,6 +178,7 @@ public final class ControlMlManager extends Manager {
 
     /** Called for every ControlML answer that matched no request of this client (after it was logged and dropped). */
     @FunctionalInterface
+    @ConsumerType
     public interface UnsolicitedAnswerListener {
         /**
          * @param from    the sender

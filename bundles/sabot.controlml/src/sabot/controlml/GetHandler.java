@@ -1,5 +1,7 @@
 package sabot.controlml;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 /**
  * Serves gets of one resource on a device. Runs on the connection's ordered request thread: return quickly.
  *
@@ -7,6 +9,7 @@ package sabot.controlml;
  * @param <Q> the get's query ({@link sabot.controlml.payload.NoQuery#NONE} when it takes none)
  */
 @FunctionalInterface
+@ConsumerType
 public interface GetHandler<T, Q> {
 
     /**

@@ -3,11 +3,14 @@ package sabot.controlml;
 import java.util.Objects;
 import java.util.function.Function;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * The result of a ControlML request, or of a handler serving one: a value or an error, never an exception.
  *
  * @param <T> the resource's payload type
  */
+@ProviderType
 public sealed interface Outcome<T> permits Outcome.Success, Outcome.Failure {
 
     /**

@@ -7,6 +7,8 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * The resources one ControlML endpoint knows: those of the protocol (section 4, {@link Resources}), registered when the
  * registry is made, and those other bundles add with {@link #register}, each with its codecs (the pattern of Smack's
@@ -33,6 +35,7 @@ public final class ResourceRegistry {
 
     /** Ends a registration made by {@link #register}. */
     @FunctionalInterface
+    @ProviderType
     public interface Registration extends AutoCloseable {
         /** Removes the resource from the registry; a second call does nothing. */
         @Override

@@ -1,5 +1,7 @@
 package sabot.controlml;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 /**
  * Applies sets of one resource on a device. Called only with a value that passed the schema, the access policy, the
  * stale-command policy and the duplicate check; called at most once per requester and id. Runs on the connection's
@@ -8,6 +10,7 @@ package sabot.controlml;
  * @param <T> the resource's value
  */
 @FunctionalInterface
+@ConsumerType
 public interface SetHandler<T> {
 
     /**

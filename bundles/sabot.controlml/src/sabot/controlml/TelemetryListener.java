@@ -1,6 +1,7 @@
 package sabot.controlml;
 
 import org.jxmpp.jid.EntityBareJid;
+import org.osgi.annotation.versioning.ConsumerType;
 
 /**
  * Receives a resource's telemetry from the devices this client is subscribed to (PEP notifications).
@@ -8,6 +9,7 @@ import org.jxmpp.jid.EntityBareJid;
  * @param <T> the resource's value
  */
 @FunctionalInterface
+@ConsumerType
 public interface TelemetryListener<T> {
 
     /**

@@ -1,6 +1,9 @@
 package sabot.controlml;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /** A running periodic telemetry publication; see {@link TelemetryManager#publish}. */
+@ProviderType
 public interface TelemetryPublication extends AutoCloseable {
 
     /** @return the resource published */

@@ -2,8 +2,10 @@ package sabot.fleet;
 
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jxmpp.jid.EntityBareJid;
+import org.osgi.annotation.versioning.ProviderType;
 
 /** The outcome of a device registering its account. */
+@ProviderType
 public sealed interface RegistrationResult permits RegistrationResult.Registered, RegistrationResult.Taken,
         RegistrationResult.Refused {
 

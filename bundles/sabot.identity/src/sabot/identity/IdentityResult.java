@@ -2,11 +2,14 @@ package sabot.identity;
 
 import java.util.Objects;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * A value or the reason there is none; identity operations never throw for expected failures.
  *
  * @param <T> the value type
  */
+@ProviderType
 public sealed interface IdentityResult<T> permits IdentityResult.Ok, IdentityResult.Err {
 
     /** Why an identity operation failed. */

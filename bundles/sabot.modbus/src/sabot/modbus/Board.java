@@ -2,7 +2,10 @@ package sabot.modbus;
 
 import java.time.Duration;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /** What every board client offers: its counters and fault state. */
+@ProviderType
 public interface Board {
 
     /** @return the board's counters now */

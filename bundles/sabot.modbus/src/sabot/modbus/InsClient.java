@@ -3,7 +3,10 @@ package sabot.modbus;
 import java.io.IOException;
 import java.time.Duration;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /** The inertial board (slave 2). Each method is one transaction; failures are {@link BoardException}s. */
+@ProviderType
 public interface InsClient extends Board {
 
     /** @return the latest full sample, read in one sub-request (consistent) */

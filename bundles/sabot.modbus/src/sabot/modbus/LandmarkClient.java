@@ -3,11 +3,14 @@ package sabot.modbus;
 import java.io.IOException;
 import java.time.Duration;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * The ceiling-landmark board (slave 4): an up-looking camera at the robot centre that reads passive markers on the
  * ceiling and reports the nearest one within its view radius, once per period. Each method is one transaction;
  * failures are {@link BoardException}s.
  */
+@ProviderType
 public interface LandmarkClient extends Board {
 
     /** @return the latest measurement, read in one sub-request (consistent), its age computed by the board now */

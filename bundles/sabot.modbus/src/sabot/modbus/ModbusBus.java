@@ -1,9 +1,12 @@
 package sabot.modbus;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * One RS-485 bus and its four boards. One master, one line: every transaction on the bus is serialised, and the
  * clients may be used from any thread. Closing the bus closes the port; the clients then fail.
  */
+@ProviderType
 public interface ModbusBus extends AutoCloseable {
 
     /** @return the SACT motor board's client */

@@ -3,12 +3,15 @@ package sabot.modbus;
 import java.io.IOException;
 import java.time.Duration;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * The SACT motor board (slave 1): two wheel motors. Wheel speeds are in rad/s at the wheel (positive drives the robot
  * forward); conversions use the board's own configuration (encoder lines, gear ratio) read when the bus opened.
  * Every method is one Modbus transaction unless it says otherwise, and throws {@link BoardException} when the board
  * does not answer well, {@link IllegalArgumentException} (nothing sent) for a value outside the map's static bounds.
  */
+@ProviderType
 public interface SactClient extends Board {
 
     /**

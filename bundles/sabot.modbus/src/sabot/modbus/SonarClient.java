@@ -4,7 +4,10 @@ import java.io.IOException;
 import java.time.Duration;
 import java.util.List;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /** The sonar board (slave 3). Each method is one transaction; failures are {@link BoardException}s. */
+@ProviderType
 public interface SonarClient extends Board {
 
     /** @return how many sensors the register map describes (3) */

@@ -1,8 +1,11 @@
 package sabot.planner;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /**
  * The outcome of one planning request: a path, or the reason there is none. Never null, never a partial path.
  */
+@ProviderType
 public sealed interface PlanResult {
 
     /** @return true for {@link Found} */

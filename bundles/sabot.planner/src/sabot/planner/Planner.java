@@ -2,6 +2,8 @@ package sabot.planner;
 
 import java.util.List;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 import sabot.model.geometry.Point2D;
 import sabot.model.map.Costmap;
 
@@ -10,6 +12,7 @@ import sabot.model.map.Costmap;
  * requests so that re-planning allocates nothing) and not thread-safe: use one instance per thread. A planner that
  * runs helper threads ends them on {@link #close}.
  */
+@ProviderType
 public interface Planner extends AutoCloseable {
 
     /** @return a short name for logs and the command line, e.g. {@code lpn} */

@@ -1,5 +1,7 @@
 package sabot.planner;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 import sabot.model.geometry.Point2D;
 import sabot.model.map.GridGeometry;
 
@@ -11,6 +13,7 @@ import sabot.model.map.GridGeometry;
  * <p>A field returned by a planner is a view of that planner's buffers: it is valid until the same planner instance
  * plans again. Take a {@link #snapshot()} to keep it longer.
  */
+@ProviderType
 public interface PotentialField {
 
     /** @return size and placement of the grid the field covers */

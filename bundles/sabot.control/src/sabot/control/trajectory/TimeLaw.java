@@ -1,6 +1,9 @@
 package sabot.control.trajectory;
 
+import org.osgi.annotation.versioning.ProviderType;
+
 /** A time law s(t) along a path of known length: how far along it the reference is at each instant. */
+@ProviderType
 public interface TimeLaw {
 
     /** @return seconds from start to end, &ge; 0 */

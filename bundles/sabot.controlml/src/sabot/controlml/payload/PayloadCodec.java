@@ -1,5 +1,7 @@
 package sabot.controlml.payload;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 import sabot.controlml.swe.SweComponent;
 
 /**
@@ -8,6 +10,7 @@ import sabot.controlml.swe.SweComponent;
  *
  * @param <T> the payload type
  */
+@ConsumerType
 public interface PayloadCodec<T> {
 
     /** @return the SWE form of a value, with canonical units; never null */

@@ -9,6 +9,7 @@ import java.util.regex.Pattern;
 
 import org.jivesoftware.smack.xml.XmlPullParser;
 import org.jivesoftware.smack.xml.XmlPullParserException;
+import org.osgi.annotation.versioning.ConsumerType;
 
 /**
  * Strict reader and canonical writer of the SWE Common 2.0 subset in {@link SweComponent}.
@@ -81,6 +82,7 @@ public final class SweXml {
 
     /** Finds the record structure a {@code DataStream}'s {@code elementType} refers to. */
     @FunctionalInterface
+    @ConsumerType
     public interface StructureResolver {
         /** @return the template of {@code href}, or null when the reference is not known here */
         RecordTemplate templateOf(String href);

@@ -1,11 +1,14 @@
 package sabot.model.path;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 import sabot.model.geometry.Pose2D;
 
 /**
  * A reference motion defined on [0, {@link #duration()}] seconds. Outside that interval it holds still: before 0
  * it is the start pose at rest, after the end the end pose at rest, so a caller never receives an undefined sample.
  */
+@ConsumerType
 public interface Trajectory {
 
     /** @return the trajectory's length in seconds (&ge; 0) */

@@ -3,6 +3,7 @@ package sabot.onboard.robot;
 import java.time.Instant;
 import java.util.Optional;
 
+import org.osgi.annotation.versioning.ProviderType;
 
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
@@ -25,6 +26,7 @@ import sabot.model.geometry.Twist2D;
  * {@link CommandRefused} and changes nothing. Reads never block on the bus or the network: they return the loop's
  * last published state; only {@link #gains} and {@link #setGains} talk to the motor board (a few transactions).
  */
+@ProviderType
 public interface RobotMotion {
 
     /** @return the latest pose estimate (map frame, metres/radians) with its covariance and time; never null */

@@ -1,6 +1,7 @@
 package sabot.onboard.session;
 
 import org.jivesoftware.smack.XMPPConnection;
+import org.osgi.annotation.versioning.ProviderType;
 
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
@@ -10,6 +11,7 @@ import sabot.controlml.PresenceLevel;
  * handlers registered on the manager survive reconnections (register them once). Presence and the device's vCard
  * identity are (re)published on every connection.
  */
+@ProviderType
 public interface RobotSession {
 
     /** @return the robot's bare JID as configured, e.g. {@code sabot-01@sabot.local} */

@@ -1,6 +1,9 @@
 package sabot.onboard.session;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 /** Told when the robot's XMPP session goes online (authenticated) or offline (lost, or closed). */
+@ConsumerType
 public interface SessionListener {
 
     /** The connection is authenticated (first login or after a reconnection). */

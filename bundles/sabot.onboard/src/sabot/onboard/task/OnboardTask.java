@@ -1,5 +1,7 @@
 package sabot.onboard.task;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 /**
  * A unit of robot work that the onboard product starts when its configuration file enables it (planner,
  * tracker, localizer, Modbus master, diagnostics...).
@@ -15,6 +17,7 @@ package sabot.onboard.task;
  * starts, and so are the checks a {@link TaskSettingsCheck} service adds.
  * Besides its own settings, every task's configuration carries {@link #ROBOT_NAME} (the file's {@code robot.name}).
  */
+@ConsumerType
 public interface OnboardTask {
 
     /** Prefix of every task's component name and configuration PID. */

@@ -4,6 +4,8 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 
+import org.osgi.annotation.versioning.ConsumerType;
+
 /**
  * Checks of a task's settings that its Metatype description cannot express: a file that must exist with certain
  * permissions, a device that must be present, a value whose syntax is richer than a type and a range.
@@ -15,6 +17,7 @@ import java.util.Objects;
  * must not touch the network and must change nothing.
  */
 @FunctionalInterface
+@ConsumerType
 public interface TaskSettingsCheck {
 
     /** Service property: the name of the task whose settings this service checks, e.g. {@code controlml}. */

@@ -24,6 +24,7 @@ import org.eclipse.swt.widgets.Label;
 import org.eclipse.ui.ISelectionListener;
 import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.part.ViewPart;
+import org.osgi.annotation.versioning.ConsumerType;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -219,6 +220,7 @@ public abstract class RobotView extends ViewPart {
 
     /** A request to one robot. */
     @FunctionalInterface
+    @ConsumerType
     public interface RobotCommand<T> {
         /**
          * @param fleet the fleet service; never null
