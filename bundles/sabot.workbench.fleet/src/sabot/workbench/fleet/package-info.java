@@ -4,5 +4,4 @@
  * service; its values are immutable snapshots in SI units (metres, radians, seconds) in the map frame. No XMPP or SWT
  * type appears here: views never touch the connection.
  */
-@org.osgi.annotation.versioning.Version("0.1.0")
 package sabot.workbench.fleet;
