@@ -139,6 +139,13 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * {@link #deferred}. Start row and column in cells.
      */
     private float focusBound = Float.POSITIVE_INFINITY;
+    /**
+     * Goals of the last focused computation that reached its start, and the excess of its successful attempt
+     * ({@code +infinity}: unfocused); the next focused computation to the same goals starts from it. Forgotten
+     * with the grid.
+     */
+    private int[] focusGoals;
+    private float focusExcess;
     private int focusRow;
     private int focusColumn;
     private int deferred;
@@ -218,6 +225,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         completeGoals = null;
         if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
             grid = planningGrid;
+            focusGoals = null;
             potential = new int[planningGrid.paddedSize()];
             cellDensity = new float[planningGrid.paddedSize()];
             initialPotential = new int[planningGrid.paddedSize()];
@@ -301,6 +309,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * start is not reached within it and cells were deferred, the excess grows fourfold and the computation starts
      * again, without a bound once a second or later attempt has expanded a 32nd of the grid in vain (the region
      * grows steeply with U, so a tight first bound pays more than the occasional repeated computation).
+     * A computation to the same goals as the last one that reached its start begins with that one's final excess
+     * (a robot re-planning on its way to a goal pays the vain attempts once; the excess is not lowered again until
+     * the goals or the grid change).
      * When no cell was deferred the region of the goals was exhausted: the start is unreachable, as for
      * {@link #compute}.
      *
@@ -321,24 +332,31 @@ public final class LpnNavigationFunction implements AutoCloseable {
         // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
         // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
         float margin = 4 * SQRT2 * maxDensity;
-        float excess = FOCUS_FIRST_EXCESS;
+        // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
+        float excess = java.util.Arrays.equals(goals, focusGoals) ? focusExcess : FOCUS_FIRST_EXCESS;
         int vainAttempts = 0;
-        focusBound = (float) (minDensity * distance * (1 + excess)) + margin;
         while (true) {
+            focusBound = excess == Float.POSITIVE_INFINITY ? Float.POSITIVE_INFINITY
+                    : (float) (minDensity * distance * (1 + excess)) + margin;
             start(goals);
             propagate(startCell, false);
             if (isReached(startCell) || deferred == 0) {
                 break;
             }
-            excess *= FOCUS_GROWTH;
             vainAttempts++;
             // a second vain attempt that already expanded a sizeable part of the grid (a maze, where paths are many
             // times the straight distance) is followed by the unfocused propagation rather than more attempts; after
             // the first the bound is raised in any case (the robot's lab map: 24,188 cells in all, against 32,212
             // unfocused and 35,188 when giving up after the first)
-            focusBound = vainAttempts >= 2 && finalizedCount > potential.length / FOCUS_GIVE_UP_FRACTION
+            excess = vainAttempts >= 2 && finalizedCount > potential.length / FOCUS_GIVE_UP_FRACTION
                     ? Float.POSITIVE_INFINITY
-                    : (float) (minDensity * distance * (1 + excess)) + margin;
+                    : excess * FOCUS_GROWTH;
+        }
+        if (isReached(startCell)) {
+            if (!java.util.Arrays.equals(goals, focusGoals)) {
+                focusGoals = goals.clone();
+            }
+            focusExcess = excess;
         }
         focusBound = Float.POSITIVE_INFINITY;
     }

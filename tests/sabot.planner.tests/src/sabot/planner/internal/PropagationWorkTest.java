@@ -42,6 +42,30 @@ class PropagationWorkTest {
     }
 
     @Test
+    void aFocusedRePlanToTheSameGoalSkipsTheBoundsThatWereTooSmall() {
+        // a wall across the straight line with an opening near the bottom: the path is about 1.6 times the straight
+        // line, so the first bounds (5 %, 20 %) do not reach the start
+        byte[] cells = new byte[200 * 200];
+        for (int row = 0; row <= 180; row++) {
+            cells[row * 200 + 100] = (byte) Costmap.LETHAL;
+        }
+        Costmap costmap = Costmap.of(new GridGeometry(200, 200, 1.0, Pose2D.ORIGIN), cells);
+        Setup setup = new Setup(costmap, new Point2D(5.5, 100.5), new Point2D(194.5, 100.5));
+        setup.function.computeFocused(setup.request.goalCells(), setup.request.startCell());
+        int first = setup.function.expandedCount();
+        float firstValue = LpnNavigationFunction.decode(setup.function.potential()[setup.request.startCell()]);
+        setup.function.gridChanged(setup.grid, setup.grid.sync(costmap));
+        setup.function.computeFocused(setup.request.goalCells(), setup.request.startCell());
+        int second = setup.function.expandedCount();
+        float secondValue = LpnNavigationFunction.decode(setup.function.potential()[setup.request.startCell()]);
+        setup.function.compute(setup.request.goalCells(), -1);
+        float wholeValue = LpnNavigationFunction.decode(setup.function.potential()[setup.request.startCell()]);
+        assertTrue(second < first * 3 / 4, "re-plan expanded " + second + " cells, the first plan " + first);
+        assertEquals(firstValue, secondValue);
+        assertEquals(wholeValue, secondValue, 1e-4 * wholeValue);
+    }
+
+    @Test
     void aRepairAfterOneObstacleRefillsFewerCellsThanAComputation() {
         Costmap costmap = Costmap.of(new GridGeometry(200, 200, 1.0, Pose2D.ORIGIN), new byte[200 * 200]);
         Setup setup = new Setup(costmap, new Point2D(5.5, 100.5), new Point2D(194.5, 100.5));
