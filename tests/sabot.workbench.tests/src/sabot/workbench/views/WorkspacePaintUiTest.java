@@ -71,6 +71,11 @@ class WorkspacePaintUiTest {
         gc.dispose();
         ImageData data = shot.getImageData();
         shot.dispose();
+        // the frame as the eye sees it, to judge the look (not under docs/images: a test fixture, not a view with a
+        // live robot)
+        org.eclipse.swt.graphics.ImageLoader png = new org.eclipse.swt.graphics.ImageLoader();
+        png.data = new ImageData[] { data };
+        png.save("target/workspace-100-robots.png", org.eclipse.swt.SWT.IMAGE_PNG);
         for (int i : new int[] { 0, 37, 99 }) {
             RobotState r = fleet.get(DrivenFleet.jid(i));
             double behind = 0.5 * WorkspaceView.FOOTPRINT_RADIUS_M;
