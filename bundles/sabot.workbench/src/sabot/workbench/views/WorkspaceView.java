@@ -25,9 +25,11 @@ import org.eclipse.swt.graphics.GC;
 import org.eclipse.swt.graphics.Image;
 import org.eclipse.swt.graphics.ImageData;
 import org.eclipse.swt.graphics.PaletteData;
+import org.eclipse.swt.graphics.Path;
 import org.eclipse.swt.graphics.Point;
 import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.graphics.Rectangle;
+import org.eclipse.swt.graphics.TextLayout;
 import org.eclipse.swt.widgets.Canvas;
 import org.eclipse.swt.widgets.Composite;
 import org.eclipse.swt.widgets.Display;
@@ -116,6 +118,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private Image mapImage;
     private String mapFrom;
     private boolean mapRequested;
+    /** Each robot's label laid out, by JID: {@link #drawLabel}. */
+    private final java.util.Map<String, TextLayout> labels = new java.util.HashMap<>();
     private final ISelectionListener otherViews = this::otherViewSelected;
 
     @Override
@@ -188,6 +192,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             if (mapImage != null) {
                 mapImage.dispose();
             }
+            labels.values().forEach(TextLayout::dispose);
+            labels.clear();
         });
     }
 
@@ -591,7 +597,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         GC gc = e.gc;
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();
-        gc.setAntialias(SWT.ON);
+        // antialiasing only where it shows (the footprints, drawRobot): cairo sends the X server the shapes to
+        // rasterize, and antialiased strokes cost the UI thread (tessellation) and the X server (Xvfb rasterizes in
+        // software) far more than aliased ones: WorkspacePaintUiTest, 100 robots, UI-thread + X server CPU a frame
+        // ~15 + 27 ms with everything antialiased, ~13 + 17 ms with this (docs/WORKBENCH.md)
+        gc.setAntialias(SWT.OFF);
         gc.setBackground(d.getSystemColor(SWT.COLOR_WHITE));
         gc.fillRectangle(area);
         drawMap(gc);
@@ -614,6 +624,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 LOG.info("first live robot on screen: {} on the map {} ms after the workbench started", r.name(), ms);
             }
         }
+        forgetLabels(drawn);
         drawGoalGesture(gc);
         drawScaleBar(gc, area);
         drawPointer(gc, area);
@@ -649,7 +660,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private void drawRobot(GC gc, RobotState r, boolean stale) {
         Display d = canvas.getDisplay();
         boolean sel = r.jid().equals(selected);
-        Color body = new Color(stale ? new RGB(150, 150, 150) : sel ? new RGB(230, 120, 20) : new RGB(30, 110, 200));
+        RGB bodyRgb = stale ? new RGB(150, 150, 150) : sel ? new RGB(230, 120, 20) : new RGB(30, 110, 200);
+        Color body = new Color(bodyRgb);
+        Color fill = new Color(overWhite(bodyRgb, stale ? 90 : 160));
         Color path = new Color(stale ? new RGB(190, 190, 190) : new RGB(40, 160, 70));
         Color trail = new Color(new RGB(170, 140, 210));
         Color obstacle = new Color(stale ? new RGB(180, 180, 180) : new RGB(210, 40, 40));
@@ -657,9 +670,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             if (r.trail().size() > 1) {
                 gc.setForeground(trail);
                 gc.setLineWidth(2);
-                for (int[] run : trailRuns(toScreenDecimated(r.trail(), TRAIL_STEP_PX), TRAIL_STEP_PX)) {
-                    gc.drawPolyline(run);
-                }
+                drawRuns(gc, trailRuns(toScreenDecimated(r.trail(), TRAIL_STEP_PX), TRAIL_STEP_PX));
             }
             if (r.path() != null && r.path().points().size() > 1) {
                 List<Point2D> pts = new ArrayList<>();
@@ -687,14 +698,17 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 return;
             }
             Pose2D p = r.pose().pose();
-            drawEllipse(gc, p, r.pose().covariance(), body);
             int rad = Math.max(4, (int) Math.round(FOOTPRINT_RADIUS_M * viewport.scale()));
             int cx = sx(p.x());
             int cy = sy(p.y());
-            gc.setBackground(body);
-            gc.setAlpha(stale ? 90 : 160);
+            gc.setAntialias(SWT.ON); // a round footprint and its heading: aliased, they look like toys
+            // the fill is the body colour as it looked at alpha 160 (90 stale) over white, opaque: the X server
+            // blends nothing; the ellipse, once seen through the fill, is drawn over it
+            gc.setBackground(fill);
             gc.fillOval(cx - rad, cy - rad, 2 * rad, 2 * rad);
-            gc.setAlpha(255);
+            gc.setAntialias(SWT.OFF);
+            drawEllipse(gc, p, r.pose().covariance(), body);
+            gc.setAntialias(SWT.ON);
             gc.setForeground(d.getSystemColor(stale ? SWT.COLOR_GRAY : SWT.COLOR_BLACK));
             gc.setLineWidth(sel ? 3 : 1);
             gc.drawOval(cx - rad, cy - rad, 2 * rad, 2 * rad);
@@ -702,14 +716,83 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             int hx = cx + (int) Math.round(rad * Math.cos(p.theta()));
             int hy = cy - (int) Math.round(rad * Math.sin(p.theta()));
             gc.drawLine(cx, cy, hx, hy);
+            gc.setAntialias(SWT.OFF);
             gc.setLineWidth(1);
             String label = r.name() + (stale ? " (stale)" : "");
-            gc.drawString(label, cx + rad + 3, cy - rad - 14, true);
+            drawLabel(gc, r.jid(), label, cx + rad + 3, cy - rad - 14);
         } finally {
             body.dispose();
+            fill.dispose();
             path.dispose();
             trail.dispose();
             obstacle.dispose();
+        }
+    }
+
+    /**
+     * Draws a robot's label with its own {@link TextLayout}, kept from paint to paint: {@code drawString} has Pango
+     * lay out and shape the string at each call (100 labels: ~2.5 ms of the UI thread a paint).
+     */
+    private void drawLabel(GC gc, String robot, String text, int x, int y) {
+        TextLayout layout = labels.get(robot);
+        if (layout == null) {
+            layout = new TextLayout(gc.getDevice());
+            layout.setFont(gc.getFont());
+            labels.put(robot, layout);
+        }
+        if (!text.equals(layout.getText())) {
+            layout.setText(text);
+        }
+        layout.draw(gc, x, y);
+    }
+
+    /**
+     * Disposes the layouts of robots gone from the fleet once there are more layouts than robots: the layouts kept
+     * are never more than the robots.
+     */
+    private void forgetLabels(List<RobotState> drawn) {
+        if (labels.size() > drawn.size()) {
+            java.util.Set<String> kept = new java.util.HashSet<>();
+            for (RobotState r : drawn) {
+                kept.add(r.jid());
+            }
+            labels.entrySet().removeIf(e -> {
+                boolean gone = !kept.contains(e.getKey());
+                if (gone) {
+                    e.getValue().dispose();
+                }
+                return gone;
+            });
+        }
+    }
+
+    /** @return {@code c} drawn with {@code alpha} (0..255) over white, as an opaque colour */
+    static RGB overWhite(RGB c, int alpha) {
+        return new RGB((c.red * alpha + 255 * (255 - alpha)) / 255, (c.green * alpha + 255 * (255 - alpha)) / 255,
+                (c.blue * alpha + 255 * (255 - alpha)) / 255);
+    }
+
+    /**
+     * Strokes polylines as one path, one stroke: a trail is cut into a dozen or more runs ({@link #trailRuns}), and
+     * each stroke is a composite request the X server carries out on its own (100 robots: ~1,700 strokes a frame as
+     * polylines, 100 as paths; one path for all the robots costs the UI thread twice as much, the stroker then
+     * intersecting every robot's segments with every other's).
+     */
+    private void drawRuns(GC gc, List<int[]> runs) {
+        if (runs.isEmpty()) {
+            return;
+        }
+        Path path = new Path(gc.getDevice());
+        try {
+            for (int[] run : runs) {
+                path.moveTo(run[0], run[1]);
+                for (int i = 2; i < run.length; i += 2) {
+                    path.lineTo(run[i], run[i + 1]);
+                }
+            }
+            gc.drawPath(path);
+        } finally {
+            path.dispose();
         }
     }
 
