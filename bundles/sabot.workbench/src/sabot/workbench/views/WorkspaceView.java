@@ -37,6 +37,7 @@ import org.eclipse.ui.ISelectionListener;
 import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
+import org.osgi.annotation.versioning.ConsumerType;
 
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
@@ -307,6 +308,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     }
 
     /** A robot drawn live (fresh telemetry, a pose) on the map, the condition {@link #whenDrawn} waits for. */
+    @ConsumerType
     @FunctionalInterface
     public interface DrawnCondition {
         /** @param robot a robot just drawn live on the map; never null */
