@@ -333,7 +333,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
         float margin = 4 * SQRT2 * maxDensity;
         // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
-        float excess = java.util.Arrays.equals(goals, focusGoals) ? focusExcess : FOCUS_FIRST_EXCESS;
+        boolean sameGoals = Arrays.equals(goals, focusGoals);
+        float excess = sameGoals ? focusExcess : FOCUS_FIRST_EXCESS;
         int vainAttempts = 0;
         while (true) {
             focusBound = excess == Float.POSITIVE_INFINITY ? Float.POSITIVE_INFINITY
@@ -353,7 +354,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
                     : excess * FOCUS_GROWTH;
         }
         if (isReached(startCell)) {
-            if (!java.util.Arrays.equals(goals, focusGoals)) {
+            if (!sameGoals) {
                 focusGoals = goals.clone();
             }
             focusExcess = excess;
