@@ -12,11 +12,16 @@ import sabot.controlml.swe.SweComponent;
  * @param maintenance whether the robot is in maintenance mode
  * @param progress    percent of the path done, 0..100
  * @param detail      a short explanation for operators; never null
+ * @throws IllegalArgumentException if {@code progress} is outside 0..100 (the schema's range: a robot must not make a
+ *                                  status that its own endpoint would refuse to send)
  */
 public record MissionStatus(MissionState state, boolean maintenance, double progress, String detail) {
     public MissionStatus {
         Objects.requireNonNull(state, "state");
         Objects.requireNonNull(detail, "detail");
+        if (!(progress >= 0 && progress <= 100)) {
+            throw new IllegalArgumentException("mission progress " + progress + " % is outside [0, 100]");
+        }
     }
 
     private static final Set<String> MISSION_CODES;

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.time.LocalDate;
@@ -27,6 +28,8 @@ import sabot.controlml.RequestId;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.internal.SchemaValidator;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.swe.SweComponent;
 
@@ -125,6 +128,17 @@ class ControlMlRoundTripTest {
         IQ old = (IQ) Xml.stanza(unqualified);
         assertNull(old.getError().getDescriptiveText("en"), unqualified);
         assertEquals(error, ControlMlError.fromStanzaError(old.getError()));
+    }
+
+    @Test
+    void aMissionStatusOutsideTheSchemasProgressRangeCannotBeMade() {
+        // the robot's endpoint refuses to send such a status (the range of section 4): it must fail where it is made
+        for (double progress : new double[] {-5.9e-4, 100.01, Double.NaN}) {
+            IllegalArgumentException e = assertThrows(IllegalArgumentException.class,
+                    () -> new MissionStatus(MissionState.RUNNING, false, progress, "to the dock"));
+            assertTrue(e.getMessage().contains("outside [0, 100]"), e.getMessage());
+        }
+        assertEquals(100.0, new MissionStatus(MissionState.DONE, false, 100, "arrived").progress());
     }
 
     @Test
