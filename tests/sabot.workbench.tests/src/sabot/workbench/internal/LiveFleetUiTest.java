@@ -88,19 +88,17 @@ class LiveFleetUiTest {
 
     @AfterAll
     static void stopStack() throws Exception {
-        XmppAccountStore store = XmppAccountStore.workbenchStore();
-        store.forgetPassword();
-        store.saveRobots(List.of());
-        // without an account the plug-in drops the fleet: the other UI tests start from an empty workbench
-        waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "fleet not emptied: " + fleetView().rows());
-        if (onboard != null) {
-            onboard.close();
-        }
-        if (sim != null) {
-            sim.close();
-        }
-        if (xmpp != null) {
-            xmpp.close();
+        try {
+            XmppAccountStore store = XmppAccountStore.workbenchStore();
+            store.forgetPassword();
+            store.saveRobots(List.of());
+            // without an account the plug-in drops the fleet: the other UI tests start from an empty workbench
+            waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "fleet not emptied: " + fleetView().rows());
+        } finally {
+            // the processes go whatever failed: one left running would hold its pty and port for the next runs
+            try (AutoCloseable x = xmpp; AutoCloseable s = sim; AutoCloseable o = onboard) {
+                // closed in reverse order: the onboard product, the simulator, the server
+            }
         }
     }
 

@@ -507,6 +507,11 @@ public final class ControlMlFleet implements FleetState {
             ControlMlManager manager = ControlMlManager.getInstanceFor(c);
             manager.setRequestTimeout(requestTimeout);
             Roster roster = Roster.getInstanceFor(c);
+            // One roster request at login, ours (reloadAndWait below). Smack would send another when authenticated:
+            // the two results come back as asynchronous callbacks, and the later one, computed before a removal
+            // whose push was handled in between, brought the removed robot back for good (LiveFleetUiTest's lobby
+            // test, seen in CI and under load).
+            roster.setRosterLoadedAtLogin(false);
             Session s = new Session(c, manager, roster, generation.incrementAndGet());
             listenTelemetry(s);  // before login: +notify goes into the first presence's entity caps
             SubscriptionGate.onWorkbench(c);
