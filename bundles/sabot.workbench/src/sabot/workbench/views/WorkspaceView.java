@@ -117,6 +117,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /** The map drawn: the first robot's with a map, fetched once. */
     private GridMap map;
     private Image mapImage;
+    /** The frame drawn into, the canvas's size: {@link #frame}. */
+    private Image frame;
     private String mapFrom;
     private boolean mapRequested;
     /** Each robot's label laid out, by JID: {@link #drawLabel}. */
@@ -192,6 +194,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         canvas.addDisposeListener(e -> {
             if (mapImage != null) {
                 mapImage.dispose();
+            }
+            if (frame != null) {
+                frame.dispose();
             }
             labels.values().forEach(TextLayout::dispose);
             labels.clear();
@@ -596,13 +601,58 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         long t0 = System.nanoTime();
         long cpu0 = threads.getCurrentThreadCpuTime();
         probe.paintStarting();
-        GC gc = e.gc;
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();
-        // antialiasing only where it shows (the footprints, drawRobot): cairo sends the X server the shapes to
-        // rasterize, and antialiased strokes cost the UI thread (tessellation) and the X server (Xvfb rasterizes in
-        // software) far more than aliased ones: WorkspacePaintUiTest, 100 robots, UI-thread + X server CPU a frame
-        // ~15 + 27 ms with everything antialiased, ~13 + 17 ms with this (docs/WORKBENCH.md)
+        if (area.width <= 0 || area.height <= 0) {
+            return;
+        }
+        GC gc = new GC(frame(area));
+        Drawn drawn;
+        try {
+            gc.setFont(canvas.getFont());
+            drawn = drawFrame(gc, d, area);
+        } finally {
+            gc.dispose();
+        }
+        e.gc.drawImage(frame, 0, 0);
+        lastPaintEnd = System.nanoTime();
+        frameNanos[frames % FRAME_SAMPLES] = lastPaintEnd - t0;
+        frameCpuNanos[frames % FRAME_SAMPLES] = threads.getCurrentThreadCpuTime() - cpu0;
+        frames++;
+        probe.painted(t0, drawn.all(), fleet.fleet());
+        if (!waiters.isEmpty()) {
+            for (Waiter w : List.copyOf(waiters)) {
+                if (drawn.live().stream().anyMatch(w.condition()::holds)) {
+                    waiters.remove(w);
+                    d.asyncExec(w.then()); // after this paint has reached the screen
+                }
+            }
+        }
+    }
+
+    /**
+     * The frame the paint draws into: an image in the workbench's memory (an {@link ImageData}'s image is a cairo
+     * image surface on GTK), so cairo rasterizes in this process and the X server receives one image a paint instead
+     * of every shape to rasterize in software (Xvfb: as much CPU again as the paint; docs/WORKBENCH.md).
+     */
+    private Image frame(Rectangle area) {
+        if (frame == null || frame.getBounds().width != area.width || frame.getBounds().height != area.height) {
+            if (frame != null) {
+                frame.dispose();
+            }
+            frame = new Image(canvas.getDisplay(), new ImageData(area.width, area.height, 24, new PaletteData(
+                    0xFF0000, 0x00FF00, 0x0000FF)));
+        }
+        return frame;
+    }
+
+    /** The robots a frame drew, and those of them drawn live on the map. */
+    private record Drawn(List<RobotState> all, List<RobotState> live) {
+    }
+
+    private Drawn drawFrame(GC gc, Display d, Rectangle area) {
+        // antialiasing only where it shows (the footprints, drawRobot): antialiased strokes cost cairo far more than
+        // aliased ones (docs/WORKBENCH.md, "Paint of 100 robots without load")
         gc.setAntialias(SWT.OFF);
         gc.setBackground(d.getSystemColor(SWT.COLOR_WHITE));
         gc.fillRectangle(area);
@@ -631,19 +681,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         drawScaleBar(gc, area);
         drawPointer(gc, area);
         drawMessage(gc, area);
-        lastPaintEnd = System.nanoTime();
-        frameNanos[frames % FRAME_SAMPLES] = lastPaintEnd - t0;
-        frameCpuNanos[frames % FRAME_SAMPLES] = threads.getCurrentThreadCpuTime() - cpu0;
-        frames++;
-        probe.painted(t0, drawn, fleet.fleet());
-        if (!waiters.isEmpty()) {
-            for (Waiter w : List.copyOf(waiters)) {
-                if (drawnLive.stream().anyMatch(w.condition()::holds)) {
-                    waiters.remove(w);
-                    d.asyncExec(w.then()); // after this paint has reached the screen
-                }
-            }
-        }
+        return new Drawn(drawn, drawnLive);
     }
 
     private void drawMap(GC gc) {
