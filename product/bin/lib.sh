@@ -94,9 +94,34 @@ sabot_launcher_jar() {
     echo "$jar"
 }
 
+# sabot_module_sources MODULE
+# Prints what a product or the update site (MODULE: product/sabot.NAME.product or product/sabot.site) is built from,
+# a path a line: its folder, the poms above the bundles and features, the features its .product or category.xml names
+# and those they include, and the bundles of those features that are ours (bundles/<id>).
+sabot_module_sources() {
+    local module=$1 id f p queue=() seen=" "
+    echo "$SABOT_ROOT/$module"
+    echo "$SABOT_ROOT/pom.xml"; echo "$SABOT_ROOT/bundles/pom.xml"; echo "$SABOT_ROOT/features/pom.xml"
+    mapfile -t queue < <(cat "$SABOT_ROOT/$module"/*.product "$SABOT_ROOT/$module"/category.xml 2>/dev/null \
+        | grep -o '<feature id="[^"]*"' | sed 's/.*id="//; s/"$//')
+    while [ ${#queue[@]} -gt 0 ]; do
+        id=${queue[0]}
+        queue=("${queue[@]:1}")
+        f="$SABOT_ROOT/features/$id"
+        case "$seen" in *" $id "*) continue ;; esac
+        seen+="$id "
+        [ -f "$f/feature.xml" ] || continue
+        echo "$f"
+        mapfile -t -O ${#queue[@]} queue < <(grep -o '<includes[^>]*id="[^"]*"' "$f/feature.xml" | sed 's/.*id="//; s/"$//')
+        for p in $(grep -o '<plugin[^>]*id="[^"]*"' "$f/feature.xml" | sed 's/.*id="//; s/"$//'); do
+            [ -d "$SABOT_ROOT/bundles/$p" ] && echo "$SABOT_ROOT/bundles/$p"
+        done
+    done
+}
+
 # sabot_products NAME...
 # Builds the products NAME... (onboard, workbench, director; "site": the p2 update site) in one Maven run, tests
-# skipped, when one of them is missing or older than a file under bundles/, features/ or its own module folder.
+# skipped, when one of them is missing or older than a file it is built from (sabot_module_sources).
 sabot_products() {
     local name module stamp stale="" modules=()
     for name in "$@"; do
@@ -109,7 +134,8 @@ sabot_products() {
         if [ ! -f "$stamp" ]; then
             stale=${stale:-"no $stamp"}
         elif [ -z "$stale" ]; then
-            stale=$(sabot_newer_source "$stamp" "$SABOT_ROOT/bundles" "$SABOT_ROOT/features" "$SABOT_ROOT/$module")
+            local sources; mapfile -t sources < <(sabot_module_sources "$module")
+            stale=$(sabot_newer_source "$stamp" "${sources[@]}")
             stale=${stale:+"$stale changed"}
         fi
     done
