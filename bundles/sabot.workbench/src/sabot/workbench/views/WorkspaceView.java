@@ -600,12 +600,12 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private void paint(PaintEvent e) {
         long t0 = System.nanoTime();
         long cpu0 = threads.getCurrentThreadCpuTime();
-        probe.paintStarting();
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();
         if (area.width <= 0 || area.height <= 0) {
-            return;
+            return; // a view minimized or not laid out yet: no frame, and no paint to measure
         }
+        probe.paintStarting();
         GC gc = new GC(frame(area));
         Drawn drawn;
         try {
