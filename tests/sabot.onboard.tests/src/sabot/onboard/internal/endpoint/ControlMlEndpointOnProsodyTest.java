@@ -510,7 +510,7 @@ class ControlMlEndpointOnProsodyTest {
         assertEquals(reads, robot.telemetryReads(), "nothing read for telemetry while offline");
         assertEquals(failed, robotManager.telemetry().statistics().failed(), "no failed publication while offline");
 
-        robotConnection.connect().login();
+        reconnect();
         arrivals.get("cm.position").clear();
         take(arrivals.get("cm.position"), "cm.position after the reconnection");
         assertEquals(robot.pose(), workbench.get(robotJid, Resources.POSITION).orElseThrow(),
@@ -643,6 +643,29 @@ class ControlMlEndpointOnProsodyTest {
         Long t = times.poll(TIMEOUT_S, TimeUnit.SECONDS);
         assertNotNull(t, "no telemetry of " + what);
         return t;
+    }
+
+    /**
+     * The robot's connection back, as the onboard session brings it back (ControlMlSession.attempt: a failed attempt is
+     * tried again). Smack 4.4 reusing a connection now and then has Prosody close the new stream at once with
+     * {@code invalid-namespace} (seen once in a clean CI run; cause not found); the next attempt connects.
+     */
+    private void reconnect() throws Exception {
+        for (int attempt = 1;; attempt++) {
+            try {
+                robotConnection.connect().login();
+                return;
+            } catch (org.jivesoftware.smack.XMPPException.StreamErrorException e) {
+                if (attempt == 3) {
+                    throw e;
+                }
+                System.out.println("reconnection attempt " + attempt + " refused by the server: " + e.getStreamError()
+                        .getCondition() + "; trying again");
+                if (robotConnection.isConnected()) {
+                    robotConnection.disconnect();
+                }
+            }
+        }
     }
 
     private void awaitOnlineChecks(long atLeast) {
