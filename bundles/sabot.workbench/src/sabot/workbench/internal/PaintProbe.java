@@ -26,7 +26,9 @@ import sabot.workbench.fleet.RobotState;
  * <p>
  * Lines appended to the file, written by a daemon thread every 250 ms (the UI thread only fills a buffer):
  * <ul>
- * <li>{@code f,<end µs since the epoch>,<paint duration ns>,<robots drawn>,<UI thread CPU time of the paint ns>}</li>
+ * <li>{@code f,<end µs since the epoch>,<paint duration ns>,<robots drawn>,<UI thread CPU time of the paint ns>,<of
+ * the duration, the frame's copy to the window ns>,<of the duration, the UI thread runnable but waiting for a CPU ns,
+ * -1 where Linux's schedstat is missing>}</li>
  * <li>{@code l,<end µs since the epoch>,<time stamp to paint end ns>,<robot jid>}</li>
  * <li>{@code n,<µs since the epoch>,<time stamp to notification ns>,<robot jid>}</li>
  * </ul>
@@ -47,6 +49,9 @@ public final class PaintProbe implements FleetListener {
     private FleetState observed;
     private final java.lang.management.ThreadMXBean threads = java.lang.management.ManagementFactory.getThreadMXBean();
     private long cpuAtStart;
+    private long queuedAtStart;
+    /** Linux's scheduler statistics of the calling thread: CPU time, time runnable but waiting for a CPU (ns), ... */
+    private static final Path SCHEDSTAT = Paths.get("/proc/thread-self/schedstat");
 
     private PaintProbe(Path file) {
         this.file = file;
@@ -67,6 +72,7 @@ public final class PaintProbe implements FleetListener {
     public void paintStarting() {
         if (file != null) {
             cpuAtStart = threads.getCurrentThreadCpuTime();
+            queuedAtStart = runQueueWait();
         }
     }
 
@@ -74,15 +80,17 @@ public final class PaintProbe implements FleetListener {
      * UI thread, at the end of a paint.
      *
      * @param startNanos {@link System#nanoTime()} at the paint's start
+     * @param copyNanos  of the paint's duration, the frame image's copy to the window (what the X server is sent)
      * @param robots     the robots the paint drew
      * @param fleet      the fleet service (observed for the notification breakdown), or null
      */
-    public void painted(long startNanos, List<RobotState> robots, FleetState fleet) {
+    public void painted(long startNanos, long copyNanos, List<RobotState> robots, FleetState fleet) {
         if (file == null) {
             return;
         }
         long duration = System.nanoTime() - startNanos;
         long cpu = threads.getCurrentThreadCpuTime() - cpuAtStart;
+        long queued = queuedAtStart < 0 ? -1 : runQueueWait() - queuedAtStart;
         Instant end = Instant.now();
         long endMicros = micros(end);
         if (fleet != null && fleet != observed) {
@@ -91,7 +99,7 @@ public final class PaintProbe implements FleetListener {
         }
         StringBuilder lines = new StringBuilder(64 + 48 * robots.size());
         lines.append("f,").append(endMicros).append(',').append(duration).append(',').append(robots.size()).append(
-                ',').append(cpu).append('\n');
+                ',').append(cpu).append(',').append(copyNanos).append(',').append(queued).append('\n');
         for (RobotState r : robots) {
             if (r.pose() == null) {
                 continue;
@@ -121,6 +129,18 @@ public final class PaintProbe implements FleetListener {
             synchronized (pending) {
                 pending.append(line);
             }
+        }
+    }
+
+    /**
+     * @return the calling thread's time runnable but not running so far (ns, the second field of Linux's
+     *         {@code /proc/thread-self/schedstat}), or -1 where the file is missing
+     */
+    private static long runQueueWait() {
+        try {
+            return Long.parseLong(Files.readString(SCHEDSTAT).split(" ")[1]);
+        } catch (IOException | RuntimeException e) {
+            return -1;
         }
     }
 

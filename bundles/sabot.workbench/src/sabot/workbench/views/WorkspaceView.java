@@ -614,12 +614,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         } finally {
             gc.dispose();
         }
+        long copyFrom = System.nanoTime();
         e.gc.drawImage(frame, 0, 0);
         lastPaintEnd = System.nanoTime();
         frameNanos[frames % FRAME_SAMPLES] = lastPaintEnd - t0;
         frameCpuNanos[frames % FRAME_SAMPLES] = threads.getCurrentThreadCpuTime() - cpu0;
         frames++;
-        probe.painted(t0, drawn.all(), fleet.fleet());
+        probe.painted(t0, lastPaintEnd - copyFrom, drawn.all(), fleet.fleet());
         if (!waiters.isEmpty()) {
             for (Waiter w : List.copyOf(waiters)) {
                 if (drawn.live().stream().anyMatch(w.condition()::holds)) {

@@ -38,7 +38,9 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * (p50/p99/max, paints per second), the latency from a pose's time stamp to the end of the paint that first shows it,
  * its breakdown up to the fleet service's notification, and, as the reference for what the server costs, the same
  * items' latency at a second session of the operator's account that only receives them (the server's fan-out and
- * Smack's parsing, nothing of the workbench). Load average and CPU of the server and the workbench beside them.
+ * Smack's parsing, nothing of the workbench). Load average and CPU of the server, the workbench and the X server beside
+ * them. The paint time's breakdown: the frame's copy to the window, the time the UI thread was runnable but waited for
+ * a CPU (Linux schedstat) and the workbench's GC pauses in the window (its {@value #GC_LOG}, epoch-stamped).
  * <p>
  * Memory mode ({@code --memory --minutes M}): no probe; every minute the workbench's heap after a full collection
  * ({@code jcmd GC.run}, then {@code GC.heap_info}) and its resident set; the growth slope by least squares.
@@ -218,6 +220,8 @@ public final class WorkbenchBench {
         if (probe != null) {
             cmd.add("-D" + "sabot.workbench.paintProbe" + "=" + probe);
         }
+        // the collector's pauses stop the UI thread too: logged with the epoch time to set them against the window
+        cmd.add("-Xlog:gc:file=" + dir.resolve(GC_LOG) + ":timemillis");
         cmd.addAll(List.of("-jar", launcher.toString(), "-consoleLog", "-data", ws.toString()));
         ProcessBuilder pb = new ProcessBuilder(cpus.wrap(cmd)).directory(product.toFile()).redirectErrorStream(true)
                 .redirectOutput(dir.resolve("workbench.log").toFile());
@@ -316,6 +320,8 @@ public final class WorkbenchBench {
         String load0 = loadAverage();
         long serverCpu0 = cpuTicks(server.pid());
         long wbCpu0 = cpuTicks(wb.pid());
+        long xPid = CpuLayout.xServerPid();
+        long xCpu0 = xPid < 0 ? 0 : cpuTicks(xPid);
         long wall0 = System.nanoTime();
         long from = micros(Instant.now());
         window.open(from, from + seconds * 1_000_000L);
@@ -324,6 +330,7 @@ public final class WorkbenchBench {
         double wallS = (System.nanoTime() - wall0) / 1e9;
         double serverCpu = (cpuTicks(server.pid()) - serverCpu0) / wallS; // ticks of 1/100 s: per cent
         double wbCpu = (cpuTicks(wb.pid()) - wbCpu0) / wallS;
+        double xCpu = xPid < 0 ? -1 : (cpuTicks(xPid) - xCpu0) / wallS;
         String load1 = loadAverage();
         // items stamped in the window still in flight reach the probe's file within its period: wait one more second
         hold(wb, 1.5);
@@ -331,6 +338,8 @@ public final class WorkbenchBench {
 
         List<Long> frames = new ArrayList<>();
         List<Long> frameCpu = new ArrayList<>();
+        List<Long> frameCopy = new ArrayList<>();
+        List<Long> frameQueued = new ArrayList<>();
         List<Long> shown = new ArrayList<>();
         List<Long> notified = new ArrayList<>();
         for (String line : lines(probe)) {
@@ -347,6 +356,12 @@ public final class WorkbenchBench {
                         if (f.length > 4) {
                             frameCpu.add(Long.parseLong(f[4]));
                         }
+                        if (f.length > 5) {
+                            frameCopy.add(Long.parseLong(f[5]));
+                        }
+                        if (f.length > 6 && Long.parseLong(f[6]) >= 0) {
+                            frameQueued.add(Long.parseLong(f[6]));
+                        }
                     }
                 }
                 // latencies: the item's stamp (at - v) in the window, as for the reference
@@ -357,6 +372,9 @@ public final class WorkbenchBench {
         }
         long[] fr = sorted(frames);
         long[] frCpu = sorted(frameCpu);
+        long[] frCopy = sorted(frameCopy);
+        long[] frQueued = sorted(frameQueued);
+        long[] gcPauses = sorted(gcPauses(probe.resolveSibling(GC_LOG), from / 1000, to / 1000));
         long[] lat = sorted(shown);
         long[] note = sorted(notified);
         long[] refLat = Arrays.copyOf(ref, (int) Math.min(ref.length, refCount.get()));
@@ -368,6 +386,10 @@ public final class WorkbenchBench {
                         : velocityRate, seconds, loads);
         System.out.printf(Locale.ROOT, "[figure] workspace paint time: %s, %.1f paints/s; its CPU time on the UI "
                 + "thread: %s%n", pct(fr), fr.length / (double) seconds, pct(frCpu));
+        System.out.printf(Locale.ROOT, "[figure]   of the paint time, the frame's copy to the window (the X server "
+                + "reading the image): %s; the UI thread runnable, waiting for a CPU: %s; the workbench's GC pauses in "
+                + "the window: %d, %.1f ms in all, max %.2f ms%n", pct(frCopy), pct(frQueued), gcPauses.length, Arrays.stream(gcPauses).sum() / 1e6, gcPauses.length == 0 ? 0
+                        : gcPauses[gcPauses.length - 1] / 1e6);
         System.out.printf(Locale.ROOT, "[figure] telemetry-to-screen latency (pose stamp to end of the paint that "
                 + "first shows it): %s; poses shown %d of ~%d published (%.1f %%)%n", pct(lat), lat.length, published,
                 100.0 * lat.length / published);
@@ -376,10 +398,15 @@ public final class WorkbenchBench {
         System.out.printf(Locale.ROOT, "[figure]   reference, server fan-out alone (the same items at a second session "
                 + "of the operator, Smack only): %s, %d received%n", pct(refLat), refLat.length);
         System.out.printf(Locale.ROOT, "[figure]   CPU over the window (1 core = 100 %%): server %.0f %%, workbench "
-                + "%.0f %%; robots' publications in the window acknowledged %d, failed %d%n", serverCpu, wbCpu, load
+                + "%.0f %%, X server %.0f %%; robots' publications in the window acknowledged %d, failed %d%n",
+                serverCpu, wbCpu, xCpu, load
                 .telemetryPublished() - acked0, load.telemetryFailed() - failed0);
         put(figures, "paint", fr);
         put(figures, "paint_cpu", frCpu);
+        put(figures, "paint_copy", frCopy);
+        put(figures, "paint_cpu_wait", frQueued);
+        figures.put("gc_pauses", gcPauses.length);
+        figures.put("gc_pause_total_ms", round(Arrays.stream(gcPauses).sum() / 1e6));
         figures.put("paints_per_s", round(fr.length / (double) seconds));
         put(figures, "latency", lat);
         figures.put("poses_shown_pct", round(100.0 * lat.length / published));
@@ -387,7 +414,28 @@ public final class WorkbenchBench {
         put(figures, "fanout", refLat);
         figures.put("server_cpu_pct", round(serverCpu));
         figures.put("workbench_cpu_pct", round(wbCpu));
+        figures.put("x_server_cpu_pct", round(xCpu));
         figures.put("load_avg", loads);
+    }
+
+    /** The workbench's GC log (in its run directory), one line a collection, stamped with the epoch time in ms. */
+    static final String GC_LOG = "gc.log";
+    private static final Pattern GC_PAUSE = Pattern.compile("^\\[(\\d+)ms\\].* Pause .* (\\d+\\.\\d+)ms$");
+
+    /** @return the durations (ns) of the pauses the GC log holds that began in [{@code fromMs}, {@code toMs}) */
+    static List<Long> gcPauses(Path log, long fromMs, long toMs) throws IOException {
+        List<Long> pauses = new ArrayList<>();
+        for (String line : lines(log)) {
+            Matcher m = GC_PAUSE.matcher(line);
+            if (m.find()) {
+                long end = Long.parseLong(m.group(1));
+                long nanos = Math.round(Double.parseDouble(m.group(2)) * 1e6);
+                if (end - nanos / 1_000_000 >= fromMs && end - nanos / 1_000_000 < toMs) {
+                    pauses.add(nanos);
+                }
+            }
+        }
+        return pauses;
     }
 
     private static boolean stampIn(long atMicros, long latencyNanos, long from, long to) {
