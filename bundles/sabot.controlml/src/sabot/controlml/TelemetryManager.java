@@ -19,7 +19,15 @@ import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.XMPPException.XMPPErrorException;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.StandardExtensionElement;
-import org.jivesoftware.smackx.pep.PepManager;
+import org.jivesoftware.smack.filter.AndFilter;
+import org.jivesoftware.smack.filter.MessageTypeFilter;
+import org.jivesoftware.smack.filter.StanzaFilter;
+import org.jivesoftware.smack.filter.jidtype.FromJidTypeFilter;
+import org.jivesoftware.smack.packet.NamedElement;
+import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
+import org.jivesoftware.smackx.pubsub.EventElement;
+import org.jivesoftware.smackx.pubsub.ItemsExtension;
+import org.jivesoftware.smackx.pubsub.filter.EventItemsExtensionFilter;
 import org.jivesoftware.smackx.pubsub.NodeExtension;
 import org.jivesoftware.smackx.pubsub.PayloadItem;
 import org.jivesoftware.smackx.pubsub.PublishItem;
@@ -47,6 +55,11 @@ public final class TelemetryManager extends Manager {
 
     private static final Logger LOG = LoggerFactory.getLogger(TelemetryManager.class);
     private static final Map<XMPPConnection, TelemetryManager> INSTANCES = new WeakHashMap<>();
+    /** Suffix of the disco feature that asks for a PEP node's notifications (XEP-0163 section 4). */
+    private static final String PLUS_NOTIFY = "+notify";
+    /** PEP item events from a bare JID: PepManager's filter. */
+    private static final StanzaFilter PEP_EVENTS = new AndFilter(MessageTypeFilter.NORMAL_OR_HEADLINE,
+            FromJidTypeFilter.ENTITY_BARE_JID, EventItemsExtensionFilter.INSTANCE);
 
     private final ControlMlManager controlMl;
     private final Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
@@ -262,34 +275,56 @@ public final class TelemetryManager extends Manager {
     /**
      * Receives a resource's telemetry from the devices this client is subscribed to. Call before login, so that the
      * {@code <node>+notify} feature is in the entity capabilities the server sees with the first presence; for
-     * delivery that does not depend on it, also {@link #follow} each device.
+     * delivery that does not depend on it, also {@link #follow} each device. Listeners are called in arrival order on
+     * the connection's listener thread (a Smack synchronous stanza listener), one item after another: hand long work
+     * off.
      */
     public <T> void addListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
+        String node = ControlMl.telemetryNode(resource.name());
         Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
-        PepManager.getInstanceFor(connection()).addPepEventListener(ControlMl.telemetryNode(resource.name()),
-                ControlMlElement.class, (from, element, itemId, message) -> {
-                    if (element.defect() != null || element.payload() == null || !resource.name().equals(element
-                            .res())) {
-                        rejected.incrementAndGet();
-                        LOG.debug("rejected telemetry {} from {}", element, from);
-                        return;
-                    }
-                    if (!isNewer(lastAccepted, from, element.id())) {
-                        // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit
-                        // subscription) or an older one overtaken: section 6's rule, by the publication's id
-                        LOG.trace("duplicate telemetry {} from {}", element, from);
-                        return;
-                    }
-                    T value;
-                    try {
-                        value = element.value(resource);
-                    } catch (PayloadException e) {
-                        rejected.incrementAndGet();
-                        LOG.debug("rejected telemetry from {}: {}", from, e.getMessage());
-                        return;
-                    }
-                    received.incrementAndGet();
-                    listener.onTelemetry(from, value);
-                });
+        // what PepManager.addPepEventListener does, without its dispatch: PepManager hands each event to a pooled
+        // thread per sender (AsyncButOrdered), so 100 robots kept some 80 threads waking one another on every burst
+        // of items (docs/WORKBENCH.md, "What limits it"); a synchronous listener gets them in arrival order on the
+        // connection's one listener thread
+        ServiceDiscoveryManager.getInstanceFor(connection()).addFeature(node + PLUS_NOTIFY);
+        connection().addSyncStanzaListener(stanza -> {
+            EntityBareJid from = stanza.getFrom().asEntityBareJidIfPossible();
+            if (!(EventElement.from(stanza).getEvent() instanceof ItemsExtension items) || !node.equals(items
+                    .getNode())) {
+                return;
+            }
+            for (NamedElement item : items.getItems()) {
+                if (item instanceof PayloadItem<?> payloadItem
+                        && payloadItem.getPayload() instanceof ControlMlElement element) {
+                    accept(resource, listener, lastAccepted, from, element);
+                }
+            }
+        }, PEP_EVENTS);
+    }
+
+    /** One telemetry item of {@code resource} from {@code from}: checked, deduplicated, decoded and passed on. */
+    private <T> void accept(Resource<T, ?> resource, TelemetryListener<T> listener,
+            Map<EntityBareJid, RequestId> lastAccepted, EntityBareJid from, ControlMlElement element) {
+        if (element.defect() != null || element.payload() == null || !resource.name().equals(element.res())) {
+            rejected.incrementAndGet();
+            LOG.debug("rejected telemetry {} from {}", element, from);
+            return;
+        }
+        if (!isNewer(lastAccepted, from, element.id())) {
+            // the same item again (e.g. Prosody 0.12 delivers it for +notify and for the explicit subscription) or
+            // an older one overtaken: section 6's rule, by the publication's id
+            LOG.trace("duplicate telemetry {} from {}", element, from);
+            return;
+        }
+        T value;
+        try {
+            value = element.value(resource);
+        } catch (PayloadException e) {
+            rejected.incrementAndGet();
+            LOG.debug("rejected telemetry from {}: {}", from, e.getMessage());
+            return;
+        }
+        received.incrementAndGet();
+        listener.onTelemetry(from, value);
     }
 }
