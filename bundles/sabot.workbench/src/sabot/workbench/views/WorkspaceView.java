@@ -118,7 +118,15 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private GridMap map;
     private Image mapImage;
     /** The frame drawn into, the canvas's size: {@link #frame}. */
-    private Image frame;
+    private MemoryImage frame;
+    /**
+     * The static layers (white, the map scaled, the grid, the axes) as last drawn, and what for: redrawn only when the
+     * view moves, zooms, is resized or gets another map ({@link #drawBackground}).
+     */
+    private MemoryImage background;
+    private BackgroundKey backgroundKey;
+    /** Counts the maps shown, so that the background knows when the map changed. */
+    private int mapVersion;
     private String mapFrom;
     private boolean mapRequested;
     /** Each robot's label laid out, by JID: {@link #drawLabel}. */
@@ -196,7 +204,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 mapImage.dispose();
             }
             if (frame != null) {
-                frame.dispose();
+                frame.close();
+            }
+            if (background != null) {
+                background.close();
             }
             labels.values().forEach(TextLayout::dispose);
             labels.clear();
@@ -514,6 +525,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             mapImage.dispose();
         }
         mapImage = new Image(canvas.getDisplay(), imageOf(m));
+        mapVersion++;
         canvas.redraw();
     }
 
@@ -606,7 +618,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             return; // a view minimized or not laid out yet: no frame, and no paint to measure
         }
         probe.paintStarting();
-        GC gc = new GC(frame(area));
+        frame = MemoryImage.sized(frame, d, area);
+        GC gc = new GC(frame.image());
         Drawn drawn;
         try {
             gc.setFont(canvas.getFont());
@@ -615,7 +628,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             gc.dispose();
         }
         long copyFrom = System.nanoTime();
-        e.gc.drawImage(frame, 0, 0);
+        frame.drawOnto(e.gc);
         lastPaintEnd = System.nanoTime();
         frameNanos[frames % FRAME_SAMPLES] = lastPaintEnd - t0;
         frameCpuNanos[frames % FRAME_SAMPLES] = threads.getCurrentThreadCpuTime() - cpu0;
@@ -631,20 +644,35 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         }
     }
 
+    /** What the static layers were drawn for: the canvas's size, the view on the map and the map. */
+    private record BackgroundKey(int width, int height, double scale, double centerX, double centerY,
+            int mapVersion) {
+    }
+
     /**
-     * The frame the paint draws into: an image in the workbench's memory (an {@link ImageData}'s image is a cairo
-     * image surface on GTK), so cairo rasterizes in this process and the X server receives one image a paint instead
-     * of every shape to rasterize in software (Xvfb: as much CPU again as the paint; docs/WORKBENCH.md).
+     * Draws the static layers: from {@link #background} as they were last drawn, after drawing them there again if
+     * the view or the map changed.
      */
-    private Image frame(Rectangle area) {
-        if (frame == null || frame.getBounds().width != area.width || frame.getBounds().height != area.height) {
-            if (frame != null) {
-                frame.dispose();
+    private void drawBackground(GC gc, Display d, Rectangle area) {
+        BackgroundKey key = new BackgroundKey(area.width, area.height, viewport.scale(), viewport.centerX(), viewport
+                .centerY(), mapVersion);
+        if (!key.equals(backgroundKey)) {
+            background = MemoryImage.sized(background, d, area);
+            GC layers = new GC(background.image());
+            try {
+                layers.setFont(canvas.getFont());
+                layers.setAntialias(SWT.OFF);
+                layers.setBackground(d.getSystemColor(SWT.COLOR_WHITE));
+                layers.fillRectangle(area);
+                drawMap(layers);
+                drawGrid(layers, area);
+                drawAxes(layers, area);
+            } finally {
+                layers.dispose();
             }
-            frame = new Image(canvas.getDisplay(), new ImageData(area.width, area.height, 24, new PaletteData(
-                    0xFF0000, 0x00FF00, 0x0000FF)));
+            backgroundKey = key;
         }
-        return frame;
+        background.drawOnto(gc);
     }
 
     /** The robots a frame drew, and those of them drawn live on the map. */
@@ -655,11 +683,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         // antialiasing only where it shows (the footprints, drawRobot): antialiased strokes cost cairo far more than
         // aliased ones (docs/WORKBENCH.md, "Paint of 100 robots without load")
         gc.setAntialias(SWT.OFF);
-        gc.setBackground(d.getSystemColor(SWT.COLOR_WHITE));
-        gc.fillRectangle(area);
-        drawMap(gc);
-        drawGrid(gc, area);
-        drawAxes(gc, area);
+        drawBackground(gc, d, area);
         Instant now = Instant.now();
         List<RobotState> drawn = fleet.robots();
         List<RobotState> drawnLive = new ArrayList<>();
