@@ -86,6 +86,72 @@ class WorkspacePaintUiTest {
         }
     }
 
+    /**
+     * The static layers are kept from frame to frame (WorkspaceView.drawBackground): they must follow the view. The
+     * x axis (dark red, from the origin 60 px to the right) is looked for where the viewport puts it after a pan and
+     * after a zoom, and is gone from where it was.
+     */
+    @Test
+    void theKeptStaticLayersFollowThePanAndTheZoom() {
+        WorkspaceView workspace = workspace();
+        workspace.home();
+        MapViewport v = workspace.viewport();
+        int[] before = repaintAndFindXAxis(workspace);
+        v.panByPixels(37, -23);
+        int[] panned = repaintAndFindXAxis(workspace);
+        assertTrue(panned[0] == before[0] + 37 && Math.abs(panned[1] - (before[1] - 23)) <= 1, "after the pan the "
+                + "x axis is at " + panned[0] + "," + panned[1] + ", not 37,-23 from " + before[0] + "," + before[1]);
+        // twice the scale about a point 100 px right of the origin: the origin moves 100 px left, the axis keeps its
+        // 60 px
+        v.zoomAt(2, panned[0] + 100, panned[1]);
+        int[] zoomed = repaintAndFindXAxis(workspace);
+        int ox = (int) Math.round(v.toScreenX(0));
+        int oy = (int) Math.round(v.toScreenY(0));
+        assertTrue(Math.abs(zoomed[0] - ox) <= 1 && Math.abs(zoomed[1] - oy) <= 1, "after the zoom the x axis "
+                + "starts at " + zoomed[0] + "," + zoomed[1] + ", the viewport's origin is at " + ox + "," + oy);
+        workspace.home();
+    }
+
+    /**
+     * Repaints the Workspace, then finds the x axis on the screen: the leftmost pixel of the longest dark red
+     * horizontal run.
+     *
+     * @return its column and row
+     */
+    private static int[] repaintAndFindXAxis(WorkspaceView workspace) {
+        Canvas canvas = workspace.canvas();
+        int frames0 = workspace.frameCount();
+        canvas.redraw();
+        FleetViewUpdatesUiTest.waitFor(() -> workspace.frameCount() > frames0, 5, () -> "no paint");
+        Image shot = new Image(canvas.getDisplay(), canvas.getSize().x, canvas.getSize().y);
+        GC gc = new GC(canvas);
+        gc.copyArea(shot, 0, 0);
+        gc.dispose();
+        ImageData data = shot.getImageData();
+        shot.dispose();
+        RGB axis = canvas.getDisplay().getSystemColor(org.eclipse.swt.SWT.COLOR_DARK_RED).getRGB();
+        int[] best = { -1, -1 };
+        int bestLength = 0;
+        for (int y = 0; y < data.height; y++) {
+            int run = 0;
+            for (int x = 0; x < data.width; x++) {
+                run = data.palette.getRGB(data.getPixel(x, y)).equals(axis) ? run + 1 : 0;
+                if (run > bestLength) {
+                    bestLength = run;
+                    best = new int[] { x - run + 1, y };
+                }
+            }
+        }
+        if (bestLength < 40) {
+            org.eclipse.swt.graphics.ImageLoader png = new org.eclipse.swt.graphics.ImageLoader();
+            png.data = new ImageData[] { data };
+            png.save("target/workspace-no-axis.png", org.eclipse.swt.SWT.IMAGE_PNG);
+        }
+        assertTrue(bestLength >= 40, "no x axis on the screen (longest dark red run " + bestLength + " px, "
+                + data.width + "x" + data.height + "; the screen: target/workspace-no-axis.png)");
+        return best;
+    }
+
     /** Paints {@link #FRAMES} frames after 10 of warm-up, the robots moved a little before each; prints the figures. */
     private void measure(WorkspaceView workspace) {
         Canvas canvas = workspace.canvas();
