@@ -60,17 +60,11 @@ class WorkspacePaintUiTest {
         FleetViewUpdatesUiTest.waitFor(() -> workspace.map() != null, 10, () -> "no map: " + workspace.lastMessage());
         workspace.home();
         Canvas canvas = workspace.canvas();
-        Display d = canvas.getDisplay();
         measure(workspace);
 
         // what is drawn: the footprint's fill (blue) half a radius behind each of a few robots' centres
         MapViewport v = workspace.viewport();
-        Image shot = new Image(d, canvas.getSize().x, canvas.getSize().y);
-        GC gc = new GC(canvas);
-        gc.copyArea(shot, 0, 0);
-        gc.dispose();
-        ImageData data = shot.getImageData();
-        shot.dispose();
+        ImageData data = screen(canvas);
         // the frame as the eye sees it, to judge the look (not under docs/images: a test fixture, not a view with a
         // live robot)
         org.eclipse.swt.graphics.ImageLoader png = new org.eclipse.swt.graphics.ImageLoader();
@@ -123,12 +117,7 @@ class WorkspacePaintUiTest {
         int frames0 = workspace.frameCount();
         canvas.redraw();
         FleetViewUpdatesUiTest.waitFor(() -> workspace.frameCount() > frames0, 5, () -> "no paint");
-        Image shot = new Image(canvas.getDisplay(), canvas.getSize().x, canvas.getSize().y);
-        GC gc = new GC(canvas);
-        gc.copyArea(shot, 0, 0);
-        gc.dispose();
-        ImageData data = shot.getImageData();
-        shot.dispose();
+        ImageData data = screen(canvas);
         RGB axis = canvas.getDisplay().getSystemColor(org.eclipse.swt.SWT.COLOR_DARK_RED).getRGB();
         int[] best = { -1, -1 };
         int bestLength = 0;
@@ -150,6 +139,19 @@ class WorkspacePaintUiTest {
         assertTrue(bestLength >= 40, "no x axis on the screen (longest dark red run " + bestLength + " px, "
                 + data.width + "x" + data.height + "; the screen: target/workspace-no-axis.png)");
         return best;
+    }
+
+    /** @return what the canvas shows on the screen, read back from the X server */
+    private static ImageData screen(Canvas canvas) {
+        Image shot = new Image(canvas.getDisplay(), canvas.getSize().x, canvas.getSize().y);
+        try {
+            GC gc = new GC(canvas);
+            gc.copyArea(shot, 0, 0);
+            gc.dispose();
+            return shot.getImageData();
+        } finally {
+            shot.dispose();
+        }
     }
 
     /** Paints {@link #FRAMES} frames after 10 of warm-up, the robots moved a little before each; prints the figures. */
