@@ -117,7 +117,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /** The map drawn: the first robot's with a map, fetched once. */
     private GridMap map;
     private Image mapImage;
-    /** The frame drawn into, the canvas's size: {@link #frame}. */
+    /**
+     * The frame the paint draws into, the canvas's size: an image in the workbench's memory, so that cairo rasterizes
+     * in this process and the X server receives one image a paint instead of every shape to rasterize in software
+     * (Xvfb: as much CPU again as the paint; docs/WORKBENCH.md).
+     */
     private MemoryImage frame;
     /**
      * The static layers (white, the map scaled, the grid, the axes) as last drawn, and what for: redrawn only when the

@@ -388,8 +388,8 @@ public final class WorkbenchBench {
                 + "thread: %s%n", pct(fr), fr.length / (double) seconds, pct(frCpu));
         System.out.printf(Locale.ROOT, "[figure]   of the paint time, the frame's copy to the window (the X server "
                 + "reading the image): %s; the UI thread runnable, waiting for a CPU: %s; the workbench's GC pauses in "
-                + "the window: %d, %.1f ms in all, max %.2f ms%n", pct(frCopy), pct(frQueued), gcPauses.length, Arrays.stream(gcPauses).sum() / 1e6, gcPauses.length == 0 ? 0
-                        : gcPauses[gcPauses.length - 1] / 1e6);
+                + "the window: %d, %.1f ms in all, max %.2f ms%n", pct(frCopy), pct(frQueued), gcPauses.length,
+                Arrays.stream(gcPauses).sum() / 1e6, gcPauses.length == 0 ? 0 : gcPauses[gcPauses.length - 1] / 1e6);
         System.out.printf(Locale.ROOT, "[figure] telemetry-to-screen latency (pose stamp to end of the paint that "
                 + "first shows it): %s; poses shown %d of ~%d published (%.1f %%)%n", pct(lat), lat.length, published,
                 100.0 * lat.length / published);
@@ -399,8 +399,7 @@ public final class WorkbenchBench {
                 + "of the operator, Smack only): %s, %d received%n", pct(refLat), refLat.length);
         System.out.printf(Locale.ROOT, "[figure]   CPU over the window (1 core = 100 %%): server %.0f %%, workbench "
                 + "%.0f %%, X server %.0f %%; robots' publications in the window acknowledged %d, failed %d%n",
-                serverCpu, wbCpu, xCpu, load
-                .telemetryPublished() - acked0, load.telemetryFailed() - failed0);
+                serverCpu, wbCpu, xCpu, load.telemetryPublished() - acked0, load.telemetryFailed() - failed0);
         put(figures, "paint", fr);
         put(figures, "paint_cpu", frCpu);
         put(figures, "paint_copy", frCopy);
@@ -428,9 +427,9 @@ public final class WorkbenchBench {
         for (String line : lines(log)) {
             Matcher m = GC_PAUSE.matcher(line);
             if (m.find()) {
-                long end = Long.parseLong(m.group(1));
                 long nanos = Math.round(Double.parseDouble(m.group(2)) * 1e6);
-                if (end - nanos / 1_000_000 >= fromMs && end - nanos / 1_000_000 < toMs) {
+                long began = Long.parseLong(m.group(1)) - nanos / 1_000_000; // the stamp is the pause's end
+                if (began >= fromMs && began < toMs) {
                     pauses.add(nanos);
                 }
             }
