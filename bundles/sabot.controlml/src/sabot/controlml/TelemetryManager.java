@@ -1,15 +1,18 @@
 package sabot.controlml;
 
+import java.util.List;
 import java.util.Map;
 import java.util.Set;
 import java.util.WeakHashMap;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.ScheduledThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.BiConsumer;
 import java.util.function.Supplier;
 
 import org.jivesoftware.smack.Manager;
@@ -24,6 +27,7 @@ import org.jivesoftware.smack.filter.jidtype.FromJidTypeFilter;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.NamedElement;
 import org.jivesoftware.smack.packet.StandardExtensionElement;
+import org.jivesoftware.smack.packet.Stanza;
 import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
 import org.jivesoftware.smackx.pubsub.EventElement;
 import org.jivesoftware.smackx.pubsub.ItemsExtension;
@@ -65,6 +69,9 @@ public final class TelemetryManager extends Manager {
     private final Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
     private final AtomicInteger activePublications = new AtomicInteger();
     private ScheduledExecutorService scheduler;
+    /** What {@link #addListener} registered, by PEP node: each item of the node from a device goes to each of them. */
+    private final Map<String, List<BiConsumer<EntityBareJid, ControlMlElement>>> itemHandlers =
+            new ConcurrentHashMap<>();
 
     private final AtomicLong published = new AtomicLong();
     private final AtomicLong failed = new AtomicLong();
@@ -79,6 +86,11 @@ public final class TelemetryManager extends Manager {
     private TelemetryManager(XMPPConnection connection) {
         super(connection);
         this.controlMl = ControlMlManager.getInstanceFor(connection); // registers the providers, issues the ids
+        // what PepManager does, without its dispatch: PepManager hands each event to a pooled thread per sender
+        // (AsyncButOrdered), so 100 robots kept some 80 threads waking one another on every burst of items
+        // (docs/WORKBENCH.md, "What limits it"); a synchronous listener gets them in arrival order on the
+        // connection's one listener thread
+        connection.addSyncStanzaListener(this::onPepEvent, PEP_EVENTS);
     }
 
     /** @return a snapshot of this connection's telemetry counters */
@@ -282,24 +294,27 @@ public final class TelemetryManager extends Manager {
     public <T> void addListener(Resource<T, ?> resource, TelemetryListener<T> listener) {
         String node = ControlMl.telemetryNode(resource.name());
         Map<EntityBareJid, RequestId> lastAccepted = new ConcurrentHashMap<>();
-        // what PepManager.addPepEventListener does, without its dispatch: PepManager hands each event to a pooled
-        // thread per sender (AsyncButOrdered), so 100 robots kept some 80 threads waking one another on every burst
-        // of items (docs/WORKBENCH.md, "What limits it"); a synchronous listener gets them in arrival order on the
-        // connection's one listener thread
+        itemHandlers.computeIfAbsent(node, n -> new CopyOnWriteArrayList<>()).add((from, element) -> accept(resource,
+                listener, lastAccepted, from, element));
         ServiceDiscoveryManager.getInstanceFor(connection()).addFeature(node + PLUS_NOTIFY);
-        connection().addSyncStanzaListener(stanza -> {
-            EntityBareJid from = stanza.getFrom().asEntityBareJidIfPossible();
-            if (!(EventElement.from(stanza).getEvent() instanceof ItemsExtension items) || !node.equals(items
-                    .getNode())) {
-                return;
+    }
+
+    /** A PEP event: its ControlML items to the handlers of its node, if any. */
+    private void onPepEvent(Stanza stanza) {
+        if (!(EventElement.from(stanza).getEvent() instanceof ItemsExtension items)) {
+            return;
+        }
+        List<BiConsumer<EntityBareJid, ControlMlElement>> handlers = itemHandlers.get(items.getNode());
+        if (handlers == null) {
+            return;
+        }
+        EntityBareJid from = stanza.getFrom().asEntityBareJidIfPossible();
+        for (NamedElement item : items.getItems()) {
+            if (item instanceof PayloadItem<?> payloadItem
+                    && payloadItem.getPayload() instanceof ControlMlElement element) {
+                handlers.forEach(h -> h.accept(from, element));
             }
-            for (NamedElement item : items.getItems()) {
-                if (item instanceof PayloadItem<?> payloadItem
-                        && payloadItem.getPayload() instanceof ControlMlElement element) {
-                    accept(resource, listener, lastAccepted, from, element);
-                }
-            }
-        }, PEP_EVENTS);
+        }
     }
 
     /** One telemetry item of {@code resource} from {@code from}: checked, deduplicated, decoded and passed on. */

@@ -67,9 +67,7 @@ class WorkspacePaintUiTest {
         ImageData data = screen(canvas);
         // the frame as the eye sees it, to judge the look (not under docs/images: a test fixture, not a view with a
         // live robot)
-        org.eclipse.swt.graphics.ImageLoader png = new org.eclipse.swt.graphics.ImageLoader();
-        png.data = new ImageData[] { data };
-        png.save("target/workspace-100-robots.png", org.eclipse.swt.SWT.IMAGE_PNG);
+        save(data, "target/workspace-100-robots.png");
         for (int i : new int[] { 0, 37, 99 }) {
             RobotState r = fleet.get(DrivenFleet.jid(i));
             double behind = 0.5 * WorkspaceView.FOOTPRINT_RADIUS_M;
@@ -82,8 +80,8 @@ class WorkspacePaintUiTest {
 
     /**
      * The static layers are kept from frame to frame (WorkspaceView.drawBackground): they must follow the view. The
-     * x axis (dark red, from the origin 60 px to the right) is looked for where the viewport puts it after a pan and
-     * after a zoom, and is gone from where it was.
+     * x axis (dark red, from the origin 60 px to the right) is looked for on the screen: after a pan it has moved by
+     * the pan, after a zoom it starts where the viewport puts the origin.
      */
     @Test
     void theKeptStaticLayersFollowThePanAndTheZoom() {
@@ -132,13 +130,17 @@ class WorkspacePaintUiTest {
             }
         }
         if (bestLength < 40) {
-            org.eclipse.swt.graphics.ImageLoader png = new org.eclipse.swt.graphics.ImageLoader();
-            png.data = new ImageData[] { data };
-            png.save("target/workspace-no-axis.png", org.eclipse.swt.SWT.IMAGE_PNG);
+            save(data, "target/workspace-no-axis.png");
         }
         assertTrue(bestLength >= 40, "no x axis on the screen (longest dark red run " + bestLength + " px, "
                 + data.width + "x" + data.height + "; the screen: target/workspace-no-axis.png)");
         return best;
+    }
+
+    private static void save(ImageData data, String png) {
+        org.eclipse.swt.graphics.ImageLoader loader = new org.eclipse.swt.graphics.ImageLoader();
+        loader.data = new ImageData[] { data };
+        loader.save(png, org.eclipse.swt.SWT.IMAGE_PNG);
     }
 
     /** @return what the canvas shows on the screen, read back from the X server */
