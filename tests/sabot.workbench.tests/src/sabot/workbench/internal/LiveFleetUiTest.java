@@ -1,6 +1,7 @@
 package sabot.workbench.internal;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -12,6 +13,7 @@ import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Set;
 import java.util.concurrent.TimeUnit;
 import java.util.function.BooleanSupplier;
 import java.util.function.Supplier;
@@ -144,6 +146,19 @@ class LiveFleetUiTest {
         assertTrue(at.blue > at.red + 40, "no robot drawn at its true pose: " + at);
 
         assertTrue(statusLineText().contains("online"), statusLineText());
+
+        // telemetry ingest runs below the UI thread: the fleet's threads, and the Smack reader its connection thread
+        // started (this JVM's other connections, the test's own, are at the normal priority)
+        Set<Thread> threads = Thread.getAllStackTraces().keySet();
+        List<Thread> fleetThreads = threads.stream().filter(t -> t.getName().startsWith("sabot-fleet-")).toList();
+        assertFalse(fleetThreads.isEmpty(), "no fleet thread");
+        for (Thread t : fleetThreads) {
+            assertEquals(Thread.MIN_PRIORITY, t.getPriority(), t.getName());
+        }
+        assertTrue(threads.stream().anyMatch(t -> t.getName().startsWith("Smack Reader") && t.getPriority()
+                == Thread.MIN_PRIORITY), "no Smack reader below the UI thread's priority");
+        // (the Eclipse workbench gives its UI thread NORM_PRIORITY + 1)
+        assertTrue(workspace.canvas().getDisplay().getThread().getPriority() > Thread.MIN_PRIORITY, "the UI thread");
 
         screenshot("workbench.png");
         capture(fleetView().table(), "fleet.png");

@@ -99,7 +99,7 @@ import sabot.workbench.fleet.RobotState;
  * <p>
  * Threads: one connection thread (connect, log in, follow robots, back-off), a small pool for requests (each waits
  * for its robot's answer), and one notification thread that calls the listeners in order. Smack's threads only
- * update the state and queue notifications.
+ * update the state and queue notifications. All of them run at {@link #BACKGROUND_PRIORITY}.
  */
 @Component(service = FleetState.class, immediate = true)
 public final class ControlMlFleet implements FleetState {
@@ -111,6 +111,13 @@ public final class ControlMlFleet implements FleetState {
     /** The telemetry every followed robot is subscribed to (docs/CONTROLML.md section 6). */
     static final List<Resource<?, ?>> TELEMETRY = List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
             Resources.OBSTACLES);
+
+    /**
+     * Priority of every thread of the connection, its own and Smack's: below the UI thread's, so that a frame need not
+     * wait for telemetry ingest on a busy core. Linux applies it only when the product's start script is told to
+     * (SABOT_WORKBENCH_BACKGROUND_NICE, docs/WORKBENCH.md); otherwise HotSpot only records Java priorities.
+     */
+    static final int BACKGROUND_PRIORITY = Thread.MIN_PRIORITY;
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.workbench.controlml");
 
@@ -862,11 +869,16 @@ public final class ControlMlFleet implements FleetState {
         }
     }
 
+    /**
+     * The fleet's threads, at {@link #BACKGROUND_PRIORITY}. Smack's reader, writer and executor threads are started
+     * from them and inherit it.
+     */
     private static ThreadFactory named(String name) {
         AtomicInteger n = new AtomicInteger();
         return r -> {
             Thread t = new Thread(r, name + "-" + n.incrementAndGet());
             t.setDaemon(true);
+            t.setPriority(BACKGROUND_PRIORITY);
             return t;
         };
     }

@@ -62,6 +62,10 @@ public final class WorkbenchBench {
     private Path product;
     private Path out;
     private CpuLayout cpus = CpuLayout.shared("not placed yet");
+    /** SABOT_WORKBENCH_BACKGROUND_NICE for the workbench's start script; null: as the product ships (off). */
+    private String backgroundNice;
+    /** The workbench's JVM (a child of the product's start script), once started. */
+    private long workbenchJvm = -1;
 
     public static void main(String[] args) throws Exception {
         WorkbenchBench b = new WorkbenchBench();
@@ -97,11 +101,18 @@ public final class WorkbenchBench {
                     }
                     i++;
                 }
+                case "--background-nice" -> {
+                    backgroundNice = need(a, v);
+                    if (!backgroundNice.matches("[0-9]{1,2}") || Integer.parseInt(backgroundNice) > 19) {
+                        throw new IllegalArgumentException("--background-nice '" + v + "': a Linux nice value, 0 to 19");
+                    }
+                    i++;
+                }
                 case "--product" -> { product = Paths.get(need(a, v)); i++; }
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] "
+                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -149,6 +160,7 @@ public final class WorkbenchBench {
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
         figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
+        figures.put("background_nice", backgroundNice == null ? "0" : backgroundNice);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
             // ./sabot bench controlml does; the load, the workbench (started by this JVM) and Xvfb on the others
@@ -197,7 +209,7 @@ public final class WorkbenchBench {
     // ------------------------------------------------------------------------------------------------ workbench
 
     private Process startWorkbench(Path dir, PrivateXmppServer server, EntityBareJid operator, String password,
-            List<EntityBareJid> followed, Path probe) throws IOException {
+            List<EntityBareJid> followed, Path probe) throws IOException, InterruptedException {
         // the account as ./sabot demo writes it: preferences of the workspace, the password in a 0600 file
         Path ws = dir.resolve("workspace");
         Path prefs = Files.createDirectories(ws.resolve(".metadata/.plugins/org.eclipse.core.runtime/.settings"));
@@ -208,26 +220,68 @@ public final class WorkbenchBench {
         Path pw = secrets.resolve("xmpp-password");
         Files.writeString(pw, password);
         Files.setPosixFilePermissions(pw, PosixFilePermissions.fromString("rw-------"));
-        Path launcher;
-        try (var s = Files.list(product.resolve("plugins"))) {
-            launcher = s.filter(p -> p.getFileName().toString().startsWith("org.eclipse.equinox.launcher_") && p
-                    .toString().endsWith(".jar")).findFirst().orElseThrow(() -> new IOException(
-                            "no Equinox launcher in " + product.resolve("plugins")));
-        }
-        List<String> cmd = new ArrayList<>(List.of(Paths.get(System.getProperty("java.home"), "bin", "java")
-                .toString(), "-Dsabot.workbench.secrets=" + secrets, "-Dlogback.configurationFile=" + product.resolve(
-                        "etc/logback.xml")));
+        // the product as shipped: its start script, with the JVM options it sets (the thread priorities)
+        List<String> cmd = new ArrayList<>(List.of(product.resolve("sabot-workbench").toString(), "-consoleLog",
+                "-data", ws.toString(), "-vmargs", "-Dsabot.workbench.secrets=" + secrets));
         if (probe != null) {
             cmd.add("-D" + "sabot.workbench.paintProbe" + "=" + probe);
         }
         // the collector's pauses stop the UI thread too: logged with the epoch time to set them against the window
         cmd.add("-Xlog:gc:file=" + dir.resolve(GC_LOG) + ":timemillis");
-        cmd.addAll(List.of("-jar", launcher.toString(), "-consoleLog", "-data", ws.toString()));
         ProcessBuilder pb = new ProcessBuilder(cpus.wrap(cmd)).directory(product.toFile()).redirectErrorStream(true)
                 .redirectOutput(dir.resolve("workbench.log").toFile());
+        pb.environment().put("JAVA_HOME", System.getProperty("java.home"));
+        if (backgroundNice != null) {
+            pb.environment().put("SABOT_WORKBENCH_BACKGROUND_NICE", backgroundNice);
+        }
         Process p = pb.start();
-        System.out.printf("[bench] workbench pid %d, log %s%n", p.pid(), dir.resolve("workbench.log"));
+        workbenchJvm = jvmOf(p);
+        System.out.printf("[bench] workbench pid %d (JVM %d), log %s%n", p.pid(), workbenchJvm, dir.resolve(
+                "workbench.log"));
         return p;
+    }
+
+    /** The workbench's JVM: the start script's child (the script stays, to restart it on request). */
+    private static long jvmOf(Process script) throws IOException, InterruptedException {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+        while (System.nanoTime() < deadline) {
+            var jvm = script.descendants().filter(h -> h.info().command().map(c -> c.endsWith("/java")).orElse(
+                    false)).findFirst();
+            if (jvm.isPresent()) {
+                return jvm.get().pid();
+            }
+            if (script.waitFor(20, TimeUnit.MILLISECONDS)) {
+                throw new IOException("the workbench's start script exited with status " + script.exitValue());
+            }
+        }
+        throw new IOException("no workbench JVM under its start script (pid " + script.pid() + ") within 30 s");
+    }
+
+    /**
+     * The workbench's threads by Linux nice value, names without their numbers: whether the start script's
+     * priorities took effect (the UI thread at 0, telemetry ingest and the JIT compilers above).
+     */
+    static String threadsByNice(long pid) {
+        Map<Integer, Set<String>> byNice = new java.util.TreeMap<>();
+        try (var tasks = Files.list(Paths.get("/proc", Long.toString(pid), "task"))) {
+            for (Path t : tasks.toList()) {
+                try {
+                    String stat = Files.readString(t.resolve("stat"));
+                    int nice = Integer.parseInt(stat.substring(stat.lastIndexOf(')') + 2).split(" ")[16]);
+                    String name = Files.readString(t.resolve("comm")).strip().replaceAll("[#(]?[0-9]+\\)?$", "")
+                            .strip();
+                    byNice.computeIfAbsent(nice, k -> new java.util.TreeSet<>()).add(name);
+                } catch (IOException | RuntimeException gone) {
+                    // the thread ended meanwhile
+                }
+            }
+        } catch (IOException e) {
+            return "? (" + e.getMessage() + ")";
+        }
+        StringBuilder b = new StringBuilder();
+        byNice.forEach((nice, names) -> b.append(b.isEmpty() ? "" : "; ").append(nice).append(": ").append(String
+                .join(", ", names)));
+        return b.toString();
     }
 
     private static void stop(Process wb) throws InterruptedException {
@@ -283,6 +337,7 @@ public final class WorkbenchBench {
                     live.size(), robots, limitS);
         }
         figures.put("robots_live", live.size());
+        System.out.println("[bench] workbench threads by nice value: " + threadsByNice(workbenchJvm));
         double allLiveS = (System.nanoTime() - started) / 1e9;
         System.out.printf(Locale.ROOT, "[figure] workbench process start to first live robot on screen %.2f s, to %d of "
                 + "%d robots %.2f s (load %s)%n", (firstMicros - startedMicros) / 1e6, live.size(), robots, allLiveS,
@@ -466,8 +521,8 @@ public final class WorkbenchBench {
             if (wait > 0) {
                 hold(wb, wait / 1e9);
             }
-            double heap = heapAfterGc(wb.pid());
-            double rss = rssMb(wb.pid());
+            double heap = heapAfterGc(workbenchJvm);
+            double rss = rssMb(workbenchJvm);
             samples.add(new double[] { m, heap, rss });
             List<double[]> sofar = samples.size() > 6 ? samples.subList(5, samples.size()) : samples;
             System.out.printf(Locale.ROOT, "[memory] minute %3d: heap after full GC %.1f MB, RSS %.1f MB (load %s); "
