@@ -15,6 +15,8 @@ import java.util.List;
 import java.util.Locale;
 import java.util.Map;
 import java.util.Set;
+import java.util.TreeMap;
+import java.util.TreeSet;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.regex.Matcher;
@@ -262,7 +264,7 @@ public final class WorkbenchBench {
      * priorities took effect (the UI thread at 0, telemetry ingest and the JIT compilers above).
      */
     static String threadsByNice(long pid) {
-        Map<Integer, Set<String>> byNice = new java.util.TreeMap<>();
+        Map<Integer, Set<String>> byNice = new TreeMap<>();
         try (var tasks = Files.list(Paths.get("/proc", Long.toString(pid), "task"))) {
             for (Path t : tasks.toList()) {
                 try {
@@ -270,7 +272,7 @@ public final class WorkbenchBench {
                     int nice = Integer.parseInt(stat.substring(stat.lastIndexOf(')') + 2).split(" ")[16]);
                     String name = Files.readString(t.resolve("comm")).strip().replaceAll("[#(]?[0-9]+\\)?$", "")
                             .strip();
-                    byNice.computeIfAbsent(nice, k -> new java.util.TreeSet<>()).add(name);
+                    byNice.computeIfAbsent(nice, k -> new TreeSet<>()).add(name);
                 } catch (IOException | RuntimeException gone) {
                     // the thread ended meanwhile
                 }
@@ -337,13 +339,13 @@ public final class WorkbenchBench {
                     live.size(), robots, limitS);
         }
         figures.put("robots_live", live.size());
-        System.out.println("[bench] workbench threads by nice value: " + threadsByNice(workbenchJvm));
         double allLiveS = (System.nanoTime() - started) / 1e9;
         System.out.printf(Locale.ROOT, "[figure] workbench process start to first live robot on screen %.2f s, to %d of "
                 + "%d robots %.2f s (load %s)%n", (firstMicros - startedMicros) / 1e6, live.size(), robots, allLiveS,
                 loadAverage());
         figures.put("start_to_first_live_s", round((firstMicros - startedMicros) / 1e6));
         figures.put("start_to_all_live_s", round(allLiveS));
+        System.out.println("[bench] workbench threads by nice value: " + threadsByNice(workbenchJvm));
 
         // the reference: a second session of the operator that only receives cm.position (the server's fan-out
         // to one more session of the same account, and Smack's parsing), started once the workbench's
