@@ -52,7 +52,11 @@ public final class WorkbenchBench {
     private int robots = 1;
     private PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
     private int seconds = 30;
-    private int warmupSeconds = 10;
+    /**
+     * Seconds between all robots live and the window: the JIT's warm-up. With 100 robots the compilers still take
+     * ~22 % of a core 45 s after the start and ~3 % after 90 s (docs/WORKBENCH.md, "What limits it").
+     */
+    private int warmupSeconds = 90;
     private boolean memory;
     /** Where the processes run: {@code split} (default), {@code workbench-alone} or {@code shared}. */
     private String layout = "split";
@@ -114,7 +118,7 @@ public final class WorkbenchBench {
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (10)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] "
+                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
