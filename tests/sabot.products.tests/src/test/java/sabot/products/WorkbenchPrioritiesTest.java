@@ -88,9 +88,14 @@ class WorkbenchPrioritiesTest {
                         }
                         try (var tasks = Files.list(Path.of("/proc/self/task"))) {
                             for (Path t : tasks.toList()) {
-                                String comm = Files.readString(t.resolve("comm")).strip();
-                                if (comm.contains("CompilerThre") || comm.startsWith("GC Thread") || comm.equals("VM Thread")) {
-                                    System.out.println(comm.replaceAll("[#0-9]+$", "") + " " + nice(t));
+                                try {
+                                    String comm = Files.readString(t.resolve("comm")).strip();
+                                    if (comm.contains("CompilerThre") || comm.startsWith("GC Thread")
+                                            || comm.equals("VM Thread")) {
+                                        System.out.println(comm.replaceAll("[#0-9]+$", "") + " " + nice(t));
+                                    }
+                                } catch (NoSuchFileException ended) {
+                                    // a thread that ended after the listing (the JVM adds and removes compiler threads)
                                 }
                             }
                         }
