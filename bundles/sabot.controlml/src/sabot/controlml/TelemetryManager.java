@@ -312,7 +312,14 @@ public final class TelemetryManager extends Manager {
         for (NamedElement item : items.getItems()) {
             if (item instanceof PayloadItem<?> payloadItem
                     && payloadItem.getPayload() instanceof ControlMlElement element) {
-                handlers.forEach(h -> h.accept(from, element));
+                for (BiConsumer<EntityBareJid, ControlMlElement> h : handlers) {
+                    try {
+                        h.accept(from, element);
+                    } catch (RuntimeException e) {
+                        // one failing listener must not cost the others (or this event's next items) their telemetry
+                        LOG.warn("telemetry listener failed on {} from {}", items.getNode(), from, e);
+                    }
+                }
             }
         }
     }

@@ -2,9 +2,6 @@ package sabot.controlml.bench;
 
 import java.io.IOException;
 import java.lang.management.ManagementFactory;
-import java.nio.file.Files;
-import java.nio.file.Path;
-import java.nio.file.Paths;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Arrays;
@@ -456,14 +453,15 @@ public final class ControlMlBench {
         double setupS = (System.nanoTime() - setup0) / 1e9;
         System.out.printf("[bench] setup (IBR, login, %d mutual subscriptions, caps warm-up) %.1f s%n", robots
                 * subscribers, setupS);
-        long cpu0 = serverCpuTicks(server);
+        // the server with its descendants: ejabberd runs beam.smp under its control script
+        long cpu0 = ProcStat.cpuTicks(server.pid());
         long self0 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
                 .getProcessCpuTime();
         long wall0 = System.nanoTime();
         window.open(nanosOfInstant(Instant.now()), TimeUnit.SECONDS.toNanos(durationS));
         // The measurement is the passing of time itself: wait out the window (latch never counted down).
         new CountDownLatch(1).await(durationS, TimeUnit.SECONDS);
-        long cpu1 = serverCpuTicks(server);
+        long cpu1 = ProcStat.cpuTicks(server.pid());
         long self1 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
                 .getProcessCpuTime();
         double wallS = (System.nanoTime() - wall0) / 1e9;
@@ -548,28 +546,5 @@ public final class ControlMlBench {
 
     private static long nanosOfInstant(Instant t) {
         return t.getEpochSecond() * 1_000_000_000L + t.getNano();
-    }
-
-    /** utime + stime of the server process and its descendants (ejabberd runs beam.smp under its control script). */
-    private static long serverCpuTicks(PrivateXmppServer server) {
-        long total = 0;
-        ProcessHandle root = ProcessHandle.of(server.pid()).orElse(null);
-        if (root == null) {
-            return 0;
-        }
-        List<ProcessHandle> tree = new ArrayList<>();
-        tree.add(root);
-        root.descendants().forEach(tree::add);
-        for (ProcessHandle p : tree) {
-            Path stat = Paths.get("/proc", Long.toString(p.pid()), "stat");
-            try {
-                String s = Files.readString(stat);
-                String[] f = s.substring(s.lastIndexOf(')') + 2).split(" ");
-                total += Long.parseLong(f[11]) + Long.parseLong(f[12]); // fields 14 and 15 of proc(5)
-            } catch (IOException | RuntimeException gone) {
-                // the process ended
-            }
-        }
-        return total;
     }
 }

@@ -272,8 +272,7 @@ public final class WorkbenchBench {
         try (var tasks = Files.list(Paths.get("/proc", Long.toString(pid), "task"))) {
             for (Path t : tasks.toList()) {
                 try {
-                    String stat = Files.readString(t.resolve("stat"));
-                    int nice = Integer.parseInt(stat.substring(stat.lastIndexOf(')') + 2).split(" ")[16]);
+                    int nice = ProcStat.nice(t.resolve("stat"));
                     String name = Files.readString(t.resolve("comm")).strip().replaceAll("[#(]?[0-9]+\\)?$", "")
                             .strip();
                     byNice.computeIfAbsent(nice, k -> new TreeSet<>()).add(name);
@@ -290,9 +289,12 @@ public final class WorkbenchBench {
         return b.toString();
     }
 
+    /** Stops the start script and the workbench: SIGTERM, which the script passes on; then SIGKILL to both. */
     private static void stop(Process wb) throws InterruptedException {
         wb.destroy();
         if (!wb.waitFor(20, TimeUnit.SECONDS)) {
+            // the JVM first: once the script is gone it is no longer its descendant
+            wb.descendants().forEach(ProcessHandle::destroyForcibly);
             wb.destroyForcibly().waitFor(10, TimeUnit.SECONDS);
         }
     }
@@ -379,19 +381,19 @@ public final class WorkbenchBench {
         long failed0 = load.telemetryFailed();
 
         String load0 = loadAverage();
-        long serverCpu0 = cpuTicks(server.pid());
-        long wbCpu0 = cpuTicks(wb.pid());
+        long serverCpu0 = ProcStat.cpuTicks(server.pid());
+        long wbCpu0 = ProcStat.cpuTicks(wb.pid());
         long xPid = CpuLayout.xServerPid();
-        long xCpu0 = xPid < 0 ? 0 : cpuTicks(xPid);
+        long xCpu0 = xPid < 0 ? 0 : ProcStat.cpuTicks(xPid);
         long wall0 = System.nanoTime();
         long from = micros(Instant.now());
         window.open(from, from + seconds * 1_000_000L);
         hold(wb, seconds);
         long to = from + seconds * 1_000_000L;
         double wallS = (System.nanoTime() - wall0) / 1e9;
-        double serverCpu = (cpuTicks(server.pid()) - serverCpu0) / wallS; // ticks of 1/100 s: per cent
-        double wbCpu = (cpuTicks(wb.pid()) - wbCpu0) / wallS;
-        double xCpu = xPid < 0 ? -1 : (cpuTicks(xPid) - xCpu0) / wallS;
+        double serverCpu = (ProcStat.cpuTicks(server.pid()) - serverCpu0) / wallS; // ticks of 1/100 s: per cent
+        double wbCpu = (ProcStat.cpuTicks(wb.pid()) - wbCpu0) / wallS;
+        double xCpu = xPid < 0 ? -1 : (ProcStat.cpuTicks(xPid) - xCpu0) / wallS;
         String load1 = loadAverage();
         // items stamped in the window still in flight reach the probe's file within its period: wait one more second
         hold(wb, 1.5);
@@ -645,28 +647,6 @@ public final class WorkbenchBench {
         } catch (IOException e) {
             return "?";
         }
-    }
-
-    /** utime + stime of a process and its descendants, ticks of 1/100 s. */
-    private static long cpuTicks(long pid) {
-        ProcessHandle root = ProcessHandle.of(pid).orElse(null);
-        if (root == null) {
-            return 0;
-        }
-        List<ProcessHandle> tree = new ArrayList<>();
-        tree.add(root);
-        root.descendants().forEach(tree::add);
-        long total = 0;
-        for (ProcessHandle p : tree) {
-            try {
-                String s = Files.readString(Paths.get("/proc", Long.toString(p.pid()), "stat"));
-                String[] f = s.substring(s.lastIndexOf(')') + 2).split(" ");
-                total += Long.parseLong(f[11]) + Long.parseLong(f[12]);
-            } catch (IOException | RuntimeException gone) {
-                // ended meanwhile
-            }
-        }
-        return total;
     }
 
     private static void deleteTree(Path dir) throws IOException {

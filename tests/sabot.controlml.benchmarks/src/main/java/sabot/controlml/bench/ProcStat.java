@@ -1,0 +1,55 @@
+package sabot.controlml.bench;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.util.ArrayList;
+import java.util.List;
+
+/** What the benchmarks read from Linux's {@code /proc/<pid>/stat} and {@code /proc/<pid>/task/<tid>/stat} (proc(5)). */
+final class ProcStat {
+
+    /** Index in {@link #fields} of utime (field 14 of proc(5)); stime follows. */
+    private static final int UTIME = 11;
+    /** Index in {@link #fields} of nice (field 19 of proc(5)). */
+    private static final int NICE = 16;
+
+    private ProcStat() {
+    }
+
+    /**
+     * @param stat a stat file
+     * @return its fields after the command name (which may hold spaces): index 0 is field 3 of proc(5), the state
+     */
+    static String[] fields(Path stat) throws IOException {
+        String s = Files.readString(stat);
+        return s.substring(s.lastIndexOf(')') + 2).split(" ");
+    }
+
+    /** @return the nice value in a process's or thread's stat file */
+    static int nice(Path stat) throws IOException {
+        return Integer.parseInt(fields(stat)[NICE]);
+    }
+
+    /** @return utime + stime of a process and its descendants, ticks of 1/100 s; 0 when it has ended */
+    static long cpuTicks(long pid) {
+        ProcessHandle root = ProcessHandle.of(pid).orElse(null);
+        if (root == null) {
+            return 0;
+        }
+        List<ProcessHandle> tree = new ArrayList<>();
+        tree.add(root);
+        root.descendants().forEach(tree::add);
+        long total = 0;
+        for (ProcessHandle p : tree) {
+            try {
+                String[] f = fields(Paths.get("/proc", Long.toString(p.pid()), "stat"));
+                total += Long.parseLong(f[UTIME]) + Long.parseLong(f[UTIME + 1]);
+            } catch (IOException | RuntimeException gone) {
+                // ended meanwhile
+            }
+        }
+        return total;
+    }
+}
