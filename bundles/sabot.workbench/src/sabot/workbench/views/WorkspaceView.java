@@ -135,6 +135,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private boolean mapRequested;
     /** Each robot's label laid out, by JID: {@link #drawLabel}. */
     private final java.util.Map<String, TextLayout> labels = new java.util.HashMap<>();
+    /** Each robot's trail as last stroked, by JID: {@link #trailPath}. */
+    private final java.util.Map<String, TrailShape> trails = new java.util.HashMap<>();
     private final ISelectionListener otherViews = this::otherViewSelected;
 
     @Override
@@ -215,6 +217,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             }
             labels.values().forEach(TextLayout::dispose);
             labels.clear();
+            trails.values().forEach(TrailShape::dispose);
+            trails.clear();
         });
     }
 
@@ -648,18 +652,33 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         }
     }
 
-    /** What the static layers were drawn for: the canvas's size, the view on the map and the map. */
-    private record BackgroundKey(int width, int height, double scale, double centerX, double centerY,
-            int mapVersion) {
+    /** The view on the map a frame is drawn for: the canvas's size, the scale and the map point at its centre. */
+    private record ViewKey(int width, int height, double scale, double centerX, double centerY) {
+    }
+
+    /** What the static layers were drawn for: the view and the map. */
+    private record BackgroundKey(ViewKey view, int mapVersion) {
+    }
+
+    /**
+     * A robot's trail as stroked: the trail it was made of (the same list as long as the robot has not moved
+     * {@link RobotState#TRAIL_SPACING_M}), the view it was made for, and its runs as one path (null: nothing to
+     * stroke).
+     */
+    private record TrailShape(List<Point2D> trail, ViewKey view, Path path) {
+        void dispose() {
+            if (path != null) {
+                path.dispose();
+            }
+        }
     }
 
     /**
      * Draws the static layers: from {@link #background} as they were last drawn, after drawing them there again if
      * the view or the map changed.
      */
-    private void drawBackground(GC gc, Display d, Rectangle area) {
-        BackgroundKey key = new BackgroundKey(area.width, area.height, viewport.scale(), viewport.centerX(), viewport
-                .centerY(), mapVersion);
+    private void drawBackground(GC gc, Display d, Rectangle area, ViewKey view) {
+        BackgroundKey key = new BackgroundKey(view, mapVersion);
         if (!key.equals(backgroundKey)) {
             background = MemoryImage.sized(background, d, area);
             GC layers = new GC(background.image());
@@ -687,13 +706,14 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         // antialiasing only where it shows (the footprints, drawRobot): antialiased strokes cost cairo far more than
         // aliased ones (docs/WORKBENCH.md, "Paint of 100 robots without load")
         gc.setAntialias(SWT.OFF);
-        drawBackground(gc, d, area);
+        ViewKey view = new ViewKey(area.width, area.height, viewport.scale(), viewport.centerX(), viewport.centerY());
+        drawBackground(gc, d, area, view);
         Instant now = Instant.now();
         List<RobotState> drawn = fleet.robots();
         List<RobotState> drawnLive = new ArrayList<>();
         for (RobotState r : drawn) {
             boolean stale = r.isStale(now);
-            drawRobot(gc, r, stale);
+            drawRobot(gc, r, stale, view);
             if (!stale && r.pose() != null && map != null) {
                 drawnLive.add(r);
             }
@@ -705,7 +725,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 LOG.info("first live robot on screen: {} on the map {} ms after the workbench started", r.name(), ms);
             }
         }
-        forgetLabels(drawn);
+        forgetGone(labels, drawn, TextLayout::dispose);
+        forgetGone(trails, drawn, TrailShape::dispose);
         drawGoalGesture(gc);
         drawScaleBar(gc, area);
         drawPointer(gc, area);
@@ -726,7 +747,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         gc.drawImage(mapImage, 0, 0, map.width(), map.height(), x0, y1, w, h);
     }
 
-    private void drawRobot(GC gc, RobotState r, boolean stale) {
+    private void drawRobot(GC gc, RobotState r, boolean stale, ViewKey view) {
         Display d = canvas.getDisplay();
         boolean sel = r.jid().equals(selected);
         RGB bodyRgb = stale ? new RGB(150, 150, 150) : sel ? new RGB(230, 120, 20) : new RGB(30, 110, 200);
@@ -736,10 +757,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         Color trail = new Color(new RGB(170, 140, 210));
         Color obstacle = new Color(stale ? new RGB(180, 180, 180) : new RGB(210, 40, 40));
         try {
-            if (r.trail().size() > 1) {
+            Path trailPath = trailPath(gc, r, view);
+            if (trailPath != null) {
                 gc.setForeground(trail);
                 gc.setLineWidth(2);
-                drawRuns(gc, trailRuns(toScreenDecimated(r.trail(), TRAIL_STEP_PX), TRAIL_STEP_PX));
+                gc.drawPath(trailPath);
             }
             if (r.path() != null && r.path().points().size() > 1) {
                 List<Point2D> pts = new ArrayList<>();
@@ -816,19 +838,20 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     }
 
     /**
-     * Disposes the layouts of robots gone from the fleet once there are more layouts than robots: the layouts kept
-     * are never more than the robots.
+     * Disposes what is kept for robots gone from the fleet (label layouts, trails) once more is kept than there are
+     * robots: never more is kept than the robots.
      */
-    private void forgetLabels(List<RobotState> drawn) {
-        if (labels.size() > drawn.size()) {
+    private static <T> void forgetGone(java.util.Map<String, T> byRobot, List<RobotState> drawn,
+            java.util.function.Consumer<T> dispose) {
+        if (byRobot.size() > drawn.size()) {
             java.util.Set<String> kept = new java.util.HashSet<>();
             for (RobotState r : drawn) {
                 kept.add(r.jid());
             }
-            labels.entrySet().removeIf(e -> {
+            byRobot.entrySet().removeIf(e -> {
                 boolean gone = !kept.contains(e.getKey());
                 if (gone) {
-                    e.getValue().dispose();
+                    dispose.accept(e.getValue());
                 }
                 return gone;
             });
@@ -842,27 +865,37 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     }
 
     /**
-     * Strokes polylines as one path, one stroke: a trail is cut into a dozen or more runs ({@link #trailRuns}), and
-     * each stroke is a composite request the X server carries out on its own (100 robots: ~1,700 strokes a frame as
-     * polylines, 100 as paths; one path for all the robots costs the UI thread twice as much, the stroker then
-     * intersecting every robot's segments with every other's).
+     * A robot's trail as one path, kept from paint to paint while the robot's trail and the view stay the same: at
+     * 10 Hz a robot adds a trail point every second or third pose, and a frame would otherwise project, thin out
+     * ({@link #trailRuns}) and hand cairo all of the 100 robots' 600 points again (a third of the paint's CPU with
+     * 100 robots, docs/WORKBENCH.md). The runs are one path, one stroke: each stroke is a composite request the
+     * renderer carries out on its own (~1,700 strokes a frame as polylines, 100 as paths; one path for all the robots
+     * costs twice as much, the stroker then intersecting every robot's segments with every other's).
+     *
+     * @return the path, or null when the trail has no segment to stroke
      */
-    private void drawRuns(GC gc, List<int[]> runs) {
-        if (runs.isEmpty()) {
-            return;
-        }
-        Path path = new Path(gc.getDevice());
-        try {
-            for (int[] run : runs) {
-                path.moveTo(run[0], run[1]);
-                for (int i = 2; i < run.length; i += 2) {
-                    path.lineTo(run[i], run[i + 1]);
+    private Path trailPath(GC gc, RobotState r, ViewKey view) {
+        TrailShape shape = trails.get(r.jid());
+        if (shape == null || shape.trail() != r.trail() || !shape.view().equals(view)) {
+            if (shape != null) {
+                shape.dispose();
+            }
+            List<int[]> runs = r.trail().size() > 1 ? trailRuns(toScreenDecimated(r.trail(), TRAIL_STEP_PX),
+                    TRAIL_STEP_PX) : List.of();
+            Path path = null;
+            if (!runs.isEmpty()) {
+                path = new Path(gc.getDevice());
+                for (int[] run : runs) {
+                    path.moveTo(run[0], run[1]);
+                    for (int i = 2; i < run.length; i += 2) {
+                        path.lineTo(run[i], run[i + 1]);
+                    }
                 }
             }
-            gc.drawPath(path);
-        } finally {
-            path.dispose();
+            shape = new TrailShape(r.trail(), view, path);
+            trails.put(r.jid(), shape);
         }
+        return shape.path();
     }
 
     /** The 95 % ellipse of the position's 2×2 covariance (eigenvectors of [[xx, xy], [xy, yy]]). */
@@ -952,13 +985,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
      */
     static List<int[]> trailRuns(int[] xy, int cellPx) {
         List<int[]> runs = new ArrayList<>();
-        java.util.Set<Long> visited = new java.util.HashSet<>();
+        CellSet visited = new CellSet(xy.length / 2);
         int start = -1;
         boolean previousSeen = false;
         for (int i = 0; i < xy.length / 2; i++) {
-            long cell = ((long) Math.floorDiv(xy[2 * i], cellPx) << 32) ^ (Math.floorDiv(xy[2 * i + 1], cellPx)
-                    & 0xffffffffL);
-            boolean seen = !visited.add(cell);
+            boolean seen = !visited.add(Math.floorDiv(xy[2 * i], cellPx), Math.floorDiv(xy[2 * i + 1], cellPx));
             if (seen && previousSeen) {
                 if (start >= 0 && i - 1 > start) {
                     runs.add(java.util.Arrays.copyOfRange(xy, 2 * start, 2 * i));
@@ -973,6 +1004,45 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             runs.add(java.util.Arrays.copyOfRange(xy, 2 * start, xy.length));
         }
         return runs;
+    }
+
+    /**
+     * The cells a trail has passed through: an open-addressing hash set of cell coordinates in one {@code long[]}
+     * (a {@code HashSet<Long>} boxed each of a trail's up to 600 points).
+     */
+    static final class CellSet {
+        /** A free slot; the cell of that key, (Integer.MIN_VALUE, 0), is held by {@link #holdsEmptyKey}. */
+        private static final long EMPTY = Long.MIN_VALUE;
+        private final long[] keys;
+        private final int mask;
+        private boolean holdsEmptyKey;
+
+        /** @param most the most cells it will hold (the table is at most half full) */
+        CellSet(int most) {
+            keys = new long[Integer.highestOneBit(Math.max(2, most) * 2 - 1) * 2];
+            mask = keys.length - 1;
+            java.util.Arrays.fill(keys, EMPTY);
+        }
+
+        /** @return true if cell (col, row) was not in the set (it is now) */
+        boolean add(int col, int row) {
+            long key = (long) col << 32 | (row & 0xffffffffL);
+            if (key == EMPTY) {
+                boolean added = !holdsEmptyKey;
+                holdsEmptyKey = true;
+                return added;
+            }
+            long h = key * 0x9E3779B97F4A7C15L;
+            for (int i = (int) (h >>> 40) & mask;; i = (i + 1) & mask) {
+                if (keys[i] == key) {
+                    return false;
+                }
+                if (keys[i] == EMPTY) {
+                    keys[i] = key;
+                    return true;
+                }
+            }
+        }
     }
 
     private int[] toScreen(List<Point2D> pts) {

@@ -38,4 +38,19 @@ class TrailRunsTest {
         assertArrayEquals(new int[] { 0, 20, 40, 20, 60, 20 }, last);
         assertTrue(runs.get(0)[0] == 0 && runs.get(0)[1] == 0);
     }
+
+    @Test
+    void theCellSetHoldsEachCellOnceWhateverItsCoordinates() {
+        WorkspaceView.CellSet set = new WorkspaceView.CellSet(5000);
+        java.util.Set<Long> reference = new java.util.HashSet<>();
+        java.util.Random random = new java.util.Random(17);
+        int[] extremes = { Integer.MIN_VALUE, -1, 0, 1, Integer.MAX_VALUE };
+        for (int i = 0; i < 5000; i++) {
+            // small coordinates (many repeats) and the extremes (the table's free-slot key among them)
+            int col = i % 7 == 0 ? extremes[random.nextInt(5)] : random.nextInt(60) - 30;
+            int row = i % 11 == 0 ? extremes[random.nextInt(5)] : random.nextInt(60) - 30;
+            boolean expected = reference.add((long) col << 32 | (row & 0xffffffffL));
+            assertEquals(expected, set.add(col, row), "cell " + col + "," + row + " at " + i);
+        }
+    }
 }
