@@ -32,6 +32,16 @@ final class ProcStat {
         return Integer.parseInt(fields(stat)[NICE]);
     }
 
+    /** @return utime + stime of this process alone (not its children), ticks of 1/100 s */
+    static long ownCpuTicks() {
+        try {
+            String[] f = fields(Paths.get("/proc/self/stat"));
+            return Long.parseLong(f[UTIME]) + Long.parseLong(f[UTIME + 1]);
+        } catch (IOException e) {
+            throw new IllegalStateException("/proc/self/stat: " + e.getMessage(), e);
+        }
+    }
+
     /** @return utime + stime of a process and its descendants, ticks of 1/100 s; 0 when it has ended */
     static long cpuTicks(long pid) {
         ProcessHandle root = ProcessHandle.of(pid).orElse(null);
