@@ -266,6 +266,15 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      * compression. Callers may change it before {@code build()}.
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
+        return configuration(port, localpart, domain, password);
+    }
+
+    /**
+     * As {@link #configuration(String, String, String)}, for a private server started by another process (its
+     * loopback port known).
+     */
+    public static XMPPTCPConnectionConfiguration.Builder configuration(int port, String localpart, String domain,
+            String password) {
         try {
             return XMPPTCPConnectionConfiguration.builder()
                     .setXmppDomain(JidCreate.domainBareFrom(domain))
@@ -289,7 +298,13 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     public EntityBareJid register(String localpart, String domain, String password) throws IOException,
             InterruptedException, SmackException, XMPPException {
-        XMPPTCPConnection anonymous = new XMPPTCPConnection(configuration(localpart, domain, password).build());
+        return register(port, localpart, domain, password);
+    }
+
+    /** As {@link #register(String, String, String)}, on a private server started by another process. */
+    public static EntityBareJid register(int port, String localpart, String domain, String password)
+            throws IOException, InterruptedException, SmackException, XMPPException {
+        XMPPTCPConnection anonymous = new XMPPTCPConnection(configuration(port, localpart, domain, password).build());
         try {
             anonymous.connect();
             AccountManager accounts = AccountManager.getInstance(anonymous);

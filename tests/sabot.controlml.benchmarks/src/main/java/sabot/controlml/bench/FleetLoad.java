@@ -1,6 +1,7 @@
 package sabot.controlml.bench;
 
 import java.io.IOException;
+import java.io.PrintStream;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.time.Instant;
@@ -59,7 +60,7 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * Rules as a robot keeps them (docs/CONTROLML.md §7, §9): the operator may set, everyone else is refused; the robot
  * approves the operator's presence subscription and subscribes back; its presence carries the presence level.
  */
-public final class FleetLoad implements AutoCloseable {
+public final class FleetLoad implements Load {
 
     /** How long a taken goal's mission runs before it is done, seconds. */
     static final double MISSION_SECONDS = 5;
@@ -183,6 +184,15 @@ public final class FleetLoad implements AutoCloseable {
      */
     public static FleetLoad start(PrivateXmppServer server, int count, String prefix, String password,
             BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
+        return start(server.port(), count, prefix, password, operator, rateHz, velocityRateHz, seed, map);
+    }
+
+    /**
+     * As {@link #start(PrivateXmppServer, int, String, String, BareJid, double, double, long, Path)}, on a private
+     * server on the loopback port {@code port}, started by another process.
+     */
+    public static FleetLoad start(int port, int count, String prefix, String password, BareJid operator,
+            double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
         if (count < 1 || count > 1000) {
             throw new IllegalArgumentException("robots: " + count + " is outside 1..1000");
         }
@@ -194,9 +204,9 @@ public final class FleetLoad implements AutoCloseable {
         try {
             for (int i = 0; i < count; i++) {
                 String name = String.format(Locale.ROOT, "%s%02d", prefix, i + 1);
-                server.register(name, PrivateXmppServer.DOMAIN, password);
-                XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
-                        password).setResource("onboard").setSendPresence(false).build());
+                PrivateXmppServer.register(port, name, PrivateXmppServer.DOMAIN, password);
+                XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(port, name,
+                        PrivateXmppServer.DOMAIN, password).setResource("onboard").setSendPresence(false).build());
                 // no stream management (as ./sabot bench controlml): with it, a server that lags behind 2,000
                 // publications a second leaves Smack's queue of 1,024 unacknowledged stanzas full, and the robot's
                 // connection fails (measured with 100 robots on ejabberd)
@@ -263,17 +273,17 @@ public final class FleetLoad implements AutoCloseable {
         return new GridMap(2 * g.resolution(), w, h, g.geometry().origin(), cells);
     }
 
-    /** @return the robots' bare JIDs, in order */
+    @Override
     public List<EntityBareJid> jids() {
         return robots.stream().map(Robot::jid).toList();
     }
 
-    /** @return the robots' telemetry publications that failed so far (refused, timed out or not sent) */
+    @Override
     public long telemetryFailed() {
         return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().failed()).sum();
     }
 
-    /** @return the robots' telemetry publications the server acknowledged so far */
+    @Override
     public long telemetryPublished() {
         return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().published()).sum();
     }
@@ -314,6 +324,9 @@ public final class FleetLoad implements AutoCloseable {
         double velocityRate = -1;
         long seed = 1;
         long seconds = 0;
+        int attach = 0;
+        String operatorJid = null;
+        String password = "sabot";
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--robots" -> robots = Integer.parseInt(value(args, ++i, "--robots"));
@@ -322,9 +335,14 @@ public final class FleetLoad implements AutoCloseable {
                 case "--velocity-rate" -> velocityRate = Double.parseDouble(value(args, ++i, "--velocity-rate"));
                 case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
                 case "--seconds" -> seconds = Long.parseLong(value(args, ++i, "--seconds"));
+                case "--attach" -> attach = Integer.parseInt(value(args, ++i, "--attach"));
+                case "--operator" -> operatorJid = value(args, ++i, "--operator");
+                case "--password" -> password = value(args, ++i, "--password");
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot load [--robots N (10)] [--server prosody|ejabberd] [--rate HZ "
-                            + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]");
+                            + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]"
+                            + " [--attach PORT --operator JID [--password PW (sabot)]: on a running private server, "
+                            + "driven on standard input]");
                     return;
                 }
                 default -> throw new IllegalArgumentException("unknown option " + args[i] + " (--help)");
@@ -336,6 +354,18 @@ public final class FleetLoad implements AutoCloseable {
         if (!(rate > 0 && rate <= 100) || velocityRate > 100) {
             throw new IllegalArgumentException("--rate/--velocity-rate: 0 < position rate <= 100 Hz, velocity rate <= "
                     + "100 Hz");
+        }
+        if (attach > 0) {
+            if (operatorJid == null) {
+                throw new IllegalArgumentException("--attach needs --operator JID");
+            }
+            // standard output is the protocol's alone: everything else (the log) goes to standard error
+            PrintStream protocol = System.out;
+            System.setOut(System.err);
+            setUpSmack();
+            attached(protocol, attach, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid), rate,
+                    velocityRate < 0 ? rate : velocityRate, seed);
+            return;
         }
         setUpSmack();
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
@@ -359,6 +389,36 @@ public final class FleetLoad implements AutoCloseable {
             }
         }
     }
+
+    /**
+     * {@code --attach PORT}: the robots on a server another process started (the workbench benchmark's, which runs
+     * the load in a process of its own: {@link LoadProcess}). Standard output then carries the protocol
+     * {@link LoadProcess} reads: {@value #READY} and the robots' JIDs, comma-separated, once all are online; for each
+     * line {@value #COUNTS} read on standard input, {@value #COUNTS} with the publications acknowledged and failed so
+     * far. The end of standard input stops the robots and the process.
+     */
+    private static void attached(PrintStream protocol, int port, int robots, String password, EntityBareJid operator, double rate,
+            double velocityRate, long seed) throws Exception {
+        Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+        try (FleetLoad load = start(port, robots, "load-", password, operator, rate, velocityRate, seed, map)) {
+            protocol.println(READY + " " + load.jids().stream().map(Object::toString).collect(java.util.stream
+                    .Collectors.joining(",")));
+            protocol.flush();
+            java.io.BufferedReader in = new java.io.BufferedReader(new java.io.InputStreamReader(System.in,
+                    java.nio.charset.StandardCharsets.UTF_8));
+            for (String line; (line = in.readLine()) != null;) {
+                if (line.strip().equals(COUNTS)) {
+                    protocol.println(COUNTS + " " + load.telemetryPublished() + " " + load.telemetryFailed());
+                    protocol.flush();
+                }
+            }
+        }
+    }
+
+    /** {@link #attached} protocol: the line that says the robots are online. */
+    static final String READY = "[load] ready";
+    /** {@link #attached} protocol: the request for the counts and the start of the answer. */
+    static final String COUNTS = "[load] counts";
 
     /** @return the server kind named on the command line, or a precise error */
     static PrivateXmppServer.Kind serverKind(String name) {

@@ -71,13 +71,10 @@ public final class WorkbenchBench {
     /** SABOT_WORKBENCH_BACKGROUND_NICE for the workbench's start script; null: as the product ships (off). */
     private String backgroundNice;
     /**
-     * Whether the load robots' threads run at {@link Thread#MIN_PRIORITY}, which this JVM's start script
-     * (product/bin/sabot-bench-workbench) then maps to a Linux nice value, its {@code load_nice}: they use the CPU the
-     * workbench leaves them, as robots on their own computers would.
+     * The nice value of the load robots' process ({@link LoadProcess}): 19 has them use the CPU the workbench leaves
+     * them, as robots on their own computers would.
      */
-    private boolean loadBackground;
-    /** The nice value the script maps {@link Thread#MIN_PRIORITY} to with {@code --load-background} (-1: not set). */
-    private static final int LOAD_NICE = Integer.getInteger("sabot.bench.loadNice", -1);
+    private int loadNice;
     /** The workbench's JVM (a child of the product's start script), once started. */
     private long workbenchJvm = -1;
 
@@ -122,18 +119,19 @@ public final class WorkbenchBench {
                     }
                     i++;
                 }
-                case "--load-background" -> {
-                    if (LOAD_NICE < 0) {
-                        throw new IllegalArgumentException("--load-background: the JVM was not started with thread "
-                                + "priorities (run ./sabot bench workbench)");
+                case "--load-nice" -> {
+                    String n = need(a, v);
+                    if (!n.matches("[0-9]{1,2}") || Integer.parseInt(n) > 19) {
+                        throw new IllegalArgumentException("--load-nice '" + n + "': a Linux nice value, 0 to 19");
                     }
-                    loadBackground = true;
+                    loadNice = Integer.parseInt(n);
+                    i++;
                 }
                 case "--product" -> { product = Paths.get(need(a, v)); i++; }
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] [--load-background] "
+                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] [--load-nice N (0..19, 0)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -182,7 +180,7 @@ public final class WorkbenchBench {
         figures.put("rate_hz", rate);
         figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
         figures.put("background_nice", backgroundNice == null ? "0" : backgroundNice);
-        figures.put("load_nice", loadBackground ? LOAD_NICE : 0);
+        figures.put("load_nice", loadNice);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
             // ./sabot bench controlml does; the load, the workbench (started by this JVM) and Xvfb on the others
@@ -199,7 +197,10 @@ public final class WorkbenchBench {
             String operatorPw = "operator-pw";
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, operatorPw);
             long l0 = System.nanoTime();
-            try (FleetLoad load = startLoad(server, operator, root.resolve("onboard-bridge/maps/lab.yaml"))) {
+            try (LoadProcess load = LoadProcess.start(server.port(), loadNice, dir.resolve("load.log"), List.of(
+                    "--robots", Integer.toString(robots), "--password", "robot-pw", "--operator", operator.toString(),
+                    "--rate", Double.toString(rate), "--velocity-rate", Double.toString(velocityRate < 0 ? rate
+                            : velocityRate), "--seed", Long.toString(seed)))) {
                 System.out.printf(Locale.ROOT, "[bench] %s: %d load robots online in %.1f s (seed %d)%n", kind.name()
                         .toLowerCase(Locale.ROOT), robots, (System.nanoTime() - l0) / 1e9, seed);
                 Path probe = dir.resolve("paint-probe.csv");
@@ -225,28 +226,6 @@ public final class WorkbenchBench {
                 .append(v instanceof String s ? "\"" + s + "\"" : v));
         System.out.println(json.append('}'));
         return 0;
-    }
-
-    /**
-     * Starts the load robots; with {@code --load-background} on a thread of {@link Thread#MIN_PRIORITY}, whose
-     * priority every thread it starts inherits (Smack's readers and writers, the telemetry schedulers): the
-     * workbench, started later from this thread, keeps the normal priority.
-     */
-    private FleetLoad startLoad(PrivateXmppServer server, EntityBareJid operator, Path map) throws Exception {
-        java.util.concurrent.Callable<FleetLoad> start = () -> FleetLoad.start(server, robots, "load-", "robot-pw",
-                operator, rate, velocityRate < 0 ? rate : velocityRate, seed, map);
-        if (!loadBackground) {
-            return start.call();
-        }
-        java.util.concurrent.FutureTask<FleetLoad> task = new java.util.concurrent.FutureTask<>(start);
-        Thread t = new Thread(task, "load-start");
-        t.setPriority(Thread.MIN_PRIORITY);
-        t.start();
-        try {
-            return task.get();
-        } catch (java.util.concurrent.ExecutionException e) {
-            throw e.getCause() instanceof Exception x ? x : e;
-        }
     }
 
     // ------------------------------------------------------------------------------------------------ workbench
@@ -346,7 +325,7 @@ public final class WorkbenchBench {
     // ------------------------------------------------------------------------------------------------ figures
 
     private void figures(Process wb, Path probe, PrivateXmppServer server, EntityBareJid operator, String password,
-            FleetLoad load, Map<String, Object> figures) throws Exception {
+            LoadProcess load, Map<String, Object> figures) throws Exception {
         long started = System.nanoTime();
         long startedMicros = micros(Instant.now());
         // every robot drawn live once (the probe has a latency line for each), or the deadline: then the run goes
@@ -389,8 +368,8 @@ public final class WorkbenchBench {
         figures.put("start_to_first_live_s", round((firstMicros - startedMicros) / 1e6));
         figures.put("start_to_all_live_s", round(allLiveS));
         System.out.println("[bench] workbench threads by nice value: " + threadsByNice(workbenchJvm));
-        System.out.println("[bench] this JVM's threads (load robots, reference) by nice value: " + threadsByNice(
-                ProcessHandle.current().pid()));
+        System.out.printf("[bench] load robots' process %d (%s), its threads by nice value: %s%n", load.pid(), load
+                .autogroup(), threadsByNice(load.pid()));
 
         // the reference: a second session of the operator that only receives cm.position (the server's fan-out
         // to one more session of the same account, and Smack's parsing), started once the workbench's
@@ -424,7 +403,8 @@ public final class WorkbenchBench {
         long wbCpu0 = ProcStat.cpuTicks(wb.pid());
         long xPid = CpuLayout.xServerPid();
         long xCpu0 = xPid < 0 ? 0 : ProcStat.cpuTicks(xPid);
-        long loadCpu0 = ProcStat.ownCpuTicks();
+        long loadCpu0 = ProcStat.cpuTicks(load.pid());
+        long benchCpu0 = ProcStat.ownCpuTicks();
         long wall0 = System.nanoTime();
         long from = micros(Instant.now());
         window.open(from, from + seconds * 1_000_000L);
@@ -434,7 +414,8 @@ public final class WorkbenchBench {
         double serverCpu = (ProcStat.cpuTicks(server.pid()) - serverCpu0) / wallS; // ticks of 1/100 s: per cent
         double wbCpu = (ProcStat.cpuTicks(wb.pid()) - wbCpu0) / wallS;
         double xCpu = xPid < 0 ? -1 : (ProcStat.cpuTicks(xPid) - xCpu0) / wallS;
-        double loadCpu = (ProcStat.ownCpuTicks() - loadCpu0) / wallS;
+        double loadCpu = (ProcStat.cpuTicks(load.pid()) - loadCpu0) / wallS;
+        double benchCpu = (ProcStat.ownCpuTicks() - benchCpu0) / wallS;
         String load1 = loadAverage();
         // items stamped in the window still in flight reach the probe's file within its period: wait one more second
         hold(wb, 1.5);
@@ -502,8 +483,9 @@ public final class WorkbenchBench {
         System.out.printf(Locale.ROOT, "[figure]   reference, server fan-out alone (the same items at a second session "
                 + "of the operator, Smack only): %s, %d received%n", pct(refLat), refLat.length);
         System.out.printf(Locale.ROOT, "[figure]   CPU over the window (1 core = 100 %%): server %.0f %%, workbench "
-                + "%.0f %%, X server %.0f %%, load robots and reference (this JVM) %.0f %%; robots' publications in the "
-                + "window acknowledged %d, failed %d%n", serverCpu, wbCpu, xCpu, loadCpu, load.telemetryPublished() - acked0,
+                + "%.0f %%, X server %.0f %%, load robots %.0f %%, the reference session (this JVM) %.0f %%; robots' "
+                + "publications in the window acknowledged %d, failed %d%n", serverCpu, wbCpu, xCpu, loadCpu, benchCpu,
+                load.telemetryPublished() - acked0,
                 load.telemetryFailed() - failed0);
         put(figures, "paint", fr);
         put(figures, "paint_cpu", frCpu);
@@ -520,6 +502,7 @@ public final class WorkbenchBench {
         figures.put("workbench_cpu_pct", round(wbCpu));
         figures.put("x_server_cpu_pct", round(xCpu));
         figures.put("load_cpu_pct", round(loadCpu));
+        figures.put("reference_cpu_pct", round(benchCpu));
         figures.put("load_avg", loads);
     }
 
