@@ -123,9 +123,9 @@ final class CpuLayout {
     }
 
     /**
-     * For a frame time without the load generator on the workbench's CPU: the server and this JVM (the load robots)
-     * on the last CPU, the processes this JVM starts later (the workbench, see {@link #wrap}) and the X server on the
-     * others.
+     * For a frame time without the load generator on the workbench's CPU: the server and this JVM (the reference
+     * session, and the load robots' process it starts, which inherits its CPUs) on the last CPU, the processes this
+     * JVM starts later with {@link #wrap} (the workbench) and the X server on the others.
      *
      * @param serverPid the server's process
      * @param xServerPid the X server's process, or -1 when unknown (then it stays where it is, and the description
