@@ -60,7 +60,7 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * Rules as a robot keeps them (docs/CONTROLML.md §7, §9): the operator may set, everyone else is refused; the robot
  * approves the operator's presence subscription and subscribes back; its presence carries the presence level.
  */
-public final class FleetLoad implements Load {
+public final class FleetLoad implements AutoCloseable {
 
     /** How long a taken goal's mission runs before it is done, seconds. */
     static final double MISSION_SECONDS = 5;
@@ -273,17 +273,17 @@ public final class FleetLoad implements Load {
         return new GridMap(2 * g.resolution(), w, h, g.geometry().origin(), cells);
     }
 
-    @Override
+    /** @return the robots' bare JIDs, in order */
     public List<EntityBareJid> jids() {
         return robots.stream().map(Robot::jid).toList();
     }
 
-    @Override
+    /** @return the robots' telemetry publications that failed so far (refused, timed out or not sent) */
     public long telemetryFailed() {
         return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().failed()).sum();
     }
 
-    @Override
+    /** @return the robots' telemetry publications the server acknowledged so far */
     public long telemetryPublished() {
         return robots.stream().mapToLong(r -> r.manager.telemetry().statistics().published()).sum();
     }
@@ -363,8 +363,8 @@ public final class FleetLoad implements Load {
             PrintStream protocol = System.out;
             System.setOut(System.err);
             setUpSmack();
-            attached(protocol, attach, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid), rate,
-                    velocityRate < 0 ? rate : velocityRate, seed);
+            attached(protocol, attach, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid),
+                    rate, velocityRate < 0 ? rate : velocityRate, seed);
             return;
         }
         setUpSmack();
@@ -397,8 +397,8 @@ public final class FleetLoad implements Load {
      * line {@value #COUNTS} read on standard input, {@value #COUNTS} with the publications acknowledged and failed so
      * far. The end of standard input stops the robots and the process.
      */
-    private static void attached(PrintStream protocol, int port, int robots, String password, EntityBareJid operator, double rate,
-            double velocityRate, long seed) throws Exception {
+    private static void attached(PrintStream protocol, int port, int robots, String password, EntityBareJid operator,
+            double rate, double velocityRate, long seed) throws Exception {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
         try (FleetLoad load = start(port, robots, "load-", password, operator, rate, velocityRate, seed, map)) {
             protocol.println(READY + " " + load.jids().stream().map(Object::toString).collect(java.util.stream

@@ -15,12 +15,12 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 
 /**
- * The load robots in a Java process of their own ({@link FleetLoad}'s {@code --attach} mode on the benchmark's
- * server), started at a nice value: all of their threads, the collector's and the JIT's included, then take the CPU
- * only as that value gives it, apart from the benchmark's own threads (the reference session). The process inherits
- * this JVM's CPUs ({@link CpuLayout}).
+ * {@link FleetLoad}'s robots in a Java process of their own (its {@code --attach} mode on the benchmark's server),
+ * started at a nice value: all of their threads, the collector's and the JIT's included, then take the CPU only as
+ * that value gives it, apart from the benchmark's own threads (the reference session). The process inherits this
+ * JVM's CPUs ({@link CpuLayout}).
  */
-final class LoadProcess implements Load {
+final class LoadProcess implements AutoCloseable {
 
     private final Process process;
     private final BufferedReader out;
@@ -44,8 +44,9 @@ final class LoadProcess implements Load {
     static LoadProcess start(int port, int nice, Path log, List<String> arguments) throws IOException {
         // a session of its own: with Linux's autogroups (sched_autogroup_enabled) a session is one scheduling group,
         // whose nice value weighs all of its threads together (below)
-        List<String> cmd = new ArrayList<>(List.of("setsid", "nice", "-n", Integer.toString(nice), Path.of(System.getProperty(
-                "java.home"), "bin", "java").toString(), "-Xss512k", "-cp", System.getProperty("java.class.path")));
+        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        List<String> cmd = new ArrayList<>(List.of("setsid", "nice", "-n", Integer.toString(nice), java, "-Xss512k",
+                "-cp", System.getProperty("java.class.path")));
         if (System.getProperty("sabot.root") != null) {
             cmd.add("-Dsabot.root=" + System.getProperty("sabot.root"));
         }
@@ -115,18 +116,18 @@ final class LoadProcess implements Load {
         return process.pid();
     }
 
-    @Override
-    public List<EntityBareJid> jids() {
+    /** @return the robots' bare JIDs, in order */
+    List<EntityBareJid> jids() {
         return jids;
     }
 
-    @Override
-    public long telemetryPublished() {
+    /** @return the robots' telemetry publications the server acknowledged so far */
+    long telemetryPublished() {
         return counts()[0];
     }
 
-    @Override
-    public long telemetryFailed() {
+    /** @return the robots' telemetry publications that failed so far (refused, timed out or not sent) */
+    long telemetryFailed() {
         return counts()[1];
     }
 

@@ -33,16 +33,17 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * {@code ./sabot bench workbench}: the real workbench product (a process, on the display it is given) against
- * {@link FleetLoad}'s robots on a private Prosody or ejabberd.
+ * {@link FleetLoad}'s robots, in a process of their own ({@link LoadProcess}), on a private Prosody or ejabberd.
  * <p>
  * Figures mode (default): the workbench runs with its paint probe ({@code sabot.workbench.paintProbe}); once every
  * robot has been drawn live and after a warm-up, a window of {@code --seconds} gives the Workspace view's paint time
  * (p50/p99/max, paints per second), the latency from a pose's time stamp to the end of the paint that first shows it,
  * its breakdown up to the fleet service's notification, and, as the reference for what the server costs, the same
  * items' latency at a second session of the operator's account that only receives them (the server's fan-out and
- * Smack's parsing, nothing of the workbench). Load average and CPU of the server, the workbench and the X server beside
- * them. The paint time's breakdown: the frame's copy to the window, the time the UI thread was runnable but waited for
- * a CPU (Linux schedstat) and the workbench's GC pauses in the window (its {@value #GC_LOG}, epoch-stamped).
+ * Smack's parsing, nothing of the workbench). Load average and CPU of the server, the workbench, the X server, the
+ * load's process and this JVM beside them. The paint time's breakdown: the frame's copy to the window, the time the
+ * UI thread was runnable but waited for a CPU (Linux schedstat) and the workbench's GC pauses in the window (its
+ * {@value #GC_LOG}, epoch-stamped).
  * <p>
  * Memory mode ({@code --memory --minutes M}): no probe; every minute the workbench's heap after a full collection
  * ({@code jcmd GC.run}, then {@code GC.heap_info}) and its resident set; the growth slope by least squares.
