@@ -32,11 +32,16 @@ final class ProcStat {
         return Integer.parseInt(fields(stat)[NICE]);
     }
 
+    /** @return utime + stime in a process's stat file, ticks of 1/100 s */
+    private static long ticks(Path stat) throws IOException {
+        String[] f = fields(stat);
+        return Long.parseLong(f[UTIME]) + Long.parseLong(f[UTIME + 1]);
+    }
+
     /** @return utime + stime of this process alone (not its children), ticks of 1/100 s */
     static long ownCpuTicks() {
         try {
-            String[] f = fields(Paths.get("/proc/self/stat"));
-            return Long.parseLong(f[UTIME]) + Long.parseLong(f[UTIME + 1]);
+            return ticks(Paths.get("/proc/self/stat"));
         } catch (IOException e) {
             throw new IllegalStateException("/proc/self/stat: " + e.getMessage(), e);
         }
@@ -54,8 +59,7 @@ final class ProcStat {
         long total = 0;
         for (ProcessHandle p : tree) {
             try {
-                String[] f = fields(Paths.get("/proc", Long.toString(p.pid()), "stat"));
-                total += Long.parseLong(f[UTIME]) + Long.parseLong(f[UTIME + 1]);
+                total += ticks(Paths.get("/proc", Long.toString(p.pid()), "stat"));
             } catch (IOException | RuntimeException gone) {
                 // ended meanwhile
             }

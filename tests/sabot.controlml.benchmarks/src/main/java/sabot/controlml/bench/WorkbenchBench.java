@@ -70,7 +70,7 @@ public final class WorkbenchBench {
     private Path out;
     private CpuLayout cpus = CpuLayout.shared("not placed yet");
     /** SABOT_WORKBENCH_BACKGROUND_NICE for the workbench's start script; null: as the product ships (off). */
-    private String backgroundNice;
+    private Integer backgroundNice;
     /**
      * The nice value of the load robots' process ({@link LoadProcess}): 19 has them use the CPU the workbench leaves
      * them, as robots on their own computers would.
@@ -113,21 +113,8 @@ public final class WorkbenchBench {
                     }
                     i++;
                 }
-                case "--background-nice" -> {
-                    backgroundNice = need(a, v);
-                    if (!backgroundNice.matches("[0-9]{1,2}") || Integer.parseInt(backgroundNice) > 19) {
-                        throw new IllegalArgumentException("--background-nice '" + v + "': a Linux nice value, 0 to 19");
-                    }
-                    i++;
-                }
-                case "--load-nice" -> {
-                    String n = need(a, v);
-                    if (!n.matches("[0-9]{1,2}") || Integer.parseInt(n) > 19) {
-                        throw new IllegalArgumentException("--load-nice '" + n + "': a Linux nice value, 0 to 19");
-                    }
-                    loadNice = Integer.parseInt(n);
-                    i++;
-                }
+                case "--background-nice" -> { backgroundNice = nice(a, v); i++; }
+                case "--load-nice" -> { loadNice = nice(a, v); i++; }
                 case "--product" -> { product = Paths.get(need(a, v)); i++; }
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
@@ -143,6 +130,15 @@ public final class WorkbenchBench {
             throw new IllegalArgumentException("--product: the workbench product's directory (with plugins/) is "
                     + "needed, got " + product);
         }
+    }
+
+    /** @return a Linux nice value given as {@code option}'s value, 0..19, or a precise error */
+    private static int nice(String option, String v) {
+        String n = need(option, v);
+        if (!n.matches("[0-9]{1,2}") || Integer.parseInt(n) > 19) {
+            throw new IllegalArgumentException(option + " '" + n + "': a Linux nice value, 0 to 19");
+        }
+        return Integer.parseInt(n);
     }
 
     private static String need(String option, String v) {
@@ -180,7 +176,7 @@ public final class WorkbenchBench {
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
         figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
-        figures.put("background_nice", backgroundNice == null ? "0" : backgroundNice);
+        figures.put("background_nice", backgroundNice == null ? 0 : backgroundNice);
         figures.put("load_nice", loadNice);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
@@ -255,7 +251,7 @@ public final class WorkbenchBench {
                 .redirectOutput(dir.resolve("workbench.log").toFile());
         pb.environment().put("JAVA_HOME", System.getProperty("java.home"));
         if (backgroundNice != null) {
-            pb.environment().put("SABOT_WORKBENCH_BACKGROUND_NICE", backgroundNice);
+            pb.environment().put("SABOT_WORKBENCH_BACKGROUND_NICE", Integer.toString(backgroundNice));
         }
         Process p = pb.start();
         workbenchJvm = jvmOf(p);
@@ -281,8 +277,9 @@ public final class WorkbenchBench {
     }
 
     /**
-     * The workbench's threads by Linux nice value, names without their numbers: whether the start script's
-     * priorities took effect (the UI thread at 0, telemetry ingest and the JIT compilers above).
+     * A process's threads by Linux nice value, names without their numbers: whether the priorities took effect (the
+     * workbench's UI thread at 0, its telemetry ingest and JIT compilers at the start script's value; every thread of
+     * the load's process at {@code --load-nice}).
      */
     static String threadsByNice(long pid) {
         Map<Integer, Set<String>> byNice = new TreeMap<>();
