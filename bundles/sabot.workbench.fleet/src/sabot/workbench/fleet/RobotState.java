@@ -33,14 +33,17 @@ import sabot.model.geometry.Twist2D;
  * @param trail         where the robot has been lately (oldest first, at most {@link #TRAIL_POINTS} points at least
  *                      {@link #TRAIL_SPACING_M} apart); never null
  * @param lastTelemetry when the workbench last received telemetry from it (workbench clock), or null
+ * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null before its
+ *                      first pose since it came online
  */
 public record RobotState(String jid, String name, Availability availability, String reason, PoseEstimate pose,
         Twist2D velocity, MissionStatus mission, TrajectoryPayload path, Obstacles obstacles, Goal goal,
-        List<Point2D> trail, Instant lastTelemetry) {
+        List<Point2D> trail, Instant lastTelemetry, PoseLag poseLag) {
 
     /**
-     * Telemetry older than this makes a robot stale (drawn greyed): five periods of the slowest pose rate the
-     * onboard product is configured with by default (10 Hz) would be 0.5 s; 2 s leaves room for a slow server.
+     * Telemetry received longer ago than this, or a last pose that arrived this much later than the robot's fastest,
+     * makes a robot stale (drawn greyed): five periods of the slowest pose rate the onboard product is configured with
+     * by default (10 Hz) would be 0.5 s; 2 s leaves room for a slow server.
      */
     public static final Duration STALE_AFTER = Duration.ofSeconds(2);
     /** Most points a trail keeps. */
@@ -59,16 +62,25 @@ public record RobotState(String jid, String name, Availability availability, Str
     /** @return a robot known by name only: offline, nothing received */
     public static RobotState unknown(String jid, String name) {
         return new RobotState(jid, name, Availability.OFFLINE, "", null, null, null, null, null, null, List.of(),
-                null);
+                null, null);
     }
 
     /**
      * @param now the workbench clock's present
-     * @return true when the robot is offline or its telemetry is older than {@link #STALE_AFTER}
+     * @return true when the robot is offline, its telemetry is older than {@link #STALE_AFTER} or its last pose
+     *         arrived more than {@link #STALE_AFTER} later than its fastest ({@link #isLate()})
      */
     public boolean isStale(Instant now) {
         return availability == Availability.OFFLINE || lastTelemetry == null || Duration.between(lastTelemetry, now)
-                .compareTo(STALE_AFTER) > 0;
+                .compareTo(STALE_AFTER) > 0 || isLate();
+    }
+
+    /**
+     * @return true when its last pose arrived more than {@link #STALE_AFTER} later than the robot's fastest: a backlog
+     *         on the way (the server, or the workbench's own ingest behind on a busy CPU), although poses keep coming
+     */
+    public boolean isLate() {
+        return poseLag != null && poseLag.lag().compareTo(STALE_AFTER) > 0;
     }
 
     /** @return how old the last telemetry is at {@code now}, or null when none was received */
@@ -79,39 +91,53 @@ public record RobotState(String jid, String name, Availability availability, Str
     /** @return this state with another name */
     public RobotState withName(String n) {
         return new RobotState(jid, n, availability, reason, pose, velocity, mission, path, obstacles, goal, trail,
-                lastTelemetry);
+                lastTelemetry, poseLag);
     }
 
-    /** @return this state with another presence */
+    /**
+     * @return this state with another presence; a robot that comes online again starts its pose lag anew (it may
+     *         have restarted with another clock)
+     */
     public RobotState withPresence(Availability a, String r) {
-        return new RobotState(jid, name, a, r, pose, velocity, mission, path, obstacles, goal, trail, lastTelemetry);
+        PoseLag lag = availability == Availability.OFFLINE && a != Availability.OFFLINE ? null : poseLag;
+        return new RobotState(jid, name, a, r, pose, velocity, mission, path, obstacles, goal, trail, lastTelemetry,
+                lag);
     }
 
-    /** @return this state with a new pose received at {@code at}, the trail extended */
-    public RobotState withPose(PoseEstimate p, Instant at) {
+    /**
+     * @param p       the pose
+     * @param at      its receipt on the workbench's clock
+     * @param atNanos its receipt on the workbench's monotonic clock ({@link System#nanoTime()}), for its lag
+     * @return this state with a new pose, the trail extended and its lag measured
+     */
+    public RobotState withPose(PoseEstimate p, Instant at, long atNanos) {
+        PoseLag lag = poseLag == null ? PoseLag.first(p.time(), atNanos) : poseLag.next(p.time(), atNanos);
         return new RobotState(jid, name, availability, reason, p, velocity, mission, path, obstacles, goal, extend(
-                trail, p), at);
+                trail, p), at, lag);
     }
 
     /** @return this state with a new twist received at {@code at} */
     public RobotState withVelocity(Twist2D v, Instant at) {
-        return new RobotState(jid, name, availability, reason, pose, v, mission, path, obstacles, goal, trail, at);
+        return new RobotState(jid, name, availability, reason, pose, v, mission, path, obstacles, goal, trail, at,
+                poseLag);
     }
 
     /** @return this state with a new mission status received at {@code at} */
     public RobotState withMission(MissionStatus m, Instant at) {
-        return new RobotState(jid, name, availability, reason, pose, velocity, m, path, obstacles, goal, trail, at);
+        return new RobotState(jid, name, availability, reason, pose, velocity, m, path, obstacles, goal, trail, at,
+                poseLag);
     }
 
     /** @return this state with new obstacles received at {@code at} */
     public RobotState withObstacles(Obstacles o, Instant at) {
-        return new RobotState(jid, name, availability, reason, pose, velocity, mission, path, o, goal, trail, at);
+        return new RobotState(jid, name, availability, reason, pose, velocity, mission, path, o, goal, trail, at,
+                poseLag);
     }
 
     /** @return this state with another planned path and goal (either may be null) */
     public RobotState withPlan(TrajectoryPayload t, Goal g) {
         return new RobotState(jid, name, availability, reason, pose, velocity, mission, t, obstacles, g, trail,
-                lastTelemetry);
+                lastTelemetry, poseLag);
     }
 
     private static List<Point2D> extend(List<Point2D> trail, PoseEstimate p) {

@@ -43,7 +43,8 @@ import sabot.workbench.fleet.FleetBinding;
 
 /**
  * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
- * reason, pose, mission state and progress, and the age of its last telemetry; stale rows are grey. Click a header to
+ * reason, pose, mission state and progress, and the age of its last telemetry (with how late its poses arrive when
+ * they lag, {@link RobotState#isLate()}); stale rows are grey. Click a header to
  * sort by it (again to reverse); the selection is the workbench's (the workspace map follows it); double-click centres
  * the map on the robot. The filter field above the table keeps the rows whose robot name or JID, presence (level and
  * reason) or mission (state, progress, detail) contains the typed text, ignoring case, as Eclipse's own views filter.
@@ -60,7 +61,7 @@ public final class FleetView extends ViewPart {
     /** Column titles, in order. */
     public static final List<String> COLUMNS = List.of("Robot", "Presence", "Pose (x, y, θ)", "Mission",
             "Telemetry");
-    private static final int[] WIDTHS = { 220, 220, 220, 330, 110 };
+    private static final int[] WIDTHS = { 220, 220, 220, 330, 140 };
     /** How often the ages are refreshed without news (ms): stale robots turn grey without an event. */
     static final int AGE_REFRESH_MS = 500;
     /**
@@ -121,6 +122,12 @@ public final class FleetView extends ViewPart {
         if (d == null) {
             return "never";
         }
+        String age = seconds(d);
+        // poses that keep coming, but late: the lag over the robot's fastest pose (RobotState.isLate)
+        return r.isLate() ? age + ", " + seconds(r.poseLag().lag()) + " late" : age;
+    }
+
+    private static String seconds(Duration d) {
         long ms = Math.max(0, d.toMillis());
         return ms < 10_000 ? String.format(Locale.ROOT, "%.1f s", ms / 1000.0) : ms / 1000 + " s";
     }

@@ -55,7 +55,8 @@ import sabot.workbench.map.MapViewport;
 /**
  * The shared workspace: a map canvas in the map frame (metres, y up) with a metric grid, the frame's axes and a
  * scale bar, the robots' map (fetched with {@code cm.map}), and every robot of the {@link FleetState}: footprint with
- * heading, 95 % covariance ellipse, planned path, trail, sonar obstacles and goal; stale robots greyed.
+ * heading, 95 % covariance ellipse, planned path, trail, sonar obstacles and goal; stale robots greyed (late ones too:
+ * {@link RobotState#isStale}).
  * <p>
  * Mouse: click a robot to select it; with a robot selected, press at a target and drag for the heading, release sends
  * the goal (a click without drag: heading from the robot towards the target); right-click for go here, stop, centre.
@@ -809,7 +810,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             gc.drawLine(cx, cy, hx, hy);
             gc.setAntialias(SWT.OFF);
             gc.setLineWidth(1);
-            String label = r.name() + (stale ? " (stale)" : "");
+            // late: poses keep coming but behind (RobotState.isLate); stale: none lately, or offline
+            String label = r.name() + (r.isLate() ? " (late)" : stale ? " (stale)" : "");
             drawLabel(gc, r.jid(), label, cx + rad + 3, cy - rad - 14);
         } finally {
             body.dispose();

@@ -9,11 +9,15 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.Paths;
 import java.nio.file.StandardCopyOption;
+import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Set;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.TimeUnit;
 import java.util.function.BooleanSupplier;
 import java.util.function.Supplier;
@@ -36,12 +40,24 @@ import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.MethodOrderer;
 import org.junit.jupiter.api.Order;
 import org.junit.jupiter.api.Test;
+import org.jivesoftware.smack.AbstractXMPPConnection;
+import org.jivesoftware.smack.ConnectionCreationListener;
+import org.jivesoftware.smack.StanzaListener;
+import org.jivesoftware.smack.XMPPConnectionRegistry;
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.packet.Message;
+import org.jivesoftware.smack.packet.Stanza;
 import org.junit.jupiter.api.TestMethodOrder;
+import org.osgi.framework.BundleContext;
+import org.osgi.framework.FrameworkUtil;
+import org.osgi.framework.ServiceReference;
 
 import sabot.controlml.payload.MissionState;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
 import sabot.workbench.fleet.Availability;
+import sabot.workbench.fleet.FleetListener;
+import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.map.MapViewport;
 import sabot.workbench.views.FleetView;
@@ -67,12 +83,15 @@ class LiveFleetUiTest {
     static final double[] GOAL = { 6.0, 4.4, Math.PI / 2 };
 
     static PrivateXmppServer xmpp;
+    /** Added to the workbench's connections from the first on (posesThatArriveLate...); does nothing until armed. */
+    static final IngestHold HOLD = new IngestHold();
     static SimProcess sim;
     static OnboardProcess onboard;
     static long workbenchToLiveMs;
 
     @BeforeAll
     static void startStack() throws Exception {
+        XMPPConnectionRegistry.addConnectionCreationListener(HOLD);
         xmpp = PrivateXmppServer.prosody().start();
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
@@ -90,6 +109,8 @@ class LiveFleetUiTest {
 
     @AfterAll
     static void stopStack() throws Exception {
+        XMPPConnectionRegistry.removeConnectionCreationListener(HOLD);
+        HOLD.release();
         try {
             XmppAccountStore store = XmppAccountStore.workbenchStore();
             store.forgetPassword();
@@ -332,6 +353,109 @@ class LiveFleetUiTest {
             store.saveRobots(List.of(ROBOT_JID)); // as before: the class's end empties it, and the fleet with it
             robotInLobby.instantShutdown();
             admin.instantShutdown();
+        }
+    }
+
+    /**
+     * Poses that keep arriving but late grey the robot (RobotState.isLate), as when the workbench's ingest falls behind
+     * on a busy CPU: {@link #HOLD} holds the workbench connection's in-order listener thread on the robot's next
+     * message until the last receipt is older than {@link RobotState#STALE_AFTER} + 1 s. The robot's telemetry queues
+     * behind it, then arrives in a burst, each pose received just now: judged by the lag over the robot's fastest
+     * pose the first ones are stale, the Fleet row says how late, and once the backlog is through the robot is live
+     * again.
+     */
+    @Test
+    @Order(6)
+    void posesThatArriveLateGreyTheRobotUntilTheBacklogIsThrough() throws Exception {
+        BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
+        ServiceReference<FleetState> ref = context.getServiceReference(FleetState.class);
+        FleetState fleet = context.getService(ref);
+        List<RobotState> late = new CopyOnWriteArrayList<>();
+        FleetListener onLate = r -> {
+            if (r.jid().equals(ROBOT_JID) && r.isLate()) {
+                late.add(r);
+            }
+        };
+        fleet.addListener(onLate);
+        Duration stall = RobotState.STALE_AFTER.plusSeconds(1);
+        try {
+            waitFor(() -> live(fleet.robot(ROBOT_JID).orElse(null)) && fleet.robot(ROBOT_JID).orElseThrow().poseLag()
+                    != null, 30, () -> "robot not live: " + fleet.robot(ROBOT_JID));
+            // the lag is measured against the fastest pose since the robot came online (the previous test re-added it):
+            // half a second of poses on time first
+            Instant since = fleet.robot(ROBOT_JID).orElseThrow().poseLag().stamp();
+            waitFor(() -> fleet.robot(ROBOT_JID).orElseThrow().poseLag().stamp().isAfter(since.plusMillis(500)), 10,
+                    () -> "no poses: " + fleet.robot(ROBOT_JID));
+            assertTrue(late.isEmpty(), "late before the ingest was held: " + late);
+            HOLD.arm();
+            try {
+                // nothing is taken in while the ingest is held: stale by the age of the last receipt
+                waitFor(() -> HOLD.holding() && fleet.robot(ROBOT_JID).orElseThrow().telemetryAge(Instant.now())
+                        .compareTo(stall) > 0, 20, () -> "ingest not held: " + fleet.robot(ROBOT_JID));
+                assertTrue(late.isEmpty(), "late while the ingest was held: " + late);
+            } finally {
+                HOLD.release();
+            }
+            waitFor(() -> !late.isEmpty() && live(fleet.robot(ROBOT_JID).orElseThrow()), 20, () -> "no late pose, or "
+                    + "not live again: " + late.size() + " late; " + fleet.robot(ROBOT_JID).map(RobotState::poseLag));
+            RobotState first = late.get(0);
+            Instant received = first.lastTelemetry();
+            assertTrue(first.isStale(received), "received at once but late: " + first.poseLag());
+            assertTrue(first.poseLag().lag().compareTo(RobotState.STALE_AFTER) > 0, first.poseLag().toString());
+            String age = FleetView.texts(first, received).get(4);
+            assertTrue(age.matches("0\\.0 s, [0-9.]+ s late"), age);
+            System.out.printf(Locale.ROOT, "[figure] ingest held %.1f s: first pose after it %.2f s late, %d late "
+                    + "pose(s) until live again%n", stall.toMillis() / 1e3, first.poseLag().lagNanos() / 1e9, late
+                            .stream().map(r -> r.pose().time()).distinct().count());
+        } finally {
+            HOLD.release();
+            fleet.removeListener(onLate);
+            context.ungetService(ref);
+        }
+    }
+
+    /**
+     * Holds the workbench's ingest once when armed: a synchronous stanza listener that the test's code adds to each
+     * connection the workbench makes (Smack's connection-creation hook; the plug-in's code is unchanged). Smack calls a
+     * connection's synchronous listeners in order on one thread, so everything received after the held message waits.
+     */
+    private static final class IngestHold implements ConnectionCreationListener, StanzaListener {
+        private final AtomicBoolean armed = new AtomicBoolean();
+        private volatile CountDownLatch release = new CountDownLatch(0);
+        private volatile boolean holding;
+
+        @Override
+        public void connectionCreated(XMPPConnection c) {
+            if (OPERATOR.equals(String.valueOf(((AbstractXMPPConnection) c).getConfiguration().getUsername()))) {
+                c.addSyncStanzaListener(this, s -> s instanceof Message && s.getFrom() != null && s.getFrom()
+                        .asBareJid().toString().equals(ROBOT_JID));
+            }
+        }
+
+        /** Holds the robot's next message until {@link #release()}. */
+        void arm() {
+            release = new CountDownLatch(1);
+            armed.set(true);
+        }
+
+        boolean holding() {
+            return holding;
+        }
+
+        void release() {
+            release.countDown();
+        }
+
+        @Override
+        public void processStanza(Stanza stanza) throws InterruptedException {
+            if (armed.compareAndSet(true, false)) {
+                holding = true;
+                try {
+                    release.await(30, TimeUnit.SECONDS); // the test releases it; the bound only guards a failed test
+                } finally {
+                    holding = false;
+                }
+            }
         }
     }
 

@@ -96,7 +96,7 @@ final class DrivenFleet implements FleetState, AutoCloseable {
             double a = 2 * Math.PI * k / 30.0;
             double rad = 0.3 + 0.15 * k / RobotState.TRAIL_POINTS;
             r = r.withPose(new PoseEstimate(at, new Pose2D(x + rad * Math.cos(a), y + rad * Math.sin(a), a),
-                    PoseCovariance.ZERO), at);
+                    PoseCovariance.ZERO), at, receipt(at));
         }
         List<TrajectoryPoint> path = new ArrayList<>();
         for (int k = 0; k <= 20; k++) {
@@ -105,7 +105,15 @@ final class DrivenFleet implements FleetState, AutoCloseable {
         Goal goal = new Goal(new Pose2D(x + 2, y + 1, theta), 0.1, 0.1);
         return r.withPlan(new TrajectoryPayload(at, path), goal).withMission(new MissionStatus(MissionState.RUNNING,
                 false, 40, ""), at).withObstacles(new Obstacles(at, List.of(new Obstacle(x + 0.5, y, 0.1), new Obstacle(
-                        x, y + 0.5, 0.1), new Obstacle(x - 0.5, y, 0.1))), at).withPose(pose(x, y, theta, at), at);
+                        x, y + 0.5, 0.1), new Obstacle(x - 0.5, y, 0.1))), at).withPose(pose(x, y, theta, at), at, receipt(at));
+    }
+
+    /**
+     * @return a monotonic receipt time for a pose stamped {@code at} that arrived at once (no lag): the stamp's
+     *         nanoseconds since the epoch, so that the driven robots' lags are zero whatever the test's timing
+     */
+    static long receipt(Instant at) {
+        return at.getEpochSecond() * 1_000_000_000L + at.getNano();
     }
 
     /** @return a pose estimate with a covariance whose 95 % ellipse is a few centimetres */

@@ -64,7 +64,7 @@ class FleetViewUpdatesUiTest {
             Instant at = Instant.now();
             for (int i = 0; i < ROBOTS; i++) {
                 RobotState r = fleet.get(DrivenFleet.jid(i));
-                fleet.put(r.withPose(DrivenFleet.pose(x(i) + 0.01 * b, y(i), 0.02 * b, at), at));
+                fleet.put(r.withPose(DrivenFleet.pose(x(i) + 0.01 * b, y(i), 0.02 * b, at), at, DrivenFleet.receipt(at)));
             }
             drain();
         }
@@ -91,7 +91,7 @@ class FleetViewUpdatesUiTest {
         Instant at = Instant.now();
         for (int i = 0; i < ROBOTS; i++) {
             RobotState r = fleet.get(DrivenFleet.jid(i));
-            fleet.put(r.withPose(DrivenFleet.pose(10 - 0.09 * i, 4, 0, at), at));
+            fleet.put(r.withPose(DrivenFleet.pose(10 - 0.09 * i, 4, 0, at), at, DrivenFleet.receipt(at)));
             drain();
         }
         waitFor(() -> drivenRows().equals(expected(Comparator.comparingDouble(r -> r.pose().pose().x()))), 10,

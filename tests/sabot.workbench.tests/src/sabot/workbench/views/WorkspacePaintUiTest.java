@@ -172,7 +172,7 @@ class WorkspacePaintUiTest {
             for (int i = 0; i < ROBOTS; i++) {
                 RobotState r = fleet.get(DrivenFleet.jid(i));
                 fleet.put(r.withPose(DrivenFleet.pose(FleetViewUpdatesUiTest.x(i) + 0.002 * f, FleetViewUpdatesUiTest
-                        .y(i), 0.01 * f, at), at));
+                        .y(i), 0.01 * f, at), at, DrivenFleet.receipt(at)));
             }
             FleetViewUpdatesUiTest.drain();
             if (f == 0) {

@@ -799,8 +799,10 @@ public final class ControlMlFleet implements FleetState {
 
     private void listenTelemetry(Session s) {
         ControlMlManager m = s.manager();
-        m.telemetry().addListener(Resources.POSITION, (device, pose) -> update(device.toString(), r -> r.withPose(pose,
-                clock.instant())));
+        m.telemetry().addListener(Resources.POSITION, (device, pose) -> {
+            long receivedNanos = System.nanoTime(); // the lag's receipt: monotonic (RobotState.poseLag)
+            update(device.toString(), r -> r.withPose(pose, clock.instant(), receivedNanos));
+        });
         m.telemetry().addListener(Resources.VELOCITY, (device, v) -> update(device.toString(), r -> r.withVelocity(v
                 .twist(), clock.instant())));
         m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> update(device.toString(), r -> r.withObstacles(o,
