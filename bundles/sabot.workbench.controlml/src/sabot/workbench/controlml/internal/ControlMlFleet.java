@@ -114,8 +114,10 @@ public final class ControlMlFleet implements FleetState {
 
     /**
      * Priority of every thread of the connection, its own and Smack's: below the UI thread's, so that a frame need not
-     * wait for telemetry ingest on a busy core. Linux applies it only when the product's start script is told to
-     * (SABOT_WORKBENCH_BACKGROUND_NICE, docs/WORKBENCH.md); otherwise HotSpot only records Java priorities.
+     * wait for telemetry ingest on a busy core. Linux applies it as the nice value the product's start script sets
+     * (SABOT_WORKBENCH_BACKGROUND_NICE, default 10, docs/WORKBENCH.md); without the script's JVM options (0, or the
+     * UI tests' runtime) HotSpot only records Java priorities. An ingest that falls behind shows: late poses grey
+     * their robot (RobotState.isLate).
      */
     static final int BACKGROUND_PRIORITY = Thread.MIN_PRIORITY;
 

@@ -16,7 +16,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
- * The workbench's start script and SABOT_WORKBENCH_BACKGROUND_NICE: off by default; set to N, a thread at
+ * The workbench's start script and SABOT_WORKBENCH_BACKGROUND_NICE: 10 by default, 0 turns it off; set to N, a thread at
  * Thread.MIN_PRIORITY (the ControlML plug-in's and Smack's, LiveFleetUiTest checks those) and the JIT compilers run at
  * Linux nice N and every other thread at nice 0 (none above the UI thread, also as root); a bad value is refused
  * before Java starts. The JVM options are taken from the shipped script, run with a JAVA_HOME whose java only writes
@@ -36,7 +36,12 @@ class WorkbenchPrioritiesTest {
         Path argsFile = dir.resolve("args");
         Files.deleteIfExists(argsFile);
         Path fakeJava = fakeHome.resolve("java");
-        Files.writeString(fakeJava, "#!/bin/sh\nprintf '%s\\n' \"$@\" > '" + argsFile + "'\n");
+        // as HotSpot does as a normal user with the policy: its warning on the error output (a line the script leaves
+        // out), and a line of the workbench's own there
+        Files.writeString(fakeJava, "#!/bin/sh\nprintf '%s\\n' \"$@\" > '" + argsFile + "'\n"
+                + "echo 'OpenJDK 64-Bit Server VM warning: -XX:ThreadPriorityPolicy=1 may require system level "
+                + "permission, e.g., being the root user. If the necessary permission is not possessed, changes to "
+                + "priority will be silently ignored.' >&2\n" + "echo 'workbench: a line on the error output' >&2\n");
         Files.setPosixFilePermissions(fakeJava, PosixFilePermissions.fromString("rwxr-xr-x"));
         Path workbench = ProductProcess.product("sabot.workbench.product", "sabot-workbench");
         ProcessBuilder pb = new ProcessBuilder(workbench.resolve("sabot-workbench").toString(), "-consoleLog")
@@ -53,10 +58,18 @@ class WorkbenchPrioritiesTest {
     }
 
     @Test
-    void offByDefault() throws Exception {
+    void onAtTenByDefaultOffAtZero() throws Exception {
         Run r = script(null);
         assertEquals(0, r.status(), r.output());
-        assertTrue(r.javaArgs().stream().noneMatch(a -> a.contains("Priority")), r.javaArgs().toString());
+        assertTrue(r.javaArgs().containsAll(List.of("-XX:ThreadPriorityPolicy=1", "-XX:JavaPriority1_To_OSPriority=10",
+                "-XX:CompilerThreadPriority=10")), r.javaArgs().toString());
+        // the JVM's warning about raising priorities (which the maps never do) is left out, the rest passes
+        assertFalse(r.output().contains("ThreadPriorityPolicy"), r.output());
+        assertTrue(r.output().contains("workbench: a line on the error output"), r.output());
+
+        Run off = script("0");
+        assertEquals(0, off.status(), off.output());
+        assertTrue(off.javaArgs().stream().noneMatch(a -> a.contains("Priority")), off.javaArgs().toString());
     }
 
     @Test

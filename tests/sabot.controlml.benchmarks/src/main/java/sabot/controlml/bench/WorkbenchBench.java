@@ -69,7 +69,7 @@ public final class WorkbenchBench {
     private Path product;
     private Path out;
     private CpuLayout cpus = CpuLayout.shared("not placed yet");
-    /** SABOT_WORKBENCH_BACKGROUND_NICE for the workbench's start script; null: as the product ships (off). */
+    /** SABOT_WORKBENCH_BACKGROUND_NICE for the workbench's start script; null: unset, as the product ships. */
     private Integer backgroundNice;
     /**
      * The nice value of the load robots' process ({@link LoadProcess}): 19 has them use the CPU the workbench leaves
@@ -119,7 +119,7 @@ public final class WorkbenchBench {
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, as shipped: 0)] [--load-nice N (0..19, 0)] "
+                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, 0: off; unset: as shipped)] [--load-nice N (0..19, 0)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -176,7 +176,7 @@ public final class WorkbenchBench {
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
         figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
-        figures.put("background_nice", backgroundNice == null ? 0 : backgroundNice);
+        figures.put("background_nice", backgroundNice == null ? "as shipped" : backgroundNice);
         figures.put("load_nice", loadNice);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             // the server on a CPU of its own, as in a deployment (it never shares the operator's desktop) and as
@@ -252,6 +252,8 @@ public final class WorkbenchBench {
         pb.environment().put("JAVA_HOME", System.getProperty("java.home"));
         if (backgroundNice != null) {
             pb.environment().put("SABOT_WORKBENCH_BACKGROUND_NICE", Integer.toString(backgroundNice));
+        } else {
+            pb.environment().remove("SABOT_WORKBENCH_BACKGROUND_NICE"); // the script's default
         }
         Process p = pb.start();
         workbenchJvm = jvmOf(p);
