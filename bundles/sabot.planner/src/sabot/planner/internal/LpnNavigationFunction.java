@@ -83,6 +83,32 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * unfocused one.
      */
     private static final int FOCUS_GIVE_UP_FRACTION = 32;
+    /**
+     * Landmarks of the lower bound that replaces the straight line on grids where paths are much longer than it (see
+     * {@link #computeFocused}): four, chosen farthest first; on the benchmark maze two already bound the start's
+     * cost within 0.01 %, on random-1000 four within 0.02 %.
+     */
+    static final int LANDMARKS = 4;
+    /**
+     * A focused computation whose bound needed at least this excess over the straight line (a path more than twice
+     * its length: a maze) asks for landmarks, built at the start of a later focused computation on the same grid.
+     */
+    static final float LANDMARK_EXCESS = 1f;
+    /**
+     * First excess of the bound over the landmarks' lower bound of the start's cost (0.5 %; the benchmark maze and
+     * random-1000 need less than 0.1 %).
+     */
+    static final float LANDMARK_FIRST_EXCESS = 0.005f;
+    /**
+     * The landmarks' bound is scaled down by this fraction: the interpolated values satisfy the triangle inequality
+     * it rests on to within 0.004 % of the path's cost on the benchmark grids (float rounding and the interpolation's
+     * dependence on the direction of propagation), so 0.2 % leaves room.
+     */
+    private static final float LANDMARK_SLACK = 0.002f;
+    /** Plans a set of landmarks must serve to pay for its building (five computations over the whole grid). */
+    private static final int LANDMARK_PAYBACK_PLANS = 8;
+    /** Most poorly bounded plans awaited before landmarks are built again after a set that did not pay back. */
+    private static final int LANDMARK_MAX_PATIENCE = 64;
     /** A grid is cut into about 2^10 memory bands for the bucket ordering: a row or so on grids of 1000 x 1000. */
     private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
@@ -148,6 +174,30 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float focusExcess;
     private int focusRow;
     private int focusColumn;
+    /**
+     * Landmarks (A. V. Goldberg, C. Harrelson, "Computing the shortest path: A* search meets graph theory", SODA 2005,
+     * "ALT"): N from each of {@link #LANDMARKS} cells over the whole grid, interleaved ({@code [cell * LANDMARKS +
+     * landmark]}, +infinity where unreached), or null. By the triangle inequality the cost between p and the start is
+     * at least |N_l(p) - N_l(start)| for every landmark l: a lower bound that follows the corridors, where the
+     * straight line cuts through walls. Valid while no cost falls (a rise only makes paths dearer); dropped when one
+     * does or the grid is replaced.
+     */
+    private float[] landmarkValues;
+    /** Largest finite N of any landmark: no landmark bound exceeds it. */
+    private float landmarkReach;
+    /** N_l(start) per landmark for the running focused computation; NaN for a landmark the start is not connected to. */
+    private final float[] landmarkAtStart = new float[LANDMARKS];
+    /** Whether the running focused computation bounds with the landmarks. */
+    private boolean focusByLandmarks;
+    /** Excess of the last successful landmark-bounded computation to {@link #focusGoals}. */
+    private float landmarkExcess;
+    /**
+     * Poorly bounded focused plans (see {@link #LANDMARK_EXCESS}) since the landmarks were last dropped, the number
+     * that triggers a build, and the plans served by the current set.
+     */
+    private int poorlyBoundedPlans;
+    private int landmarkPatience = 1;
+    private int landmarkPlans;
     private int deferred;
     /** Expansions of the last computation or repair (every attempt of a focused one); cells a repair withdrew. */
     private int expandedCount;
@@ -226,6 +276,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
             grid = planningGrid;
             focusGoals = null;
+            dropLandmarks();
             potential = new int[planningGrid.paddedSize()];
             cellDensity = new float[planningGrid.paddedSize()];
             initialPotential = new int[planningGrid.paddedSize()];
@@ -247,6 +298,15 @@ public final class LpnNavigationFunction implements AutoCloseable {
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             int from = planningGrid.index(changed.minColumn(), row);
             int to = planningGrid.index(changed.maxColumn(), row);
+            if (landmarkValues != null || poorlyBoundedPlans > 0) {
+                for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
+                    int before = planningGrid.previousCost(column, row);
+                    if (before < 0 || density[costs[from + column - changed.minColumn()] & 0xFF] < density[before]) {
+                        dropLandmarks(); // a cheaper cell can shorten paths: the bounds may exceed the new costs
+                        break;
+                    }
+                }
+            }
             for (int i = from; i <= to; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
                 initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
@@ -319,6 +379,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * @param startCell padded index of the start
      */
     public void computeFocused(int[] goals, int startCell) {
+        if (landmarkValues == null && poorlyBoundedPlans >= landmarkPatience) {
+            buildLandmarks(goals[0]);
+        }
         completeGoals = null;
         expandedCount = 0;
         withdrawnCount = 0;
@@ -329,16 +392,36 @@ public final class LpnNavigationFunction implements AutoCloseable {
         for (int goal : goals) {
             distance = Math.min(distance, Math.hypot(goal % stride - focusColumn, goal / stride - focusRow));
         }
+        double lowerBound = minDensity * distance;
+        focusByLandmarks = landmarkValues != null;
+        if (focusByLandmarks) {
+            landmarkPlans++;
+            boolean connected = false;
+            for (int l = 0; l < LANDMARKS; l++) {
+                float atStart = landmarkValues[startCell * LANDMARKS + l];
+                landmarkAtStart[l] = atStart == Float.POSITIVE_INFINITY ? Float.NaN : atStart;
+                connected |= atStart < Float.POSITIVE_INFINITY;
+            }
+            focusByLandmarks = connected;
+        }
+        if (focusByLandmarks) {
+            double nearest = Double.POSITIVE_INFINITY;
+            for (int goal : goals) {
+                nearest = Math.min(nearest, landmarkBound(goal));
+            }
+            lowerBound = Math.max(lowerBound, nearest == Float.POSITIVE_INFINITY ? 0 : nearest);
+        }
         // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
         // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
         float margin = 4 * SQRT2 * maxDensity;
         // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
         boolean sameGoals = Arrays.equals(goals, focusGoals);
-        float excess = sameGoals ? focusExcess : FOCUS_FIRST_EXCESS;
+        float excess = sameGoals ? (focusByLandmarks ? landmarkExcess : focusExcess)
+                : focusByLandmarks ? LANDMARK_FIRST_EXCESS : FOCUS_FIRST_EXCESS;
         int vainAttempts = 0;
         while (true) {
             focusBound = excess == Float.POSITIVE_INFINITY ? Float.POSITIVE_INFINITY
-                    : (float) (minDensity * distance * (1 + excess)) + margin;
+                    : (float) (lowerBound * (1 + excess)) + margin;
             start(goals);
             propagate(startCell, false);
             if (isReached(startCell) || deferred == 0) {
@@ -356,10 +439,108 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (isReached(startCell)) {
             if (!sameGoals) {
                 focusGoals = goals.clone();
+                focusExcess = FOCUS_FIRST_EXCESS;
+                landmarkExcess = LANDMARK_FIRST_EXCESS;
             }
-            focusExcess = excess;
+            if (focusByLandmarks) {
+                landmarkExcess = excess;
+            } else {
+                focusExcess = excess;
+                if (excess >= LANDMARK_EXCESS) {
+                    poorlyBoundedPlans++;
+                }
+            }
         }
         focusBound = Float.POSITIVE_INFINITY;
+        focusByLandmarks = false;
+    }
+
+    /** @return the landmarks' lower bound of the cost between {@code cell} and the start (+infinity: not connected) */
+    private float landmarkBound(int cell) {
+        float bound = 0f;
+        int base = cell * LANDMARKS;
+        for (int l = 0; l < LANDMARKS; l++) {
+            // NaN (a landmark the start is not connected to) never raises the bound; an unreached cell with a
+            // connected start gives +infinity: no path joins them
+            float gap = Math.abs(landmarkValues[base + l] - landmarkAtStart[l]);
+            bound = gap > bound ? gap : bound;
+        }
+        return (1 - LANDMARK_SLACK) * bound;
+    }
+
+    /**
+     * Computes N from {@link #LANDMARKS} cells over the whole grid, each the reached cell farthest from the ones
+     * before (the first: farthest from {@code seed}), and keeps the values (see {@link #landmarkValues}). Farthest
+     * landmarks lie "behind" most starts and goals, where their bounds are tight (Goldberg and Harrelson).
+     */
+    private void buildLandmarks(int seed) {
+        int cells = potential.length;
+        float[] values = new float[cells * LANDMARKS];
+        float[] nearest = new float[cells];
+        Arrays.fill(nearest, Float.POSITIVE_INFINITY);
+        compute(new int[] {seed}, -1);
+        int next = farthest(potential, null);
+        float reach = 0f;
+        int built = 0;
+        for (; built < LANDMARKS && next >= 0; built++) {
+            compute(new int[] {next}, -1);
+            for (int i = 0; i < cells; i++) {
+                float value = decode(potential[i]);
+                values[i * LANDMARKS + built] = value;
+                if (value < nearest[i]) {
+                    nearest[i] = value;
+                }
+                if (value != Float.POSITIVE_INFINITY && value > reach) {
+                    reach = value;
+                }
+            }
+            next = farthest(potential, nearest);
+        }
+        // a region too small for all landmarks (every cell already one): the missing ones bound nothing (NaN)
+        for (int l = built; l < LANDMARKS; l++) {
+            for (int i = 0; i < cells; i++) {
+                values[i * LANDMARKS + l] = Float.NaN;
+            }
+        }
+        landmarkValues = values;
+        landmarkReach = reach;
+        landmarkPlans = 0;
+        completeGoals = null;
+    }
+
+    /**
+     * @return the reached cell of {@code potential} whose value in {@code nearest} (null: its own value) is largest
+     *         and finite, or -1 when there is none above 0
+     */
+    private static int farthest(int[] potential, float[] nearest) {
+        int best = -1;
+        float bestValue = 0f;
+        for (int i = 0; i < potential.length; i++) {
+            int bits = potential[i];
+            if (bits < 0 && bits != IMPASSABLE) {
+                float value = nearest == null ? decode(bits) : nearest[i];
+                if (value > bestValue) {
+                    bestValue = value;
+                    best = i;
+                }
+            }
+        }
+        return best;
+    }
+
+    /** Forgets the landmarks after a cost fell or the grid was replaced; a set that served few plans is rebuilt later. */
+    private void dropLandmarks() {
+        if (landmarkValues != null) {
+            landmarkPatience = landmarkPlans >= LANDMARK_PAYBACK_PLANS ? 1
+                    : Math.min(2 * landmarkPatience, LANDMARK_MAX_PATIENCE);
+        }
+        landmarkValues = null;
+        poorlyBoundedPlans = 0;
+    }
+
+    /** @return whether focused computations bound with landmarks (built after poorly bounded plans on this grid) */
+    boolean hasLandmarks() {
+        return landmarkValues != null;
     }
 
     /**
@@ -632,7 +813,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float stopAbove = Float.POSITIVE_INFINITY;
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
-        final float focusFrom = focusBound - minDensity * (float) Math.hypot(stride, potential.length / stride);
+        final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
+                focusByLandmarks ? landmarkReach : 0f);
         final double inverseStride = 1.0 / stride;
         int finalized = 0;
         int deferredHere = 0;
@@ -750,8 +932,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     /**
      * @return true when a cell of value {@code value} lies outside the focus, {@code N + c_min |p - start| > focusBound}
+     *         or, with landmarks, {@code N + landmarkBound(p) > focusBound}
      */
     private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
+        if (focusByLandmarks && value + landmarkBound(cell) > focusBound) {
+            return true;
+        }
         // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
         int row = (int) ((cell + 0.5) * inverseStride);
         float dx = cell - row * stride - focusColumn;
