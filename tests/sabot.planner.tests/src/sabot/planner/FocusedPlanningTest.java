@@ -108,7 +108,7 @@ class FocusedPlanningTest {
         // paths many times the straight line: the first plan's straight-line bound is poor, so the next plans on
         // the same grid are bounded by landmarks, also after a new obstacle (a rise keeps them) and after it is
         // cleared again (a fall drops them)
-        Costmap costmap = TestGrids.maze(17, 30);
+        Costmap costmap = TestGrids.maze(17, 30, true);
         Point2D corner = costmap.geometry().cellCentre(2, 2);
         Point2D opposite = costmap.geometry().cellCentre(costmap.width() - 3, costmap.height() - 3);
         Random random = new Random(17);

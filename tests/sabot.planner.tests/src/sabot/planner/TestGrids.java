@@ -78,11 +78,14 @@ public final class TestGrids {
     }
 
     /**
-     * A perfect maze (randomised depth-first search over {@code nodes} x {@code nodes} rooms) of 3-cell corridors
-     * between 1-cell lethal walls, with a graded band (cost 120 to 127) on the corridor cells beside a wall: paths many
-     * times the straight line, as in the benchmark's maze, on a grid a test plans on quickly.
+     * A maze (randomised depth-first search over {@code nodes} x {@code nodes} rooms) of 3-cell corridors between
+     * 1-cell lethal walls, with a graded band (cost 120 to 127) on the corridor cells beside a wall: paths many times
+     * the straight line, as in the benchmark's maze, on a grid a test plans on quickly.
+     *
+     * @param loops true to open about a tenth of the remaining walls between rooms, so that there are dearer routes
+     *              a focused propagation could wrongly settle for; false for a perfect maze (one route)
      */
-    public static Costmap maze(long seed, int nodes) {
+    public static Costmap maze(long seed, int nodes, boolean loops) {
         Random random = new Random(seed);
         int corridor = 3;
         int pitch = corridor + 1;
@@ -117,6 +120,17 @@ public final class TestGrids {
             visited[next] = true;
             carve(costmap, x, y, x + move[0], y + move[1], corridor, pitch);
             stack[depth++] = next;
+        }
+        // a few walls opened at random: loops, so that a route can be missed in favour of a dearer one
+        for (int y = 0; loops && y < nodes; y++) {
+            for (int x = 0; x < nodes; x++) {
+                if (x + 1 < nodes && random.nextInt(10) == 0) {
+                    carve(costmap, x, y, x + 1, y, corridor, pitch);
+                }
+                if (y + 1 < nodes && random.nextInt(10) == 0) {
+                    carve(costmap, x, y, x, y + 1, corridor, pitch);
+                }
+            }
         }
         // a graded band along the walls, as inflation gives: the corridor's outer cells cost more than its middle
         Costmap graded = Costmap.filled(costmap.geometry(), Costmap.FREE);

@@ -95,16 +95,18 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     static final float LANDMARK_EXCESS = 1f;
     /**
-     * First excess of the bound over the landmarks' lower bound of the start's cost (0.5 %; the benchmark maze and
-     * random-1000 need less than 0.1 %).
+     * First excess of the bound over the landmarks' lower bound of the start's cost: 0.1 % (on the benchmark maze
+     * the landmarks bound the start's cost within 0.001 %; a 0.5 % excess expanded 253 k cells, 0.1 % 231-237 k, none
+     * 223 k).
      */
-    static final float LANDMARK_FIRST_EXCESS = 0.005f;
+    static final float LANDMARK_FIRST_EXCESS = 0.001f;
     /**
      * The landmarks' bound is scaled down by this fraction: the interpolated values satisfy the triangle inequality
-     * it rests on to within 0.004 % of the path's cost on the benchmark grids (float rounding and the interpolation's
-     * dependence on the direction of propagation), so 0.2 % leaves room.
+     * it rests on only nearly (float rounding and the interpolation's dependence on the direction of propagation:
+     * within 0.004 % of the path's cost on the benchmark grids); the focus's margin of four diagonal steps covers
+     * the rest. A bound that is too high in places costs at most a slightly dearer path, never a missed one.
      */
-    private static final float LANDMARK_SLACK = 0.002f;
+    private static final float LANDMARK_SLACK = 0.001f;
     /** Plans a set of landmarks must serve to pay for its building (five computations over the whole grid). */
     private static final int LANDMARK_PAYBACK_PLANS = 8;
     /** Most poorly bounded plans awaited before landmarks are built again after a set that did not pay back. */
@@ -176,17 +178,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int focusColumn;
     /**
      * Landmarks (A. V. Goldberg, C. Harrelson, "Computing the shortest path: A* search meets graph theory", SODA 2005,
-     * "ALT"): N from each of {@link #LANDMARKS} cells over the whole grid, interleaved ({@code [cell * LANDMARKS +
-     * landmark]}, +infinity where unreached), or null. By the triangle inequality the cost between p and the start is
-     * at least |N_l(p) - N_l(start)| for every landmark l: a lower bound that follows the corridors, where the
-     * straight line cuts through walls. Valid while no cost falls (a rise only makes paths dearer); dropped when one
-     * does or the grid is replaced.
+     * "ALT"): N from each of {@link #LANDMARKS} cells over the whole grid by padded index (+infinity where unreached),
+     * or null. By the triangle inequality the cost between p and the start is at least |N_l(p) - N_l(start)| for every
+     * landmark l: a lower bound that follows the corridors, where the straight line cuts through walls. Valid while no
+     * cost falls (a rise only makes paths dearer); dropped when one does or the grid is replaced.
      */
-    private float[] landmarkValues;
-    /** Largest finite N of any landmark: no landmark bound exceeds it. */
-    private float landmarkReach;
-    /** N_l(start) per landmark for the running focused computation; NaN for a landmark the start is not connected to. */
-    private final float[] landmarkAtStart = new float[LANDMARKS];
+    private float[][] landmarkValues;
+    /** Largest finite N of each landmark: its bound never exceeds it. */
+    private final float[] landmarkReach = new float[LANDMARKS];
+    /**
+     * The two landmarks a focused computation bounds with (the two tightest at the goal, as A. V. Goldberg and R. F.
+     * Werneck's "active landmarks": reading two arrays per expanded cell instead of four) and their N at the start.
+     */
+    private float[] activeLandmark;
+    private float[] otherActiveLandmark;
+    private float activeAtStart;
+    private float otherActiveAtStart;
     /** Whether the running focused computation bounds with the landmarks. */
     private boolean focusByLandmarks;
     /** Excess of the last successful landmark-bounded computation to {@link #focusGoals}. */
@@ -393,19 +400,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
             distance = Math.min(distance, Math.hypot(goal % stride - focusColumn, goal / stride - focusRow));
         }
         double lowerBound = minDensity * distance;
-        focusByLandmarks = landmarkValues != null;
+        focusByLandmarks = landmarkValues != null && chooseLandmarks(goals, startCell);
         if (focusByLandmarks) {
             landmarkPlans++;
-            boolean connected = false;
-            for (int l = 0; l < LANDMARKS; l++) {
-                float atStart = landmarkValues[startCell * LANDMARKS + l];
-                landmarkAtStart[l] = atStart == Float.POSITIVE_INFINITY ? Float.NaN : atStart;
-                connected |= atStart < Float.POSITIVE_INFINITY;
-            }
-            focusByLandmarks = connected;
-        }
-        if (focusByLandmarks) {
-            double nearest = Double.POSITIVE_INFINITY;
+            float nearest = Float.POSITIVE_INFINITY;
             for (int goal : goals) {
                 nearest = Math.min(nearest, landmarkBound(goal));
             }
@@ -455,17 +453,66 @@ public final class LpnNavigationFunction implements AutoCloseable {
         focusByLandmarks = false;
     }
 
-    /** @return the landmarks' lower bound of the cost between {@code cell} and the start (+infinity: not connected) */
-    private float landmarkBound(int cell) {
-        float bound = 0f;
-        int base = cell * LANDMARKS;
+    /**
+     * Picks the two landmarks whose bounds at the goals are highest (among those the start is connected to) for the
+     * running computation.
+     *
+     * @return false when the start is connected to no landmark
+     */
+    private boolean chooseLandmarks(int[] goals, int startCell) {
+        int best = -1;
+        int second = -1;
+        float bestBound = -1f;
+        float secondBound = -1f;
         for (int l = 0; l < LANDMARKS; l++) {
-            // NaN (a landmark the start is not connected to) never raises the bound; an unreached cell with a
-            // connected start gives +infinity: no path joins them
-            float gap = Math.abs(landmarkValues[base + l] - landmarkAtStart[l]);
-            bound = gap > bound ? gap : bound;
+            float atStart = landmarkValues[l][startCell];
+            if (!(atStart < Float.POSITIVE_INFINITY)) {
+                continue; // not connected, or a missing landmark (NaN)
+            }
+            float bound = Float.POSITIVE_INFINITY;
+            for (int goal : goals) {
+                bound = Math.min(bound, Math.abs(landmarkValues[l][goal] - atStart));
+            }
+            if (bound > bestBound) {
+                second = best;
+                secondBound = bestBound;
+                best = l;
+                bestBound = bound;
+            } else if (bound > secondBound) {
+                second = l;
+                secondBound = bound;
+            }
         }
-        return (1 - LANDMARK_SLACK) * bound;
+        if (best < 0) {
+            return false;
+        }
+        second = second < 0 ? best : second;
+        activeLandmark = landmarkValues[best];
+        activeAtStart = activeLandmark[startCell];
+        otherActiveLandmark = landmarkValues[second];
+        otherActiveAtStart = otherActiveLandmark[startCell];
+        return true;
+    }
+
+    /**
+     * @return the active landmarks' lower bound of the cost between {@code cell} and the start (+infinity: not
+     *         connected to the start)
+     */
+    private float landmarkBound(int cell) {
+        float gap = Math.abs(activeLandmark[cell] - activeAtStart);
+        float otherGap = Math.abs(otherActiveLandmark[cell] - otherActiveAtStart);
+        return (1 - LANDMARK_SLACK) * (gap > otherGap ? gap : otherGap);
+    }
+
+    /** @return no {@link #landmarkBound} of the running computation exceeds this */
+    private float landmarkReach() {
+        float reach = 0f;
+        for (int l = 0; l < LANDMARKS; l++) {
+            if (landmarkValues[l] == activeLandmark || landmarkValues[l] == otherActiveLandmark) {
+                reach = Math.max(reach, landmarkReach[l]);
+            }
+        }
+        return reach;
     }
 
     /**
@@ -475,18 +522,19 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     private void buildLandmarks(int seed) {
         int cells = potential.length;
-        float[] values = new float[cells * LANDMARKS];
+        float[][] values = new float[LANDMARKS][cells];
         float[] nearest = new float[cells];
         Arrays.fill(nearest, Float.POSITIVE_INFINITY);
         compute(new int[] {seed}, -1);
         int next = farthest(potential, null);
-        float reach = 0f;
         int built = 0;
         for (; built < LANDMARKS && next >= 0; built++) {
             compute(new int[] {next}, -1);
+            float[] landmark = values[built];
+            float reach = 0f;
             for (int i = 0; i < cells; i++) {
                 float value = decode(potential[i]);
-                values[i * LANDMARKS + built] = value;
+                landmark[i] = value;
                 if (value < nearest[i]) {
                     nearest[i] = value;
                 }
@@ -494,16 +542,14 @@ public final class LpnNavigationFunction implements AutoCloseable {
                     reach = value;
                 }
             }
+            landmarkReach[built] = reach;
             next = farthest(potential, nearest);
         }
-        // a region too small for all landmarks (every cell already one): the missing ones bound nothing (NaN)
+        // a region too small for all landmarks (every cell already one): the missing ones are never chosen (NaN)
         for (int l = built; l < LANDMARKS; l++) {
-            for (int i = 0; i < cells; i++) {
-                values[i * LANDMARKS + l] = Float.NaN;
-            }
+            Arrays.fill(values[l], Float.NaN);
         }
         landmarkValues = values;
-        landmarkReach = reach;
         landmarkPlans = 0;
         completeGoals = null;
     }
@@ -814,7 +860,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
         final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
-                focusByLandmarks ? landmarkReach : 0f);
+                focusByLandmarks ? (1 - LANDMARK_SLACK) * landmarkReach() : 0f);
         final double inverseStride = 1.0 / stride;
         int finalized = 0;
         int deferredHere = 0;
@@ -932,11 +978,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     /**
      * @return true when a cell of value {@code value} lies outside the focus, {@code N + c_min |p - start| > focusBound}
-     *         or, with landmarks, {@code N + landmarkBound(p) > focusBound}
+     *         or, with landmarks, {@code N + landmarkBound(p) > focusBound} instead
      */
     private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
-        if (focusByLandmarks && value + landmarkBound(cell) > focusBound) {
-            return true;
+        if (focusByLandmarks) {
+            // the straight line is not checked as well: where landmarks are used it bounds far less
+            return value + landmarkBound(cell) > focusBound;
         }
         // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
         int row = (int) ((cell + 0.5) * inverseStride);

@@ -87,7 +87,7 @@ class PropagationWorkTest {
 
     @Test
     void landmarksFollowAPoorlyBoundedPlanSurviveARiseAndAreDroppedWhenACostFalls() {
-        Costmap costmap = TestGrids.maze(5, 20);
+        Costmap costmap = TestGrids.maze(5, 20, false);
         Setup setup = new Setup(costmap, new Point2D(2.5, 2.5),
                 new Point2D(costmap.width() - 2.5, costmap.height() - 2.5));
         int[] goals = setup.request.goalCells();
