@@ -100,7 +100,7 @@ public final class GradientDescent {
      * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length.
      */
     private static double[] shortcut(PlanningGrid grid, float[] density, Waypoints points) {
-        GridTraversal.CellDensity cells = (column, row) -> cellDensity(grid, density, column, row);
+        GridTraversal.PaddedDensity cells = new GridTraversal.PaddedDensity(grid, density);
         Waypoints kept = new Waypoints();
         int anchor = 0;
         kept.add(points.x(0), points.y(0));
@@ -134,15 +134,8 @@ public final class GradientDescent {
         return kept.toArray();
     }
 
-    private static double integrate(Waypoints points, int from, int to, GridTraversal.CellDensity cells) {
+    private static double integrate(Waypoints points, int from, int to, GridTraversal.PaddedDensity cells) {
         return GridTraversal.integrate(points.x(from), points.y(from), points.x(to), points.y(to), cells);
-    }
-
-    private static double cellDensity(PlanningGrid grid, float[] density, int column, int row) {
-        if (column < -1 || row < -1 || column > grid.geometry().width() || row > grid.geometry().height()) {
-            return Double.POSITIVE_INFINITY;
-        }
-        return density[grid.costs()[grid.index(column, row)] & 0xFF];
     }
 
     /** Ends the path at the goal point of the goal cell reached, replacing the entry point when the shortcut is clear. */
@@ -310,7 +303,7 @@ public final class GradientDescent {
                 return true;
             }
         }
-        return GridTraversal.integrate(x0, y0, x1, y1,
-                (column, row) -> cellDensity(grid, density, column, row)) != Double.POSITIVE_INFINITY;
+        return GridTraversal.integrate(x0, y0, x1, y1, new GridTraversal.PaddedDensity(grid, density))
+                != Double.POSITIVE_INFINITY;
     }
 }
