@@ -382,6 +382,15 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * When no cell was deferred the region of the goals was exhausted: the start is unreachable, as for
      * {@link #compute}.
      *
+     * <p>Where the straight line bounds poorly (a plan needed an excess of {@link #LANDMARK_EXCESS} or more: a maze,
+     * whose paths are many times the straight line, so that the focus excluded nothing), the next focused computation
+     * on the same grid first computes N from {@link #LANDMARKS} landmark cells over the whole grid, and from then on
+     * the focus uses their lower bound {@code max |N_l(p) - N_l(start)|} instead of the straight line, and U starts
+     * {@link #LANDMARK_FIRST_EXCESS} above that bound at the goal. The landmarks are kept while costs only rise
+     * (every plan of a robot whose sonar adds obstacles) and dropped when a cost falls or the grid is replaced; a set
+     * that served fewer than {@value #LANDMARK_PAYBACK_PLANS} plans doubles the number of poorly bounded plans awaited
+     * before the next, so that a map whose costs keep falling does not pay for landmarks at every other plan.
+     *
      * @param goals     padded indices of passable goal cells
      * @param startCell padded index of the start
      */
