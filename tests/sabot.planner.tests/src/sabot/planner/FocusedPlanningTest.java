@@ -132,6 +132,27 @@ class FocusedPlanningTest {
             PlanResult.Found risen = assertMatches(exhaustive, focused, costmap, corner, opposite, "cost risen");
             assertTrue(risen.field().reachedCells() < straightLine.field().reachedCells() * 3 / 4,
                     "a rise keeps the landmarks: " + risen.field().reachedCells() + " cells");
+            // a goal walled in by new obstacles (a rise: the landmarks stay) is reported as without them
+            Point2D walledIn = byLandmarks.path().waypoints().get(byLandmarks.path().waypoints().size() / 3);
+            int wc = (int) walledIn.x();
+            int wr = (int) walledIn.y();
+            int[] before8 = new int[9];
+            for (int k = 0; k < 9; k++) {
+                before8[k] = costmap.cost(wc - 1 + k % 3, wr - 1 + k / 3);
+                if (k != 4) {
+                    costmap.set(wc - 1 + k % 3, wr - 1 + k / 3, Costmap.LETHAL);
+                }
+            }
+            Point2D inside = costmap.geometry().cellCentre(wc, wr);
+            for (Point2D[] pair : new Point2D[][] {{corner, inside}, {inside, opposite}}) {
+                PlanResult all = exhaustive.plan(costmap, pair[0], pair[1]);
+                PlanResult some = focused.plan(costmap, pair[0], pair[1]);
+                assertEquals(UnreachableReason.GOAL_ENCLOSED, assertInstanceOf(PlanResult.Unreachable.class, all).reason());
+                assertEquals(UnreachableReason.GOAL_ENCLOSED, assertInstanceOf(PlanResult.Unreachable.class, some).reason());
+            }
+            for (int k = 0; k < 9; k++) {
+                costmap.set(wc - 1 + k % 3, wr - 1 + k / 3, before8[k]);
+            }
             costmap.set(column, row, previous);
             PlanResult.Found fallen = assertMatches(exhaustive, focused, costmap, corner, opposite, "cost fallen");
             assertEquals(before.path().cost(), fallen.path().cost(), TOLERANCE * before.path().cost());

@@ -409,6 +409,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
             distance = Math.min(distance, Math.hypot(goal % stride - focusColumn, goal / stride - focusRow));
         }
         double lowerBound = minDensity * distance;
+        boolean disconnected = false;
         focusByLandmarks = landmarkValues != null && chooseLandmarks(goals, startCell);
         if (focusByLandmarks) {
             landmarkPlans++;
@@ -417,6 +418,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 nearest = Math.min(nearest, landmarkBound(goal));
             }
             lowerBound = Math.max(lowerBound, nearest == Float.POSITIVE_INFINITY ? 0 : nearest);
+            // no goal is connected to a landmark the start is connected to: none is connected to the start (costs
+            // only rose since the landmarks were computed, and a rise never joins regions), so the goals' region is
+            // exhausted without a bound and reported as for an unfocused computation
+            disconnected = nearest == Float.POSITIVE_INFINITY;
         }
         // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
         // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
@@ -425,6 +430,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
         boolean sameGoals = Arrays.equals(goals, focusGoals);
         float excess = sameGoals ? (focusByLandmarks ? landmarkExcess : focusExcess)
                 : focusByLandmarks ? LANDMARK_FIRST_EXCESS : FOCUS_FIRST_EXCESS;
+        if (disconnected) {
+            excess = Float.POSITIVE_INFINITY;
+        }
         int vainAttempts = 0;
         while (true) {
             focusBound = excess == Float.POSITIVE_INFINITY ? Float.POSITIVE_INFINITY
