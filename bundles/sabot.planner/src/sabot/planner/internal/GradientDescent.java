@@ -112,11 +112,14 @@ public final class GradientDescent {
                 pendingCost = integrate(points, anchor, next, cells);
                 continue;
             }
-            double via = pendingCost + integrate(points, pending, next, cells);
+            double step = integrate(points, pending, next, cells);
+            double via = pendingCost + step;
             double ax = points.x(next) - points.x(anchor);
             double ay = points.y(next) - points.y(anchor);
+            // the direct walk stops once it exceeds the way via the pending point: it is then rejected either way
             double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
-                    ? integrate(points, anchor, next, cells)
+                    ? GridTraversal.integrate(points.x(anchor), points.y(anchor), points.x(next), points.y(next), cells,
+                            via)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
                 pending = next;
@@ -125,7 +128,7 @@ public final class GradientDescent {
                 kept.add(points.x(pending), points.y(pending));
                 anchor = pending;
                 pending = next;
-                pendingCost = integrate(points, anchor, next, cells);
+                pendingCost = step; // the integral from the new anchor, as computed for the way via it
             }
         }
         if (pending >= 0) {

@@ -83,6 +83,14 @@ public final class GridTraversal {
      * through a virtual call: the descent's shortcut pass and the path cost of a plan walk some 10^5 cells on a maze).
      */
     static double integrate(double x0, double y0, double x1, double y1, PaddedDensity density) {
+        return integrate(x0, y0, x1, y1, density, Double.POSITIVE_INFINITY);
+    }
+
+    /**
+     * As {@link #integrate(double, double, double, double, PaddedDensity)}, but returns a partial sum above
+     * {@code limit} as soon as the walk exceeds it (the pieces are not negative, so the whole sum would too).
+     */
+    static double integrate(double x0, double y0, double x1, double y1, PaddedDensity density, double limit) {
         double dx = x1 - x0;
         double dy = y1 - y0;
         double length = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a software routine, no overflow to guard
@@ -114,6 +122,9 @@ public final class GridTraversal {
                     return d;
                 }
                 total += piece * d;
+                if (total > limit) {
+                    return total;
+                }
             }
             if (tExit >= 1.0 || column == lastColumn && row == lastRow) {
                 break;
