@@ -120,6 +120,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
     /** Half of {@link #density}: the edge density between two cells is the sum of their halves. */
     private final float[] halfDensity;
     private final float maxDensity;
+    /**
+     * At least the highest density of a passable cell of the grid (the cost model's highest where a graded cell of
+     * that cost is present; c_min on a grid of free and lethal cells only): the focus's margin is counted in it.
+     * Raised by changes, never lowered until the grid is replaced (too high only widens the margin).
+     */
+    private float gridMaxDensity;
     private final float bucketWidth;
     private final float inverseBucketWidth;
     /**
@@ -293,11 +299,16 @@ public final class LpnNavigationFunction implements AutoCloseable {
             bandShift = Math.max(0, bits - MEMORY_BANDS_LOG2);
             bandCounts = new int[(planningGrid.paddedSize() >>> bandShift) + 2];
             byte[] costs = planningGrid.costs();
+            float highest = minDensity;
             for (int i = 0; i < potential.length; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
                 initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
                 potential[i] = initialPotential[i];
+                if (cellDensity[i] > highest && cellDensity[i] != Float.POSITIVE_INFINITY) {
+                    highest = cellDensity[i];
+                }
             }
+            gridMaxDensity = highest;
             return;
         }
         resetTouched();
@@ -318,6 +329,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 cellDensity[i] = density[costs[i] & 0xFF];
                 initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
                 potential[i] = initialPotential[i];
+                if (cellDensity[i] > gridMaxDensity && cellDensity[i] != Float.POSITIVE_INFINITY) {
+                    gridMaxDensity = cellDensity[i];
+                }
             }
         }
     }
@@ -424,8 +438,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
             disconnected = nearest == Float.POSITIVE_INFINITY;
         }
         // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
-        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
-        float margin = 4 * SQRT2 * maxDensity;
+        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer); the
+        // highest density of the grid's own cells, not the cost model's: on a grid of free and lethal cells (the
+        // benchmark maze) a diagonal step costs c_min sqrt 2, and the same four steps are a fifth of the margin
+        float margin = 4 * SQRT2 * gridMaxDensity;
         // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
         boolean sameGoals = Arrays.equals(goals, focusGoals);
         float excess = sameGoals ? (focusByLandmarks ? landmarkExcess : focusExcess)
@@ -647,14 +663,20 @@ public final class LpnNavigationFunction implements AutoCloseable {
             return true;
         }
         byte[] costs = grid.costs();
+        float highest = gridMaxDensity;
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
                 int before = grid.previousCost(column, row);
-                if (before < 0 || density[costs[grid.index(column, row)] & 0xFF] < density[before]) {
+                float now = density[costs[grid.index(column, row)] & 0xFF];
+                if (before < 0 || now < density[before]) {
                     return false;
+                }
+                if (now > highest && now != Float.POSITIVE_INFINITY) {
+                    highest = now;
                 }
             }
         }
+        gridMaxDensity = highest;
         checkSize = 0;
         int stride = grid.stride();
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
