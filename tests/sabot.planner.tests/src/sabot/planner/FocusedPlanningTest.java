@@ -104,6 +104,80 @@ class FocusedPlanningTest {
     }
 
     @Test
+    void mazePlansBoundByLandmarksMatchTheExhaustivePropagationOverFewerCells() {
+        // paths many times the straight line: the first plan's straight-line bound is poor, so the next plans on
+        // the same grid are bounded by landmarks, also after a new obstacle (a rise keeps them) and after it is
+        // cleared again (a fall drops them)
+        Costmap costmap = TestGrids.maze(17, 30, true);
+        Point2D corner = costmap.geometry().cellCentre(2, 2);
+        Point2D opposite = costmap.geometry().cellCentre(costmap.width() - 3, costmap.height() - 3);
+        Random random = new Random(17);
+        try (Planner exhaustive = Planners.lpn(CostModel.standard());
+                Planner focused = Planners.lpnFocused(CostModel.standard())) {
+            PlanResult.Found straightLine = assertMatches(exhaustive, focused, costmap, corner, opposite, "first plan");
+            PlanResult.Found byLandmarks = assertMatches(exhaustive, focused, costmap, corner, opposite, "re-plan");
+            assertTrue(byLandmarks.field().reachedCells() < straightLine.field().reachedCells() * 3 / 4,
+                    "landmarks: " + byLandmarks.field().reachedCells() + " cells, straight line: "
+                            + straightLine.field().reachedCells());
+            for (int i = 0; i < 40; i++) {
+                Point2D start = TestGrids.randomFreePoint(random, costmap);
+                Point2D goal = TestGrids.randomFreePoint(random, costmap);
+                assertMatches(exhaustive, focused, costmap, start, goal, "pair " + i);
+            }
+            PlanResult.Found before = assertMatches(exhaustive, focused, costmap, corner, opposite, "before");
+            int column = (int) byLandmarks.path().waypoints().get(byLandmarks.path().waypoints().size() / 2).x();
+            int row = (int) byLandmarks.path().waypoints().get(byLandmarks.path().waypoints().size() / 2).y();
+            int previous = costmap.cost(column, row);
+            costmap.set(column, row, Costmap.MAX_GRADED);
+            PlanResult.Found risen = assertMatches(exhaustive, focused, costmap, corner, opposite, "cost risen");
+            assertTrue(risen.field().reachedCells() < straightLine.field().reachedCells() * 3 / 4,
+                    "a rise keeps the landmarks: " + risen.field().reachedCells() + " cells");
+            // a goal walled in by new obstacles (a rise: the landmarks stay) is reported as without them
+            Point2D walledIn = byLandmarks.path().waypoints().get(byLandmarks.path().waypoints().size() / 3);
+            int wc = (int) walledIn.x();
+            int wr = (int) walledIn.y();
+            int[] before8 = new int[9];
+            for (int k = 0; k < 9; k++) {
+                before8[k] = costmap.cost(wc - 1 + k % 3, wr - 1 + k / 3);
+                if (k != 4) {
+                    costmap.set(wc - 1 + k % 3, wr - 1 + k / 3, Costmap.LETHAL);
+                }
+            }
+            Point2D inside = costmap.geometry().cellCentre(wc, wr);
+            for (Point2D[] pair : new Point2D[][] {{corner, inside}, {inside, opposite}}) {
+                PlanResult all = exhaustive.plan(costmap, pair[0], pair[1]);
+                PlanResult some = focused.plan(costmap, pair[0], pair[1]);
+                assertEquals(UnreachableReason.GOAL_ENCLOSED, assertInstanceOf(PlanResult.Unreachable.class, all).reason());
+                assertEquals(UnreachableReason.GOAL_ENCLOSED, assertInstanceOf(PlanResult.Unreachable.class, some).reason());
+            }
+            for (int k = 0; k < 9; k++) {
+                costmap.set(wc - 1 + k % 3, wr - 1 + k / 3, before8[k]);
+            }
+            costmap.set(column, row, previous);
+            PlanResult.Found fallen = assertMatches(exhaustive, focused, costmap, corner, opposite, "cost fallen");
+            assertEquals(before.path().cost(), fallen.path().cost(), TOLERANCE * before.path().cost());
+        }
+    }
+
+    /** Plans with both planners and checks the focused answer against the exhaustive one; returns the focused plan. */
+    private static PlanResult.Found assertMatches(Planner exhaustive, Planner focused, Costmap costmap, Point2D start,
+            Point2D goal, String context) {
+        PlanResult.Found all = assertInstanceOf(PlanResult.Found.class, exhaustive.plan(costmap, start, goal), context);
+        PlanResult.Found some = assertInstanceOf(PlanResult.Found.class, focused.plan(costmap, start, goal), context);
+        double startValueAll = all.field().valueAt(start);
+        double startValueSome = some.field().valueAt(start);
+        assertTrue(startValueSome <= (1 + TOLERANCE) * startValueAll + 1e-3
+                && startValueSome >= (1 - LOWER_TOLERANCE) * startValueAll,
+                context + ": N(start) " + startValueSome + ", exhaustive " + startValueAll);
+        assertTrue(some.path().cost() <= (1 + TOLERANCE) * all.path().cost(),
+                context + ": path cost " + some.path().cost() + ", exhaustive " + all.path().cost());
+        PathChecks.assertCollisionFree(costmap, some.path(), start, goal, context);
+        PathChecks.assertDescending(some.field(), some.path(), context);
+        assertTrue(some.field().reachedCells() <= all.field().reachedCells(), context);
+        return some;
+    }
+
+    @Test
     void anEnclosedGoalOrStartIsReported() {
         Costmap costmap = TestGrids.free(60, 60);
         for (int i = 20; i <= 30; i++) {

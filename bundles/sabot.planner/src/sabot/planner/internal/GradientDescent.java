@@ -100,7 +100,7 @@ public final class GradientDescent {
      * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length.
      */
     private static double[] shortcut(PlanningGrid grid, float[] density, Waypoints points) {
-        GridTraversal.CellDensity cells = (column, row) -> cellDensity(grid, density, column, row);
+        GridTraversal.PaddedDensity cells = new GridTraversal.PaddedDensity(grid, density);
         Waypoints kept = new Waypoints();
         int anchor = 0;
         kept.add(points.x(0), points.y(0));
@@ -112,11 +112,14 @@ public final class GradientDescent {
                 pendingCost = integrate(points, anchor, next, cells);
                 continue;
             }
-            double via = pendingCost + integrate(points, pending, next, cells);
+            double step = integrate(points, pending, next, cells);
+            double via = pendingCost + step;
             double ax = points.x(next) - points.x(anchor);
             double ay = points.y(next) - points.y(anchor);
+            // the direct walk stops once it exceeds the way via the pending point: it is then rejected either way
             double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
-                    ? integrate(points, anchor, next, cells)
+                    ? GridTraversal.integrate(points.x(anchor), points.y(anchor), points.x(next), points.y(next), cells,
+                            via)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
                 pending = next;
@@ -125,7 +128,7 @@ public final class GradientDescent {
                 kept.add(points.x(pending), points.y(pending));
                 anchor = pending;
                 pending = next;
-                pendingCost = integrate(points, anchor, next, cells);
+                pendingCost = step; // the integral from the new anchor, as computed for the way via it
             }
         }
         if (pending >= 0) {
@@ -134,15 +137,8 @@ public final class GradientDescent {
         return kept.toArray();
     }
 
-    private static double integrate(Waypoints points, int from, int to, GridTraversal.CellDensity cells) {
+    private static double integrate(Waypoints points, int from, int to, GridTraversal.PaddedDensity cells) {
         return GridTraversal.integrate(points.x(from), points.y(from), points.x(to), points.y(to), cells);
-    }
-
-    private static double cellDensity(PlanningGrid grid, float[] density, int column, int row) {
-        if (column < -1 || row < -1 || column > grid.geometry().width() || row > grid.geometry().height()) {
-            return Double.POSITIVE_INFINITY;
-        }
-        return density[grid.costs()[grid.index(column, row)] & 0xFF];
     }
 
     /** Ends the path at the goal point of the goal cell reached, replacing the entry point when the shortcut is clear. */
@@ -310,7 +306,7 @@ public final class GradientDescent {
                 return true;
             }
         }
-        return GridTraversal.integrate(x0, y0, x1, y1,
-                (column, row) -> cellDensity(grid, density, column, row)) != Double.POSITIVE_INFINITY;
+        return GridTraversal.integrate(x0, y0, x1, y1, new GridTraversal.PaddedDensity(grid, density))
+                != Double.POSITIVE_INFINITY;
     }
 }

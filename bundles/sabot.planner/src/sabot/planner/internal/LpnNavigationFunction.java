@@ -83,6 +83,34 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * unfocused one.
      */
     private static final int FOCUS_GIVE_UP_FRACTION = 32;
+    /**
+     * Landmarks of the lower bound that replaces the straight line on grids where paths are much longer than it (see
+     * {@link #computeFocused}): four, chosen farthest first; on the benchmark maze two already bound the start's
+     * cost within 0.01 %, on random-1000 four within 0.02 %.
+     */
+    static final int LANDMARKS = 4;
+    /**
+     * A focused computation whose bound needed at least this excess over the straight line (a path more than twice
+     * its length: a maze) asks for landmarks, built at the start of a later focused computation on the same grid.
+     */
+    static final float LANDMARK_EXCESS = 1f;
+    /**
+     * First excess of the bound over the landmarks' lower bound of the start's cost: 0.1 % (on the benchmark maze
+     * the landmarks bound the start's cost within 0.001 %; a 0.5 % excess expanded 253 k cells, 0.1 % 231-237 k, none
+     * 223 k).
+     */
+    static final float LANDMARK_FIRST_EXCESS = 0.001f;
+    /**
+     * The landmarks' bound is scaled down by this fraction: the interpolated values satisfy the triangle inequality
+     * it rests on only nearly (float rounding and the interpolation's dependence on the direction of propagation:
+     * within 0.004 % of the path's cost on the benchmark grids); the focus's margin of four diagonal steps covers
+     * the rest. A bound that is too high in places costs at most a slightly dearer path, never a missed one.
+     */
+    private static final float LANDMARK_SLACK = 0.001f;
+    /** Plans a set of landmarks must serve to pay for its building (five computations over the whole grid). */
+    private static final int LANDMARK_PAYBACK_PLANS = 8;
+    /** Most poorly bounded plans awaited before landmarks are built again after a set that did not pay back. */
+    private static final int LANDMARK_MAX_PATIENCE = 64;
     /** A grid is cut into about 2^10 memory bands for the bucket ordering: a row or so on grids of 1000 x 1000. */
     private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
@@ -92,6 +120,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
     /** Half of {@link #density}: the edge density between two cells is the sum of their halves. */
     private final float[] halfDensity;
     private final float maxDensity;
+    /**
+     * At least the highest density of a passable cell of the grid (the cost model's highest where a graded cell of
+     * that cost is present; c_min on a grid of free and lethal cells only): the focus's margin is counted in it.
+     * Raised by changes, never lowered until the grid is replaced (too high only widens the margin).
+     */
+    private float gridMaxDensity;
     private final float bucketWidth;
     private final float inverseBucketWidth;
     /**
@@ -148,6 +182,35 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float focusExcess;
     private int focusRow;
     private int focusColumn;
+    /**
+     * Landmarks (A. V. Goldberg, C. Harrelson, "Computing the shortest path: A* search meets graph theory", SODA 2005,
+     * "ALT"): N from each of {@link #LANDMARKS} cells over the whole grid by padded index (+infinity where unreached),
+     * or null. By the triangle inequality the cost between p and the start is at least |N_l(p) - N_l(start)| for every
+     * landmark l: a lower bound that follows the corridors, where the straight line cuts through walls. Valid while no
+     * cost falls (a rise only makes paths dearer); dropped when one does or the grid is replaced.
+     */
+    private float[][] landmarkValues;
+    /** Largest finite N of each landmark: its bound never exceeds it. */
+    private final float[] landmarkReach = new float[LANDMARKS];
+    /**
+     * The two landmarks a focused computation bounds with (the two tightest at the goal, as A. V. Goldberg and R. F.
+     * Werneck's "active landmarks": reading two arrays per expanded cell instead of four) and their N at the start.
+     */
+    private float[] activeLandmark;
+    private float[] otherActiveLandmark;
+    private float activeAtStart;
+    private float otherActiveAtStart;
+    /** Whether the running focused computation bounds with the landmarks. */
+    private boolean focusByLandmarks;
+    /** Excess of the last successful landmark-bounded computation to {@link #focusGoals}. */
+    private float landmarkExcess;
+    /**
+     * Poorly bounded focused plans (see {@link #LANDMARK_EXCESS}) since the landmarks were last dropped, the number
+     * that triggers a build, and the plans served by the current set.
+     */
+    private int poorlyBoundedPlans;
+    private int landmarkPatience = 1;
+    private int landmarkPlans;
     private int deferred;
     /** Expansions of the last computation or repair (every attempt of a focused one); cells a repair withdrew. */
     private int expandedCount;
@@ -226,6 +289,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
             grid = planningGrid;
             focusGoals = null;
+            dropLandmarks();
             potential = new int[planningGrid.paddedSize()];
             cellDensity = new float[planningGrid.paddedSize()];
             initialPotential = new int[planningGrid.paddedSize()];
@@ -235,11 +299,16 @@ public final class LpnNavigationFunction implements AutoCloseable {
             bandShift = Math.max(0, bits - MEMORY_BANDS_LOG2);
             bandCounts = new int[(planningGrid.paddedSize() >>> bandShift) + 2];
             byte[] costs = planningGrid.costs();
+            float highest = minDensity;
             for (int i = 0; i < potential.length; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
                 initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
                 potential[i] = initialPotential[i];
+                if (cellDensity[i] > highest && cellDensity[i] != Float.POSITIVE_INFINITY) {
+                    highest = cellDensity[i];
+                }
             }
+            gridMaxDensity = highest;
             return;
         }
         resetTouched();
@@ -247,10 +316,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             int from = planningGrid.index(changed.minColumn(), row);
             int to = planningGrid.index(changed.maxColumn(), row);
+            if (landmarkValues != null || poorlyBoundedPlans > 0) {
+                for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
+                    int before = planningGrid.previousCost(column, row);
+                    if (before < 0 || density[costs[from + column - changed.minColumn()] & 0xFF] < density[before]) {
+                        dropLandmarks(); // a cheaper cell can shorten paths: the bounds may exceed the new costs
+                        break;
+                    }
+                }
+            }
             for (int i = from; i <= to; i++) {
                 cellDensity[i] = density[costs[i] & 0xFF];
                 initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
                 potential[i] = initialPotential[i];
+                if (cellDensity[i] > gridMaxDensity && cellDensity[i] != Float.POSITIVE_INFINITY) {
+                    gridMaxDensity = cellDensity[i];
+                }
             }
         }
     }
@@ -315,10 +396,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * When no cell was deferred the region of the goals was exhausted: the start is unreachable, as for
      * {@link #compute}.
      *
+     * <p>Where the straight line bounds poorly (a plan needed an excess of {@link #LANDMARK_EXCESS} or more: a maze,
+     * whose paths are many times the straight line, so that the focus excluded nothing), the next focused computation
+     * on the same grid first computes N from {@link #LANDMARKS} landmark cells over the whole grid, and from then on
+     * the focus uses their lower bound {@code max |N_l(p) - N_l(start)|} instead of the straight line, and U starts
+     * {@link #LANDMARK_FIRST_EXCESS} above that bound at the goal. The landmarks are kept while costs only rise
+     * (every plan of a robot whose sonar adds obstacles) and dropped when a cost falls or the grid is replaced; a set
+     * that served fewer than {@value #LANDMARK_PAYBACK_PLANS} plans doubles the number of poorly bounded plans awaited
+     * before the next, so that a map whose costs keep falling does not pay for landmarks at every other plan.
+     *
      * @param goals     padded indices of passable goal cells
      * @param startCell padded index of the start
      */
     public void computeFocused(int[] goals, int startCell) {
+        if (landmarkValues == null && poorlyBoundedPlans >= landmarkPatience) {
+            buildLandmarks(goals[0]);
+        }
         completeGoals = null;
         expandedCount = 0;
         withdrawnCount = 0;
@@ -329,16 +422,37 @@ public final class LpnNavigationFunction implements AutoCloseable {
         for (int goal : goals) {
             distance = Math.min(distance, Math.hypot(goal % stride - focusColumn, goal / stride - focusRow));
         }
+        double lowerBound = minDensity * distance;
+        boolean disconnected = false;
+        focusByLandmarks = landmarkValues != null && chooseLandmarks(goals, startCell);
+        if (focusByLandmarks) {
+            landmarkPlans++;
+            float nearest = Float.POSITIVE_INFINITY;
+            for (int goal : goals) {
+                nearest = Math.min(nearest, landmarkBound(goal));
+            }
+            lowerBound = Math.max(lowerBound, nearest == Float.POSITIVE_INFINITY ? 0 : nearest);
+            // no goal is connected to a landmark the start is connected to: none is connected to the start (costs
+            // only rose since the landmarks were computed, and a rise never joins regions), so the goals' region is
+            // exhausted without a bound and reported as for an unfocused computation
+            disconnected = nearest == Float.POSITIVE_INFINITY;
+        }
         // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
-        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer)
-        float margin = 4 * SQRT2 * maxDensity;
+        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer); the
+        // highest density of the grid's own cells, not the cost model's: on a grid of free and lethal cells (the
+        // benchmark maze) a diagonal step costs c_min sqrt 2, and the same four steps are a fifth of the margin
+        float margin = 4 * SQRT2 * gridMaxDensity;
         // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
         boolean sameGoals = Arrays.equals(goals, focusGoals);
-        float excess = sameGoals ? focusExcess : FOCUS_FIRST_EXCESS;
+        float excess = sameGoals ? (focusByLandmarks ? landmarkExcess : focusExcess)
+                : focusByLandmarks ? LANDMARK_FIRST_EXCESS : FOCUS_FIRST_EXCESS;
+        if (disconnected) {
+            excess = Float.POSITIVE_INFINITY;
+        }
         int vainAttempts = 0;
         while (true) {
             focusBound = excess == Float.POSITIVE_INFINITY ? Float.POSITIVE_INFINITY
-                    : (float) (minDensity * distance * (1 + excess)) + margin;
+                    : (float) (lowerBound * (1 + excess)) + margin;
             start(goals);
             propagate(startCell, false);
             if (isReached(startCell) || deferred == 0) {
@@ -356,10 +470,156 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (isReached(startCell)) {
             if (!sameGoals) {
                 focusGoals = goals.clone();
+                focusExcess = FOCUS_FIRST_EXCESS;
+                landmarkExcess = LANDMARK_FIRST_EXCESS;
             }
-            focusExcess = excess;
+            if (focusByLandmarks) {
+                landmarkExcess = excess;
+            } else {
+                focusExcess = excess;
+                if (excess >= LANDMARK_EXCESS) {
+                    poorlyBoundedPlans++;
+                }
+            }
         }
         focusBound = Float.POSITIVE_INFINITY;
+        focusByLandmarks = false;
+    }
+
+    /**
+     * Picks the two landmarks whose bounds at the goals are highest (among those the start is connected to) for the
+     * running computation.
+     *
+     * @return false when the start is connected to no landmark
+     */
+    private boolean chooseLandmarks(int[] goals, int startCell) {
+        int best = -1;
+        int second = -1;
+        float bestBound = -1f;
+        float secondBound = -1f;
+        for (int l = 0; l < LANDMARKS; l++) {
+            float atStart = landmarkValues[l][startCell];
+            if (!(atStart < Float.POSITIVE_INFINITY)) {
+                continue; // not connected, or a missing landmark (NaN)
+            }
+            float bound = Float.POSITIVE_INFINITY;
+            for (int goal : goals) {
+                bound = Math.min(bound, Math.abs(landmarkValues[l][goal] - atStart));
+            }
+            if (bound > bestBound) {
+                second = best;
+                secondBound = bestBound;
+                best = l;
+                bestBound = bound;
+            } else if (bound > secondBound) {
+                second = l;
+                secondBound = bound;
+            }
+        }
+        if (best < 0) {
+            return false;
+        }
+        second = second < 0 ? best : second;
+        activeLandmark = landmarkValues[best];
+        activeAtStart = activeLandmark[startCell];
+        otherActiveLandmark = landmarkValues[second];
+        otherActiveAtStart = otherActiveLandmark[startCell];
+        return true;
+    }
+
+    /**
+     * @return the active landmarks' lower bound of the cost between {@code cell} and the start (+infinity: not
+     *         connected to the start)
+     */
+    private float landmarkBound(int cell) {
+        float gap = Math.abs(activeLandmark[cell] - activeAtStart);
+        float otherGap = Math.abs(otherActiveLandmark[cell] - otherActiveAtStart);
+        return (1 - LANDMARK_SLACK) * (gap > otherGap ? gap : otherGap);
+    }
+
+    /** @return no {@link #landmarkBound} of the running computation exceeds this */
+    private float landmarkReach() {
+        float reach = 0f;
+        for (int l = 0; l < LANDMARKS; l++) {
+            if (landmarkValues[l] == activeLandmark || landmarkValues[l] == otherActiveLandmark) {
+                reach = Math.max(reach, landmarkReach[l]);
+            }
+        }
+        return reach;
+    }
+
+    /**
+     * Computes N from {@link #LANDMARKS} cells over the whole grid, each the reached cell farthest from the ones
+     * before (the first: farthest from {@code seed}), and keeps the values (see {@link #landmarkValues}). Farthest
+     * landmarks lie "behind" most starts and goals, where their bounds are tight (Goldberg and Harrelson).
+     */
+    private void buildLandmarks(int seed) {
+        int cells = potential.length;
+        float[][] values = new float[LANDMARKS][cells];
+        float[] nearest = new float[cells];
+        Arrays.fill(nearest, Float.POSITIVE_INFINITY);
+        compute(new int[] {seed}, -1);
+        int next = farthest(potential, null);
+        int built = 0;
+        for (; built < LANDMARKS && next >= 0; built++) {
+            compute(new int[] {next}, -1);
+            float[] landmark = values[built];
+            float reach = 0f;
+            for (int i = 0; i < cells; i++) {
+                float value = decode(potential[i]);
+                landmark[i] = value;
+                if (value < nearest[i]) {
+                    nearest[i] = value;
+                }
+                if (value != Float.POSITIVE_INFINITY && value > reach) {
+                    reach = value;
+                }
+            }
+            landmarkReach[built] = reach;
+            next = farthest(potential, nearest);
+        }
+        // a region too small for all landmarks (every cell already one): the missing ones are never chosen (NaN)
+        for (int l = built; l < LANDMARKS; l++) {
+            Arrays.fill(values[l], Float.NaN);
+        }
+        landmarkValues = values;
+        landmarkPlans = 0;
+        completeGoals = null;
+    }
+
+    /**
+     * @return the reached cell of {@code potential} whose value in {@code nearest} (null: its own value) is largest
+     *         and finite, or -1 when there is none above 0
+     */
+    private static int farthest(int[] potential, float[] nearest) {
+        int best = -1;
+        float bestValue = 0f;
+        for (int i = 0; i < potential.length; i++) {
+            int bits = potential[i];
+            if (bits < 0 && bits != IMPASSABLE) {
+                float value = nearest == null ? decode(bits) : nearest[i];
+                if (value > bestValue) {
+                    bestValue = value;
+                    best = i;
+                }
+            }
+        }
+        return best;
+    }
+
+    /** Forgets the landmarks after a cost fell or the grid was replaced; a set that served few plans is rebuilt later. */
+    private void dropLandmarks() {
+        if (landmarkValues != null) {
+            landmarkPatience = landmarkPlans >= LANDMARK_PAYBACK_PLANS ? 1
+                    : Math.min(2 * landmarkPatience, LANDMARK_MAX_PATIENCE);
+        }
+        landmarkValues = null;
+        poorlyBoundedPlans = 0;
+    }
+
+    /** @return whether focused computations bound with landmarks (built after poorly bounded plans on this grid) */
+    boolean hasLandmarks() {
+        return landmarkValues != null;
     }
 
     /**
@@ -403,14 +663,20 @@ public final class LpnNavigationFunction implements AutoCloseable {
             return true;
         }
         byte[] costs = grid.costs();
+        float highest = gridMaxDensity;
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
                 int before = grid.previousCost(column, row);
-                if (before < 0 || density[costs[grid.index(column, row)] & 0xFF] < density[before]) {
+                float now = density[costs[grid.index(column, row)] & 0xFF];
+                if (before < 0 || now < density[before]) {
                     return false;
+                }
+                if (now > highest && now != Float.POSITIVE_INFINITY) {
+                    highest = now;
                 }
             }
         }
+        gridMaxDensity = highest;
         checkSize = 0;
         int stride = grid.stride();
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
@@ -632,7 +898,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float stopAbove = Float.POSITIVE_INFINITY;
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
-        final float focusFrom = focusBound - minDensity * (float) Math.hypot(stride, potential.length / stride);
+        final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
+                focusByLandmarks ? (1 - LANDMARK_SLACK) * landmarkReach() : 0f);
         final double inverseStride = 1.0 / stride;
         int finalized = 0;
         int deferredHere = 0;
@@ -750,8 +1017,13 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     /**
      * @return true when a cell of value {@code value} lies outside the focus, {@code N + c_min |p - start| > focusBound}
+     *         or, with landmarks, {@code N + landmarkBound(p) > focusBound} instead
      */
     private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
+        if (focusByLandmarks) {
+            // the straight line is not checked as well: where landmarks are used it bounds far less
+            return value + landmarkBound(cell) > focusBound;
+        }
         // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
         int row = (int) ((cell + 0.5) * inverseStride);
         float dx = cell - row * stride - focusColumn;

@@ -102,9 +102,27 @@ public final class LpnPlanner implements Planner {
         double[] points = GradientDescent.descend(grid, navigationFunction.potential(), density,
                 costModel.minDensity(), request.startX(), request.startY(), request.goalPoints());
         List<Point2D> waypoints = toMap(grid.geometry(), points, start, goals, request.goalPoints());
-        PlannedPath path = new PlannedPath(waypoints, CostModel.length(waypoints), costModel.pathCost(costmap, waypoints));
+        PlannedPath path = new PlannedPath(waypoints, CostModel.length(waypoints), pathCost(waypoints));
         return new PlanResult.Found(path,
                 new GridField(grid.geometry(), navigationFunction.potential(), navigationFunction.finalizedCount()));
+    }
+
+    /**
+     * {@link CostModel#pathCost} of the waypoints on the costmap just synced, over the grid's copy of its cells: the
+     * same integral, cell for cell (the copy holds the costmap's costs, and its padding ring is lethal like the
+     * outside of the map), without the costmap's checked lookup and the virtual call per cell of the shared traversal.
+     */
+    private double pathCost(List<Point2D> waypoints) {
+        GridGeometry geometry = grid.geometry();
+        GridTraversal.PaddedDensity cells = new GridTraversal.PaddedDensity(grid, density);
+        double total = 0;
+        for (int i = 1; i < waypoints.size(); i++) {
+            Point2D a = waypoints.get(i - 1);
+            Point2D b = waypoints.get(i);
+            total += GridTraversal.integrate(geometry.toGridX(a.x()), geometry.toGridY(a.y()), geometry.toGridX(b.x()),
+                    geometry.toGridY(b.y()), cells);
+        }
+        return total;
     }
 
     /**

@@ -1,6 +1,7 @@
 package sabot.planner.internal;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.util.List;
@@ -13,6 +14,7 @@ import sabot.model.map.CellRegion;
 import sabot.model.map.Costmap;
 import sabot.model.map.GridGeometry;
 import sabot.planner.CostModel;
+import sabot.planner.TestGrids;
 
 /**
  * The work the navigation function reports ({@link LpnNavigationFunction#expandedCount}, {@code withdrawnCount},
@@ -81,6 +83,32 @@ class PropagationWorkTest {
         // repair withdraws every cell whose value is no longer supported (by more than float rounding)
         assertTrue(withdrawn > 0 && withdrawn < whole / 2, "withdrawn " + withdrawn + " of " + whole);
         assertEquals(withdrawn - 1, refilled, "every withdrawn cell but the obstacle's own is refilled, once");
+    }
+
+    @Test
+    void landmarksFollowAPoorlyBoundedPlanSurviveARiseAndAreDroppedWhenACostFalls() {
+        Costmap costmap = TestGrids.maze(5, 20, false);
+        Setup setup = new Setup(costmap, new Point2D(2.5, 2.5),
+                new Point2D(costmap.width() - 2.5, costmap.height() - 2.5));
+        int[] goals = setup.request.goalCells();
+        int start = setup.request.startCell();
+        setup.function.computeFocused(goals, start);
+        assertFalse(setup.function.hasLandmarks(), "the first plan is bounded by the straight line");
+        int straightLine = setup.function.expandedCount();
+        setup.function.gridChanged(setup.grid, setup.grid.sync(costmap));
+        setup.function.computeFocused(goals, start);
+        assertTrue(setup.function.hasLandmarks(), "a maze's path is many times the straight line");
+        int byLandmarks = setup.function.expandedCount();
+        float value = LpnNavigationFunction.decode(setup.function.potential()[start]);
+        assertTrue(byLandmarks < straightLine / 2, byLandmarks + " cells against " + straightLine);
+        costmap.set(10, 10, Costmap.LETHAL);
+        setup.function.gridChanged(setup.grid, setup.grid.sync(costmap));
+        assertTrue(setup.function.hasLandmarks(), "a rise keeps them");
+        costmap.set(10, 10, Costmap.FREE);
+        setup.function.gridChanged(setup.grid, setup.grid.sync(costmap));
+        assertFalse(setup.function.hasLandmarks(), "a fall drops them");
+        setup.function.computeFocused(goals, start);
+        assertEquals(value, LpnNavigationFunction.decode(setup.function.potential()[start]), 1e-4 * value);
     }
 
     /** A grid synced from the costmap, a request for start and goal, and a navigation function on both. */
