@@ -129,6 +129,46 @@ class RandomCellCostPlanningTest {
         }
     }
 
+    /**
+     * The smallest case, by hand: cell q = (1, 2) takes its value from the straight diagonal from d = (2, 1) (the goal,
+     * of the highest graded cost) through the triangle with a = (2, 2), while the fourth cell of the square, (1, 1), is
+     * lethal: N(q) = 50 sqrt 2 is below N(a) = 150.8, so d is q's only lower neighbour. The descent passes the corner
+     * (2, 2), from a point whose segment to d's centre would cross the lethal cell, and from a point on that cell's very
+     * edge (then first to q's centre, at equal N: the one exception to the strict decrease).
+     */
+    @Test
+    void theDescentTakesTheDiagonalPastALethalCornerWhenItIsTheOnlyWayDown() {
+        Costmap costmap = TestGrids.free(4, 3);
+        for (int column = 0; column < 4; column++) {
+            costmap.set(column, 0, Costmap.LETHAL);
+        }
+        costmap.set(0, 1, Costmap.LETHAL);
+        costmap.set(1, 1, Costmap.LETHAL);
+        costmap.set(2, 1, Costmap.MAX_GRADED);
+        costmap.set(3, 1, Costmap.LETHAL);
+        Point2D goal = new Point2D(2.5, 1.5);
+        for (String kind : Planners.NAMES) {
+            if (!kind.startsWith("lpn")) {
+                continue;
+            }
+            try (Planner planner = Planners.byName(kind, CostModel.standard()).orElseThrow()) {
+                Point2D start = new Point2D(1.3, 2.6);
+                PlanResult.Found found = assertInstanceOf(PlanResult.Found.class, planner.plan(costmap, start, goal));
+                assertEquals(50 * Math.sqrt(2), found.field().value(1, 2), 1e-3, kind + ": N(q)");
+                assertTrue(found.field().value(2, 2) > found.field().value(1, 2), kind + ": N(a) > N(q)");
+                PathChecks.assertCollisionFree(costmap, found.path(), start, goal, kind);
+                PathChecks.assertDescending(found.field(), found.path(), kind);
+                assertEquals(3, found.path().waypoints().size(), kind + ": start, past the corner, goal");
+
+                Point2D onEdge = new Point2D(1.5, 2.0);
+                found = assertInstanceOf(PlanResult.Found.class, planner.plan(costmap, onEdge, goal));
+                PathChecks.assertCollisionFree(costmap, found.path(), onEdge, goal, kind + " from the edge");
+                List<Point2D> waypoints = found.path().waypoints();
+                assertEquals(List.of(onEdge, new Point2D(1.5, 2.5), goal), waypoints, kind + " from the edge");
+            }
+        }
+    }
+
     /** Every cell lethal with probability {@code lethal}, else of a random graded cost 1..252. */
     static Costmap scattered(Random random, int width, int height, double lethal) {
         Costmap costmap = TestGrids.free(width, height);
