@@ -8,10 +8,13 @@ package sabot.planner.internal;
  * bilinearly, as navfn does; {@value #STEP} is navfn's {@code pathStep}), and is kept only when the segment crosses passable cells alone and N drops by at least
  * {@value #MIN_DROP_PER_CELL} of the least density per cell moved. Where the gradient is undefined or fails those
  * tests (next to obstacles, in narrow passages) the path moves to the centre of the current cell's lowest
- * neighbour instead; such a neighbour always exists because every non-goal value was computed from lower, final
- * neighbours, and diagonal moves are taken only when both side cells are passable. So every segment is
- * collision-free, N strictly decreases from waypoint to waypoint, and the descent ends in a goal cell after a bounded
- * number of steps.
+ * neighbour instead, diagonally when both side cells are passable. Every non-goal value was computed from a lower
+ * neighbour: an axis neighbour, or a diagonal one through a triangle whose axis cell is passable while the fourth
+ * cell of the square may be impassable (the straight diagonal touches its corner). When that diagonal is the only
+ * way down, the path takes it past the corner ({@link #pastCorner}). So every segment is collision-free (touching a
+ * corner of an impassable cell does not count), N strictly decreases from waypoint to waypoint (one degenerate
+ * exception: from a point on the very edge of an impassable cell the path may first move to its cell's centre at
+ * equal N), and the descent ends in a goal cell after a bounded number of steps.
  */
 public final class GradientDescent {
 
@@ -50,8 +53,9 @@ public final class GradientDescent {
             throw new IllegalStateException("start cell is not reached by the navigation function");
         }
         double minDrop = MIN_DROP_PER_CELL * minDensity;
-        // gradient steps drop N by at least minDrop * STEP / 2; fallback steps visit ever lower cells
-        long maxSteps = (long) (value(potential, cell) / (minDrop * STEP / 2)) + grid.paddedSize() + 16;
+        // gradient steps drop N by at least minDrop * STEP / 2; fallback steps visit ever lower cells (and at most
+        // once per cell first the cell's own centre, see pastCorner)
+        long maxSteps = (long) (value(potential, cell) / (minDrop * STEP / 2)) + 2L * grid.paddedSize() + 16;
         double[] gradient = new double[2];
         for (long step = 0; ; step++) {
             if (step > maxSteps) {
@@ -81,12 +85,17 @@ public final class GradientDescent {
             }
             if (!moved) {
                 int next = lowestNeighbour(grid, costs, potential, density, cell, value, x, y);
-                if (next < 0) {
+                if (next >= 0) {
+                    x = grid.column(next) + 0.5;
+                    y = grid.row(next) + 0.5;
+                } else if (pastCorner(grid, costs, potential, density, cell, value, x, y, gradient)) {
+                    x = gradient[0];
+                    y = gradient[1];
+                } else {
                     throw new IllegalStateException("navigation function has no lower neighbour at cell ("
-                            + grid.column(cell) + ", " + grid.row(cell) + ")");
+                            + grid.column(cell) + ", " + grid.row(cell) + "), N " + value(potential, cell)
+                            + ", from point (" + x + ", " + y + ") of N " + value);
                 }
-                x = grid.column(next) + 0.5;
-                y = grid.row(next) + 0.5;
             }
             points.add(x, y);
         }
@@ -277,6 +286,87 @@ public final class GradientDescent {
             bestValue = nextValue;
         }
         return best;
+    }
+
+    /**
+     * The move {@link #lowestNeighbour} cannot make: to a diagonal neighbour whose one side cell is impassable. The
+     * propagation gives a cell p the value of the straight diagonal from a corner d, {@code N(d) + c sqrt 2}, through
+     * the triangle (p, a, d) with a passable axis neighbour a, whatever the fourth cell of the square: the diagonal
+     * touches that cell's corner only (see {@link LpnNavigationFunction}). Where the fourth cell is impassable and the
+     * costs vary from cell to cell, N(d) may be the only value below N(p) around p (N(a) exceeds N(p) when a costs
+     * much more than p), and the diagonal move, which needs both side cells passable, finds nothing. This move
+     * follows the propagation instead: the lowest diagonal neighbour d below {@code value} with at least one
+     * passable side cell, at d's centre when the straight segment there is clear, else at a point of d on the line
+     * from (x, y) through the corner p and d share (that line passes p, the corner point and d alone; the point lies
+     * within a quarter cell of the corner, where N interpolates to N(d) as the impassable cell is one of the four
+     * centres around it). Last, the centre of the current cell when N there is not above {@code value} (a point
+     * between centres may interpolate above it; equal only for a point on the edge of the impassable cell itself),
+     * from which the diagonal's segment is clear.
+     *
+     * @param out receives the point moved to
+     * @return false when there is no such move (a bug of N)
+     */
+    private static boolean pastCorner(PlanningGrid grid, byte[] costs, int[] potential, float[] density, int cell,
+            double value, double x, double y, double[] out) {
+        int stride = grid.stride();
+        int column = grid.column(cell);
+        int row = grid.row(cell);
+        float bestValue = Float.POSITIVE_INFINITY;
+        boolean found = false;
+        for (int k = 4; k < 8; k++) {
+            int dx = NEIGHBOUR_DX[k];
+            int dy = NEIGHBOUR_DY[k];
+            int next = cell + dx + dy * stride;
+            float nextValue = value(potential, next);
+            if (!(nextValue < value) || nextValue >= bestValue) {
+                continue;
+            }
+            if (density[costs[cell + dx] & 0xFF] == Float.POSITIVE_INFINITY
+                    && density[costs[cell + dy * stride] & 0xFF] == Float.POSITIVE_INFINITY) {
+                continue; // between two impassable cells: no triangle of the propagation passes there
+            }
+            double centreX = column + dx + 0.5;
+            double centreY = row + dy + 0.5;
+            if (passable(grid, density, x, y, centreX, centreY)) {
+                out[0] = centreX;
+                out[1] = centreY;
+                bestValue = nextValue;
+                found = true;
+                continue;
+            }
+            // the corner shared with d, and the point of d a quarter cell beyond it on the line from (x, y)
+            double cornerX = column + (dx > 0 ? 1 : 0);
+            double cornerY = row + (dy > 0 ? 1 : 0);
+            double ex = cornerX - x;
+            double ey = cornerY - y;
+            if (!(ex * dx > 0 && ey * dy > 0)) {
+                continue; // (x, y) on the cell's edge towards d: no line through the corner alone
+            }
+            double scale = 0.25 / Math.max(Math.abs(ex), Math.abs(ey));
+            double px = cornerX + scale * ex;
+            double py = cornerY + scale * ey;
+            if (px < 0 || py < 0 || grid.index((int) px, (int) py) != next
+                    || !(GridField.interpolate(potential, stride, px, py) < value)
+                    || !passable(grid, density, x, y, px, py)) {
+                continue;
+            }
+            out[0] = px;
+            out[1] = py;
+            bestValue = nextValue;
+            found = true;
+        }
+        if (found) {
+            return true;
+        }
+        // (x, y) between centres whose interpolation lies above N here; or, N equal, a point on the very edge of the
+        // impassable side cell, from where no line passes the corner alone: from the centre the diagonal's is clear
+        float own = value(potential, cell);
+        if (own <= value && (x != column + 0.5 || y != row + 0.5)) {
+            out[0] = column + 0.5;
+            out[1] = row + 0.5;
+            return true;
+        }
+        return false;
     }
 
     private static float value(int[] potential, int index) {
