@@ -24,73 +24,14 @@ public final class GridTraversal {
      *         {@code +infinity} as soon as a crossed cell has infinite density
      */
     public static double integrate(double x0, double y0, double x1, double y1, CellDensity density) {
-        double dx = x1 - x0;
-        double dy = y1 - y0;
-        double length = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a software routine, no overflow to guard
-        int column = (int) Math.floor(x0);
-        int row = (int) Math.floor(y0);
-        int lastColumn = (int) Math.floor(x1);
-        int lastRow = (int) Math.floor(y1);
-        if (length < NEGLIGIBLE) {
-            double d = density.at(column, row);
-            return d == Double.POSITIVE_INFINITY ? d : 0;
-        }
-        int stepX = dx > 0 ? 1 : dx < 0 ? -1 : 0;
-        int stepY = dy > 0 ? 1 : dy < 0 ? -1 : 0;
-        double tDeltaX = stepX == 0 ? Double.POSITIVE_INFINITY : 1.0 / Math.abs(dx);
-        double tDeltaY = stepY == 0 ? Double.POSITIVE_INFINITY : 1.0 / Math.abs(dy);
-        double tMaxX = stepX == 0 ? Double.POSITIVE_INFINITY
-                : ((stepX > 0 ? column + 1 - x0 : x0 - column) / Math.abs(dx));
-        double tMaxY = stepY == 0 ? Double.POSITIVE_INFINITY
-                : ((stepY > 0 ? row + 1 - y0 : y0 - row) / Math.abs(dy));
-        double t = 0;
-        double total = 0;
-        int guard = Math.abs(lastColumn - column) + Math.abs(lastRow - row) + 2;
-        while (guard-- > 0) {
-            double tExit = Math.min(1.0, Math.min(tMaxX, tMaxY));
-            double piece = (tExit - t) * length;
-            if (piece > NEGLIGIBLE) {
-                double d = density.at(column, row);
-                if (d == Double.POSITIVE_INFINITY) {
-                    return d;
-                }
-                total += piece * d;
-            }
-            if (tExit >= 1.0 || column == lastColumn && row == lastRow) {
-                break;
-            }
-            t = tExit;
-            if (Math.abs(tMaxX - tMaxY) < NEGLIGIBLE) {
-                column += stepX;
-                row += stepY;
-                tMaxX += tDeltaX;
-                tMaxY += tDeltaY;
-            } else if (tMaxX < tMaxY) {
-                column += stepX;
-                tMaxX += tDeltaX;
-            } else {
-                row += stepY;
-                tMaxY += tDeltaY;
-            }
-        }
-        return total;
-    }
-
-    /**
-     * {@link #integrate(double, double, double, double, CellDensity)} over a padded grid's own cells: the same walk and
-     * arithmetic, written out a second time for the final {@link PaddedDensity} so that its density lookup is a
-     * direct call (the interface's call site, shared by every caller, sees several lambdas and dispatches each cell
-     * through a virtual call: the descent's shortcut pass and the path cost of a plan walk some 10^5 cells on a maze).
-     */
-    static double integrate(double x0, double y0, double x1, double y1, PaddedDensity density) {
         return integrate(x0, y0, x1, y1, density, Double.POSITIVE_INFINITY);
     }
 
     /**
-     * As {@link #integrate(double, double, double, double, PaddedDensity)}, but returns a partial sum above
+     * As {@link #integrate(double, double, double, double, CellDensity)}, but returns a partial sum above
      * {@code limit} as soon as the walk exceeds it (the pieces are not negative, so the whole sum would too).
      */
-    static double integrate(double x0, double y0, double x1, double y1, PaddedDensity density, double limit) {
+    public static double integrate(double x0, double y0, double x1, double y1, CellDensity density, double limit) {
         double dx = x1 - x0;
         double dy = y1 - y0;
         double length = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a software routine, no overflow to guard
@@ -148,9 +89,11 @@ public final class GridTraversal {
 
     /**
      * Density of the cells of a {@link PlanningGrid}'s padded copy: +infinity outside the grid's padding ring (the
-     * ring itself is lethal), as for a costmap's cells outside the map.
+     * ring itself is lethal), as for a costmap's cells outside the map. A final class: with the cost model's lambda
+     * (CostModel.pathCost) the walk's density call sees two types and is inlined for both (it saw several lambdas
+     * before, megamorphic: each cell a virtual call).
      */
-    static final class PaddedDensity {
+    static final class PaddedDensity implements CellDensity {
         private final byte[] costs;
         private final float[] density;
         private final int stride;
@@ -165,7 +108,8 @@ public final class GridTraversal {
             this.height = grid.geometry().height();
         }
 
-        double at(int column, int row) {
+        @Override
+        public double at(int column, int row) {
             if (column < -1 || row < -1 || column > width || row > height) {
                 return Double.POSITIVE_INFINITY;
             }
