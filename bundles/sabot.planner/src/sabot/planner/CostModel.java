@@ -91,16 +91,9 @@ public final class CostModel {
      */
     public double pathCost(Costmap costmap, List<Point2D> waypoints) {
         GridGeometry geometry = costmap.geometry();
-        double total = 0;
-        for (int i = 1; i < waypoints.size(); i++) {
-            Point2D a = waypoints.get(i - 1);
-            Point2D b = waypoints.get(i);
-            total += GridTraversal.integrate(geometry.toGridX(a.x()), geometry.toGridY(a.y()), geometry.toGridX(b.x()),
-                    geometry.toGridY(b.y()), (column, row) -> geometry.contains(column, row)
-                            ? densityByCost[costmap.cost(column, row)]
-                            : Double.POSITIVE_INFINITY);
-        }
-        return total;
+        return GridTraversal.integrate(geometry, waypoints, (column, row) -> geometry.contains(column, row)
+                ? densityByCost[costmap.cost(column, row)]
+                : Double.POSITIVE_INFINITY);
     }
 
     /** @return the Euclidean length of a polyline in metres */

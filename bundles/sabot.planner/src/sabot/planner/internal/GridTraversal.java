@@ -1,5 +1,10 @@
 package sabot.planner.internal;
 
+import java.util.List;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.map.GridGeometry;
+
 /**
  * Walks the cells a straight segment crosses, in grid coordinates (cell (c, r) spans [c, c+1) x [r, r+1)), after
  * Amanatides and Woo, "A fast voxel traversal algorithm for ray tracing", Eurographics 1987. A segment that passes
@@ -25,6 +30,22 @@ public final class GridTraversal {
      */
     public static double integrate(double x0, double y0, double x1, double y1, CellDensity density) {
         return integrate(x0, y0, x1, y1, density, Double.POSITIVE_INFINITY);
+    }
+
+    /**
+     * @param polyline map-frame polyline in metres, on the grid of {@code geometry}
+     * @return the sum of {@link #integrate(double, double, double, double, CellDensity)} over its segments: the line
+     *         integral of the density along it in cost units, {@code +infinity} when it crosses an infinite density
+     */
+    public static double integrate(GridGeometry geometry, List<Point2D> polyline, CellDensity density) {
+        double total = 0;
+        for (int i = 1; i < polyline.size(); i++) {
+            Point2D a = polyline.get(i - 1);
+            Point2D b = polyline.get(i);
+            total += integrate(geometry.toGridX(a.x()), geometry.toGridY(a.y()), geometry.toGridX(b.x()), geometry
+                    .toGridY(b.y()), density);
+        }
+        return total;
     }
 
     /**

@@ -113,16 +113,7 @@ public final class LpnPlanner implements Planner {
      * outside of the map), without the costmap's checked lookup and the virtual call per cell of the shared traversal.
      */
     private double pathCost(List<Point2D> waypoints) {
-        GridGeometry geometry = grid.geometry();
-        GridTraversal.PaddedDensity cells = new GridTraversal.PaddedDensity(grid, density);
-        double total = 0;
-        for (int i = 1; i < waypoints.size(); i++) {
-            Point2D a = waypoints.get(i - 1);
-            Point2D b = waypoints.get(i);
-            total += GridTraversal.integrate(geometry.toGridX(a.x()), geometry.toGridY(a.y()), geometry.toGridX(b.x()),
-                    geometry.toGridY(b.y()), cells);
-        }
-        return total;
+        return GridTraversal.integrate(grid.geometry(), waypoints, new GridTraversal.PaddedDensity(grid, density));
     }
 
     /**
