@@ -26,7 +26,7 @@ import sabot.planner.Planner;
 import sabot.planner.Planners;
 
 /**
- * Times ROS navfn and Sabot's planners in one process, alternating, on the grids of {@link BenchmarkGrids}:
+ * Times ROS navfn and Sabot's planners, alternating, on the grids of {@link BenchmarkGrids}:
  * {@code ./sabot bench navfn --navigation CHECKOUT} (tools/bench-navfn builds navfn's driver; this class drives it over
  * its standard input). Two questions, each asked of both planners with the same start and goal:
  * <ul>
@@ -42,6 +42,11 @@ import sabot.planner.Planners;
  * shared machine the wall clock also counts the time other processes held the core; both sides measure the same
  * calls the same way: {@code clock_gettime(CLOCK_THREAD_CPUTIME_ID)} in the driver, {@link ThreadMXBean} here); path
  * costs are Sabot's cost integral ({@link CostModel#pathCost}) of both paths.
+ *
+ * <p>Each grid and question is measured in a JVM of its own (this class again, with the same JVM options), as a robot
+ * runs one planner on its map: in one JVM the hot loop is compiled with the branch profile of whichever grid ran
+ * first, and the others pay for it (on the 2-core VM, maze-1000's navigation function 24 ms alone, 33 ms after
+ * random-100 and random-2000; docs/PLANNER.md). {@code --one-jvm} measures everything in this JVM instead.
  */
 public final class NavfnComparison {
 
@@ -71,7 +76,62 @@ public final class NavfnComparison {
     private record Outcome(long reached, double pathCost, double pathLength) {
     }
 
+    /**
+     * Samples (wall clock and CPU time) and outcomes by key {@code grid/question/navfn|sabot}; a child JVM writes them
+     * to its standard output, one per line, and the parent reads them back (doubles as {@link Double#toString}, which
+     * reads back exactly).
+     */
+    private static final class Results {
+        final Map<String, Sample> wall = new LinkedHashMap<>();
+        final Map<String, Sample> cpu = new LinkedHashMap<>();
+        final Map<String, Outcome> outcomes = new LinkedHashMap<>();
+
+        void write(java.io.PrintStream out) {
+            write(out, "wall", wall);
+            write(out, "cpu", cpu);
+            outcomes.forEach((key, o) -> out.println("outcome " + key + " " + o.reached() + " " + o.pathCost() + " "
+                    + o.pathLength()));
+            out.flush();
+        }
+
+        private static void write(java.io.PrintStream out, String clock, Map<String, Sample> samples) {
+            samples.forEach((key, sample) -> out.println("sample " + clock + " " + key + " "
+                    + join(sample.roundMedians()) + " " + join(sample.all())));
+        }
+
+        private static String join(List<Double> values) {
+            return String.join(",", values.stream().map(String::valueOf).toList());
+        }
+
+        void read(BufferedReader in) throws IOException {
+            for (String line = in.readLine(); line != null; line = in.readLine()) {
+                String[] fields = line.split(" ");
+                if (fields[0].equals("sample") && fields.length == 5) {
+                    Sample sample = new Sample(split(fields[3]), split(fields[4]));
+                    (fields[1].equals("wall") ? wall : cpu).put(fields[2], sample);
+                } else if (fields[0].equals("outcome") && fields.length == 5) {
+                    outcomes.put(fields[1], new Outcome(Long.parseLong(fields[2]), Double.parseDouble(fields[3]),
+                            Double.parseDouble(fields[4])));
+                } else {
+                    throw new IOException("unexpected line from a measuring JVM: " + line);
+                }
+            }
+        }
+
+        private static List<Double> split(String values) {
+            List<Double> list = new ArrayList<>();
+            for (String value : values.split(",")) {
+                list.add(Double.parseDouble(value));
+            }
+            return list;
+        }
+    }
+
     private static final ThreadMXBean THREAD = ManagementFactory.getThreadMXBean();
+    /** Internal option: measure in this JVM and write the results for the parent (see {@link Results}). */
+    private static final String CHILD = "--child-jvm";
+    /** The two questions, in the order they are asked per grid and printed. */
+    private static final List<String> QUESTIONS = List.of("whole", "plan");
 
     private NavfnComparison() {
     }
@@ -82,6 +142,9 @@ public final class NavfnComparison {
         List<String> grids = List.of("random-100", "random-1000", "random-2000", "maze-1000", "enclosed-1000");
         String wholePlanner = "lpn";
         String planPlanner = "lpn-focused";
+        List<String> questions = QUESTIONS;
+        boolean oneJvm = false;
+        boolean child = false;
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--navfn" -> navfn = Path.of(args[++i]);
@@ -89,17 +152,77 @@ public final class NavfnComparison {
                 case "--grids" -> grids = List.of(args[++i].split(","));
                 case "--whole" -> wholePlanner = args[++i];
                 case "--plan" -> planPlanner = args[++i];
+                case "--questions" -> questions = List.of(args[++i].split(","));
+                case "--one-jvm" -> oneJvm = true;
+                case CHILD -> child = true;
                 default -> {
                     System.err.println("usage: NavfnComparison --navfn DRIVER [--rounds N] [--grids a,b] "
-                            + "[--whole PLANNER] [--plan PLANNER]");
+                            + "[--whole PLANNER] [--plan PLANNER] [--questions whole,plan] [--one-jvm]");
                     System.exit(2);
                 }
             }
         }
-        if (navfn == null || rounds < 2) {
-            System.err.println("NavfnComparison: --navfn DRIVER is required and --rounds at least 2");
+        if (navfn == null || rounds < 2 || questions.isEmpty() || !QUESTIONS.containsAll(questions)) {
+            System.err.println("NavfnComparison: --navfn DRIVER is required, --rounds at least 2 and --questions "
+                    + "among " + String.join(",", QUESTIONS));
             System.exit(2);
         }
+        Results results = new Results();
+        if (oneJvm || child) {
+            measure(navfn, grids, questions, rounds, wholePlanner, planPlanner, results);
+        } else {
+            for (String grid : grids) {
+                for (String question : questions) {
+                    measureInChild(List.of("--navfn", navfn.toString(), "--rounds", Integer.toString(rounds),
+                            "--grids", grid, "--questions", question, "--whole", wholePlanner, "--plan", planPlanner),
+                            results);
+                }
+            }
+        }
+        if (child) {
+            results.write(System.out);
+            return;
+        }
+        System.out.println(oneJvm
+                ? "All grids and both questions in this one JVM (--one-jvm)."
+                : "Each grid and question in a JVM of its own, as a robot runs one planner on its map.");
+        System.out.println();
+        printTimes("wall-clock time", grids, questions, results.wall, rounds, wholePlanner, planPlanner);
+        printTimes("CPU time of the calling thread", grids, questions, results.cpu, rounds, wholePlanner, planPlanner);
+        printOutcomes(grids, questions, results.outcomes);
+    }
+
+    /**
+     * Runs this class for one grid and question in a new JVM (same java, class path and JVM options), which reports
+     * its samples and outcomes to {@code results}.
+     */
+    private static void measureInChild(List<String> arguments, Results results)
+            throws IOException, InterruptedException {
+        List<String> command = new ArrayList<>();
+        command.add(ProcessHandle.current().info().command().orElse("java"));
+        command.addAll(ManagementFactory.getRuntimeMXBean().getInputArguments());
+        command.add("-cp");
+        command.add(System.getProperty("java.class.path"));
+        command.add(NavfnComparison.class.getName());
+        command.addAll(arguments);
+        command.add(CHILD);
+        Process process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.INHERIT).start();
+        try (BufferedReader in = new BufferedReader(
+                new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
+            results.read(in);
+        }
+        int status = process.waitFor();
+        if (status != 0) {
+            throw new IOException("the measurement of " + arguments + " ended with status " + status);
+        }
+    }
+
+    /** Times both planners on the grids and questions, in this JVM, alternating; adds to {@code results}. */
+    private static void measure(Path navfn, List<String> grids, List<String> questions, int rounds,
+            String wholePlanner, String planPlanner, Results results) throws IOException, InterruptedException {
+        Map<String, Sample> samples = results.wall;
+        Map<String, Sample> cpuSamples = results.cpu;
+        Map<String, Outcome> outcomes = results.outcomes;
         Path folder = Files.createTempDirectory("sabot-navfn-grids");
         Process process = new ProcessBuilder(navfn.toString()).redirectError(ProcessBuilder.Redirect.INHERIT).start();
         try (PrintWriter toNavfn = new PrintWriter(process.getOutputStream(), true, StandardCharsets.US_ASCII);
@@ -108,9 +231,6 @@ public final class NavfnComparison {
             // one pair of planners per grid, as the driver makes a NavFn per grid: a robot's planner keeps its map,
             // and one planner shared by grids of different sizes would reallocate its arrays at every switch
             Map<String, Planner> planners = new LinkedHashMap<>();
-            Map<String, Sample> samples = new LinkedHashMap<>();
-            Map<String, Sample> cpuSamples = new LinkedHashMap<>();
-            Map<String, Outcome> outcomes = new LinkedHashMap<>();
             Map<String, BenchmarkGrids.Scenario> scenarios = new LinkedHashMap<>();
             for (String name : grids) {
                 BenchmarkGrids.Scenario scenario = BenchmarkGrids.scenario(name);
@@ -131,7 +251,7 @@ public final class NavfnComparison {
                     Cell t = g.cellAt(scenario.goal()).orElseThrow();
                     String cells = s.column() + " " + (g.height() - 1 - s.row()) + " " + t.column() + " "
                             + (g.height() - 1 - t.row());
-                    for (String question : List.of("whole", "plan")) {
+                    for (String question : questions) {
                         String plannerName = question.equals("whole") ? wholePlanner : planPlanner;
                         Planner sabot = planners.computeIfAbsent(name + "/" + question,
                                 k -> Planners.byName(plannerName, CostModel.standard()).orElseThrow());
@@ -172,9 +292,6 @@ public final class NavfnComparison {
             }
             planners.values().forEach(Planner::close);
             toNavfn.println("quit");
-            printTimes("wall-clock time", grids, samples, rounds, wholePlanner, planPlanner);
-            printTimes("CPU time of the calling thread", grids, cpuSamples, rounds, wholePlanner, planPlanner);
-            printOutcomes(grids, outcomes);
         } finally {
             process.waitFor();
             for (String name : grids) {
@@ -184,17 +301,23 @@ public final class NavfnComparison {
         }
     }
 
-    private static void printTimes(String what, List<String> grids, Map<String, Sample> samples, int rounds,
-            String wholePlanner, String planPlanner) {
+    private static void printTimes(String what, List<String> grids, List<String> questions,
+            Map<String, Sample> samples, int rounds, String wholePlanner, String planPlanner) {
         System.out.printf(Locale.ROOT, "%s, %d rounds after one warm-up round; per cell: best round's median / median "
                 + "of all calls, ms; ratio Sabot / navfn of each%n%n", what, rounds);
-        System.out.println("| grid | navfn whole grid (`calcNavFnDijkstra(false)`) | Sabot `" + wholePlanner
-                + "`, 1 thread | ratio | navfn `makePlan` (`calcNavFnDijkstra(true)`) | Sabot `" + planPlanner
-                + "` | ratio |");
-        System.out.println("|---|---|---|---|---|---|---|");
+        StringBuilder header = new StringBuilder("| grid |");
+        StringBuilder rule = new StringBuilder("|---|");
+        for (String question : questions) {
+            header.append(question.equals("whole")
+                    ? " navfn whole grid (`calcNavFnDijkstra(false)`) | Sabot `" + wholePlanner + "`, 1 thread | ratio |"
+                    : " navfn `makePlan` (`calcNavFnDijkstra(true)`) | Sabot `" + planPlanner + "` | ratio |");
+            rule.append("---|---|---|");
+        }
+        System.out.println(header);
+        System.out.println(rule);
         for (String name : grids) {
             StringBuilder row = new StringBuilder("| " + name + " |");
-            for (String question : List.of("whole", "plan")) {
+            for (String question : questions) {
                 Sample n = samples.get(name + "/" + question + "/navfn");
                 Sample s = samples.get(name + "/" + question + "/sabot");
                 row.append(String.format(Locale.ROOT, " %s / %s | %s / %s | **%.2f** / %.2f |", ms(n.best()),
@@ -205,12 +328,12 @@ public final class NavfnComparison {
         System.out.println();
     }
 
-    private static void printOutcomes(List<String> grids, Map<String, Outcome> outcomes) {
+    private static void printOutcomes(List<String> grids, List<String> questions, Map<String, Outcome> outcomes) {
         System.out.println("| grid | question | navfn reached cells | navfn path cost | Sabot reached cells | Sabot path cost "
                 + "| cost ratio Sabot / navfn |");
         System.out.println("|---|---|---|---|---|---|---|");
         for (String name : grids) {
-            for (String question : List.of("whole", "plan")) {
+            for (String question : questions) {
                 Outcome n = outcomes.get(name + "/" + question + "/navfn");
                 Outcome s = outcomes.get(name + "/" + question + "/sabot");
                 System.out.printf(Locale.ROOT, "| %s | %s | %d | %.1f | %d | %.1f | %.4f |%n", name, question,
