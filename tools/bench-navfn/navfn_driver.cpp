@@ -12,6 +12,9 @@
 //                                          makeplan: as NavfnROS::makePlan calls it, setStart(G) setGoal(S)
 //                                                    calcNavFnDijkstra(true): propagation from the robot, stopped
 //                                                    once the goal cell has a value, then the path
+//                                          field:    the navigation function alone: what calcNavFnDijkstra(false)
+//                                                    does before its path (setupNavFn(true), propNavFnDijkstra with
+//                                                    its cycle limit); the result has no path
 //                                          -> "times MS MS ..." (wall clock), "cpu MS MS ..." (CPU time of the
 //                                          calling thread, the same calls) then "result REACHED PATHLEN X Y X Y
 //                                          ..." (path in unpadded image cells, from where the path starts)
@@ -107,6 +110,7 @@ int main() {
             int repeat = 0;
             command >> mode >> start[0] >> start[1] >> goal[0] >> goal[1] >> repeat;
             bool makePlan = mode == "makeplan";
+            bool field = mode == "field";
             start[0]++, start[1]++, goal[0]++, goal[1]++;  // the lethal ring
             std::ostringstream times;
             std::ostringstream cpu;
@@ -119,6 +123,12 @@ int main() {
                     planner->setStart(goal);
                     planner->setGoal(start);
                     planner->calcNavFnDijkstra(true);
+                } else if (field) {
+                    planner->setStart(start);
+                    planner->setGoal(goal);
+                    planner->setupNavFn(true);
+                    int cycles = std::max(planner->nx * planner->ny / 20, planner->nx + planner->ny);
+                    planner->propNavFnDijkstra(cycles, false);  // the cycle limit calcNavFnDijkstra passes
                 } else {
                     planner->setStart(start);
                     planner->setGoal(goal);
@@ -137,7 +147,7 @@ int main() {
                 }
             }
             std::ostringstream result;
-            int length = planner->getPathLen();
+            int length = field ? 0 : planner->getPathLen();
             result << "result " << reached << " " << length;
             float *x = planner->getPathX();
             float *y = planner->getPathY();

@@ -24,6 +24,8 @@ import sabot.planner.CostModel;
 import sabot.planner.PlanResult;
 import sabot.planner.Planner;
 import sabot.planner.Planners;
+import sabot.planner.internal.LpnNavigationFunction;
+import sabot.planner.internal.PlanningGrid;
 
 /**
  * Times ROS navfn and Sabot's planners, alternating, on the grids of {@link BenchmarkGrids}:
@@ -34,7 +36,10 @@ import sabot.planner.Planners;
  * {@code calcNavFnDijkstra(false)} from the goal; Sabot {@code lpn}, one thread);</li>
  * <li><b>plan</b>: the robot's question, start to goal (navfn as {@code NavfnROS::makePlan} calls it:
  * {@code calcNavFnDijkstra(true)} propagating from the robot, stopped when the goal cell has a value; Sabot
- * {@code lpn-focused} by default).</li>
+ * {@code lpn-focused} by default);</li>
+ * <li><b>field</b>: the whole-grid navigation function alone, without a path (navfn's {@code setupNavFn(true)} and
+ * {@code propNavFnDijkstra} as {@code calcNavFnDijkstra(false)} calls them; Sabot's {@code LpnNavigationFunction}
+ * {@code compute} from the goal, as {@code lpn} runs it before its descent).</li>
  * </ul>
  * Each round runs a batch of calls per grid and question, navfn then Sabot in odd rounds and the other way round in
  * even ones; the first round warms both up and is not counted. Reported: the best round's median per call (best of
@@ -74,6 +79,30 @@ public final class NavfnComparison {
     }
 
     private record Outcome(long reached, double pathCost, double pathLength) {
+    }
+
+    /**
+     * The "field" question's Sabot side: the whole-grid navigation function alone ({@code LpnNavigationFunction.compute},
+     * as {@code lpn} runs it before its descent), on the grid synced once, from the goal cell.
+     */
+    private static final class Field {
+        private final LpnNavigationFunction function = new LpnNavigationFunction(CostModel.standard());
+        private final int[] goals;
+
+        Field(BenchmarkGrids.Scenario scenario) {
+            PlanningGrid grid = new PlanningGrid();
+            function.gridChanged(grid, grid.sync(scenario.costmap()));
+            Cell goal = scenario.costmap().geometry().cellAt(scenario.goal()).orElseThrow();
+            goals = new int[] {grid.index(goal.column(), goal.row())};
+        }
+
+        void compute() {
+            function.compute(goals, -1);
+        }
+
+        long reached() {
+            return function.finalizedCount();
+        }
     }
 
     /**
@@ -130,8 +159,8 @@ public final class NavfnComparison {
     private static final ThreadMXBean THREAD = ManagementFactory.getThreadMXBean();
     /** Internal option: measure in this JVM and write the results for the parent (see {@link Results}). */
     private static final String CHILD = "--child-jvm";
-    /** The two questions, in the order they are asked per grid and printed. */
-    private static final List<String> QUESTIONS = List.of("whole", "plan");
+    /** The questions, in the order they are asked per grid and printed. */
+    private static final List<String> QUESTIONS = List.of("whole", "plan", "field");
 
     private NavfnComparison() {
     }
@@ -231,6 +260,7 @@ public final class NavfnComparison {
             // one pair of planners per grid, as the driver makes a NavFn per grid: a robot's planner keeps its map,
             // and one planner shared by grids of different sizes would reallocate its arrays at every switch
             Map<String, Planner> planners = new LinkedHashMap<>();
+            Map<String, Field> fields = new LinkedHashMap<>();
             Map<String, BenchmarkGrids.Scenario> scenarios = new LinkedHashMap<>();
             for (String name : grids) {
                 BenchmarkGrids.Scenario scenario = BenchmarkGrids.scenario(name);
@@ -252,10 +282,16 @@ public final class NavfnComparison {
                     String cells = s.column() + " " + (g.height() - 1 - s.row()) + " " + t.column() + " "
                             + (g.height() - 1 - t.row());
                     for (String question : questions) {
-                        String plannerName = question.equals("whole") ? wholePlanner : planPlanner;
-                        Planner sabot = planners.computeIfAbsent(name + "/" + question,
-                                k -> Planners.byName(plannerName, CostModel.standard()).orElseThrow());
-                        String navfnMode = question.equals("whole") ? "whole" : "makeplan";
+                        String plannerName = question.equals("plan") ? planPlanner : wholePlanner;
+                        Planner sabot = question.equals("field") ? null : planners.computeIfAbsent(name + "/"
+                                + question, k -> Planners.byName(plannerName, CostModel.standard()).orElseThrow());
+                        Field field = question.equals("field") ? fields.computeIfAbsent(name, k -> new Field(scenario))
+                                : null;
+                        String navfnMode = switch (question) {
+                            case "whole" -> "whole";
+                            case "plan" -> "makeplan";
+                            default -> "field";
+                        };
                         boolean navfnFirst = round % 2 == 1;
                         for (int side = 0; side < 2; side++) {
                             boolean runNavfn = (side == 0) == navfnFirst;
@@ -276,11 +312,17 @@ public final class NavfnComparison {
                                 for (int i = 0; i < calls; i++) {
                                     long cpuBegin = THREAD.getCurrentThreadCpuTime();
                                     long begin = System.nanoTime();
-                                    last = sabot.plan(scenario.costmap(), scenario.start(), scenario.goal());
+                                    if (field != null) {
+                                        field.compute();
+                                    } else {
+                                        last = sabot.plan(scenario.costmap(), scenario.start(), scenario.goal());
+                                    }
                                     times[i] = (System.nanoTime() - begin) / 1e6;
                                     cpu[i] = (THREAD.getCurrentThreadCpuTime() - cpuBegin) / 1e6;
                                 }
-                                outcomes.putIfAbsent(key, sabotOutcome(last));
+                                outcomes.putIfAbsent(key, field != null
+                                        ? new Outcome(field.reached(), Double.NaN, Double.NaN)
+                                        : sabotOutcome(last));
                             }
                             if (round > 0) {
                                 samples.computeIfAbsent(key, k -> new Sample()).add(times);
@@ -308,9 +350,13 @@ public final class NavfnComparison {
         StringBuilder header = new StringBuilder("| grid |");
         StringBuilder rule = new StringBuilder("|---|");
         for (String question : questions) {
-            header.append(question.equals("whole")
-                    ? " navfn whole grid (`calcNavFnDijkstra(false)`) | Sabot `" + wholePlanner + "`, 1 thread | ratio |"
-                    : " navfn `makePlan` (`calcNavFnDijkstra(true)`) | Sabot `" + planPlanner + "` | ratio |");
+            header.append(switch (question) {
+                case "whole" -> " navfn whole grid (`calcNavFnDijkstra(false)`) | Sabot `" + wholePlanner
+                        + "`, 1 thread | ratio |";
+                case "plan" -> " navfn `makePlan` (`calcNavFnDijkstra(true)`) | Sabot `" + planPlanner + "` | ratio |";
+                default -> " navfn navigation function alone (`propNavFnDijkstra`) | Sabot navigation function alone "
+                        + "(`compute`) | ratio |";
+            });
             rule.append("---|---|---|");
         }
         System.out.println(header);
@@ -336,10 +382,16 @@ public final class NavfnComparison {
             for (String question : questions) {
                 Outcome n = outcomes.get(name + "/" + question + "/navfn");
                 Outcome s = outcomes.get(name + "/" + question + "/sabot");
-                System.out.printf(Locale.ROOT, "| %s | %s | %d | %.1f | %d | %.1f | %.4f |%n", name, question,
-                        n.reached(), n.pathCost(), s.reached(), s.pathCost(), s.pathCost() / n.pathCost());
+                System.out.printf(Locale.ROOT, "| %s | %s | %d | %s | %d | %s | %s |%n", name, question,
+                        n.reached(), cost(n.pathCost()), s.reached(), cost(s.pathCost()),
+                        question.equals("field") ? "—" : String.format(Locale.ROOT, "%.4f", s.pathCost() / n.pathCost()));
             }
         }
+    }
+
+    /** A path's cost to one decimal, or a dash where the question has no path. */
+    private static String cost(double value) {
+        return Double.isNaN(value) ? "—" : String.format(Locale.ROOT, "%.1f", value);
     }
 
     private static String ms(double value) {
