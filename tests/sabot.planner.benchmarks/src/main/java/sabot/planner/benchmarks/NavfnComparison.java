@@ -186,7 +186,7 @@ public final class NavfnComparison {
                 case CHILD -> child = true;
                 default -> {
                     System.err.println("usage: NavfnComparison --navfn DRIVER [--rounds N] [--grids a,b] "
-                            + "[--whole PLANNER] [--plan PLANNER] [--questions whole,plan] [--one-jvm]");
+                            + "[--whole PLANNER] [--plan PLANNER] [--questions whole,plan,field] [--one-jvm]");
                     System.exit(2);
                 }
             }
