@@ -30,7 +30,7 @@ import sabot.planner.internal.PlanningGrid;
 /**
  * Times ROS navfn and Sabot's planners, alternating, on the grids of {@link BenchmarkGrids}:
  * {@code ./sabot bench navfn --navigation CHECKOUT} (tools/bench-navfn builds navfn's driver; this class drives it over
- * its standard input). Two questions, each asked of both planners with the same start and goal:
+ * its standard input). Three questions, each asked of both planners with the same start and goal:
  * <ul>
  * <li><b>whole</b>: the navigation function over the whole reachable grid and the path from the start (navfn
  * {@code calcNavFnDijkstra(false)} from the goal; Sabot {@code lpn}, one thread);</li>
@@ -50,8 +50,8 @@ import sabot.planner.internal.PlanningGrid;
  *
  * <p>Each grid and question is measured in a JVM of its own (this class again, with the same JVM options), as a robot
  * runs one planner on its map: in one JVM the hot loop is compiled with the branch profile of whichever grid ran
- * first, and the others pay for it (on the 2-core VM, maze-1000's navigation function 24 ms alone, 33 ms after
- * random-100 and random-2000; docs/PLANNER.md). {@code --one-jvm} measures everything in this JVM instead.
+ * first, and the others pay for it (on the 2-core VM, maze-1000's navigation function 24 ms alone, 31-33 ms after
+ * random-100, random-1000 and random-2000; docs/PLANNER.md). {@code --one-jvm} measures everything in this JVM instead.
  */
 public final class NavfnComparison {
 
@@ -82,8 +82,9 @@ public final class NavfnComparison {
     }
 
     /**
-     * The "field" question's Sabot side: the whole-grid navigation function alone ({@code LpnNavigationFunction.compute},
-     * as {@code lpn} runs it before its descent), on the grid synced once, from the goal cell.
+     * The "field" question's Sabot side: the whole-grid navigation function alone
+     * ({@code LpnNavigationFunction.compute}, as {@code lpn} runs it before its descent), on the grid synced once, from
+     * the goal cell.
      */
     private static final class Field {
         private final LpnNavigationFunction function = new LpnNavigationFunction(CostModel.standard());
@@ -213,7 +214,7 @@ public final class NavfnComparison {
             return;
         }
         System.out.println(oneJvm
-                ? "All grids and both questions in this one JVM (--one-jvm)."
+                ? "All grids and questions in this one JVM (--one-jvm)."
                 : "Each grid and question in a JVM of its own, as a robot runs one planner on its map.");
         System.out.println();
         printTimes("wall-clock time", grids, questions, results.wall, rounds, wholePlanner, planPlanner);
@@ -382,9 +383,10 @@ public final class NavfnComparison {
             for (String question : questions) {
                 Outcome n = outcomes.get(name + "/" + question + "/navfn");
                 Outcome s = outcomes.get(name + "/" + question + "/sabot");
+                String ratio = question.equals("field") ? "—"
+                        : String.format(Locale.ROOT, "%.4f", s.pathCost() / n.pathCost());
                 System.out.printf(Locale.ROOT, "| %s | %s | %d | %s | %d | %s | %s |%n", name, question,
-                        n.reached(), cost(n.pathCost()), s.reached(), cost(s.pathCost()),
-                        question.equals("field") ? "—" : String.format(Locale.ROOT, "%.4f", s.pathCost() / n.pathCost()));
+                        n.reached(), cost(n.pathCost()), s.reached(), cost(s.pathCost()), ratio);
             }
         }
     }
