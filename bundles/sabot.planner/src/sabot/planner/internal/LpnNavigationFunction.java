@@ -200,6 +200,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float[] otherActiveLandmark;
     private float activeAtStart;
     private float otherActiveAtStart;
+    /** The larger {@link #landmarkReach} of the two: no {@link #landmarkBound} of the running computation exceeds it. */
+    private float activeReach;
     /** Whether the running focused computation bounds with the landmarks. */
     private boolean focusByLandmarks;
     /** Excess of the last successful landmark-bounded computation to {@link #focusGoals}. */
@@ -299,16 +301,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
             bandShift = Math.max(0, bits - MEMORY_BANDS_LOG2);
             bandCounts = new int[(planningGrid.paddedSize() >>> bandShift) + 2];
             byte[] costs = planningGrid.costs();
-            float highest = minDensity;
+            gridMaxDensity = minDensity;
             for (int i = 0; i < potential.length; i++) {
-                cellDensity[i] = density[costs[i] & 0xFF];
-                initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
-                potential[i] = initialPotential[i];
-                if (cellDensity[i] > highest && cellDensity[i] != Float.POSITIVE_INFINITY) {
-                    highest = cellDensity[i];
-                }
+                takeCell(i, costs);
             }
-            gridMaxDensity = highest;
             return;
         }
         resetTouched();
@@ -326,13 +322,19 @@ public final class LpnNavigationFunction implements AutoCloseable {
                 }
             }
             for (int i = from; i <= to; i++) {
-                cellDensity[i] = density[costs[i] & 0xFF];
-                initialPotential[i] = cellDensity[i] == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
-                potential[i] = initialPotential[i];
-                if (cellDensity[i] > gridMaxDensity && cellDensity[i] != Float.POSITIVE_INFINITY) {
-                    gridMaxDensity = cellDensity[i];
-                }
+                takeCell(i, costs);
             }
+        }
+    }
+
+    /** Takes a cell's cost from the grid: its density, its initial N and the grid's highest density. */
+    private void takeCell(int i, byte[] costs) {
+        float d = density[costs[i] & 0xFF];
+        cellDensity[i] = d;
+        initialPotential[i] = d == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
+        potential[i] = initialPotential[i];
+        if (d > gridMaxDensity && d != Float.POSITIVE_INFINITY) {
+            gridMaxDensity = d;
         }
     }
 
@@ -524,6 +526,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         activeAtStart = activeLandmark[startCell];
         otherActiveLandmark = landmarkValues[second];
         otherActiveAtStart = otherActiveLandmark[startCell];
+        activeReach = Math.max(landmarkReach[best], landmarkReach[second]);
         return true;
     }
 
@@ -535,17 +538,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float gap = Math.abs(activeLandmark[cell] - activeAtStart);
         float otherGap = Math.abs(otherActiveLandmark[cell] - otherActiveAtStart);
         return (1 - LANDMARK_SLACK) * (gap > otherGap ? gap : otherGap);
-    }
-
-    /** @return no {@link #landmarkBound} of the running computation exceeds this */
-    private float landmarkReach() {
-        float reach = 0f;
-        for (int l = 0; l < LANDMARKS; l++) {
-            if (landmarkValues[l] == activeLandmark || landmarkValues[l] == otherActiveLandmark) {
-                reach = Math.max(reach, landmarkReach[l]);
-            }
-        }
-        return reach;
     }
 
     /**
@@ -899,7 +891,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
         final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
-                focusByLandmarks ? (1 - LANDMARK_SLACK) * landmarkReach() : 0f);
+                focusByLandmarks ? (1 - LANDMARK_SLACK) * activeReach : 0f);
         final double inverseStride = 1.0 / stride;
         int finalized = 0;
         int deferredHere = 0;
