@@ -33,8 +33,8 @@ import sabot.model.geometry.Twist2D;
  * @param trail         where the robot has been lately (oldest first, at most {@link #TRAIL_POINTS} points at least
  *                      {@link #TRAIL_SPACING_M} apart); never null
  * @param lastTelemetry when the workbench last received telemetry from it (workbench clock), or null
- * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null before its
- *                      first pose since it came online
+ * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null while it
+ *                      is offline and before its first pose since it came online
  */
 public record RobotState(String jid, String name, Availability availability, String reason, PoseEstimate pose,
         Twist2D velocity, MissionStatus mission, TrajectoryPayload path, Obstacles obstacles, Goal goal,
@@ -95,11 +95,11 @@ public record RobotState(String jid, String name, Availability availability, Str
     }
 
     /**
-     * @return this state with another presence; a robot that comes online again starts its pose lag anew (it may
-     *         have restarted with another clock)
+     * @return this state with another presence; an offline robot has no pose lag (it is not late, only stale), and one
+     *         that comes online again starts it anew (it may have restarted with another clock)
      */
     public RobotState withPresence(Availability a, String r) {
-        PoseLag lag = availability == Availability.OFFLINE && a != Availability.OFFLINE ? null : poseLag;
+        PoseLag lag = a == Availability.OFFLINE ? null : poseLag;
         return new RobotState(jid, name, a, r, pose, velocity, mission, path, obstacles, goal, trail, lastTelemetry,
                 lag);
     }

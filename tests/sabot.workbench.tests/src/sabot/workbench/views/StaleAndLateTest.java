@@ -147,6 +147,7 @@ class StaleAndLateTest {
         assertTrue(r.state.withPresence(Availability.BUSY, "mission").isLate(), "a presence change keeps it");
         RobotState offline = r.state.withPresence(Availability.OFFLINE, "");
         assertTrue(offline.isStale(offline.lastTelemetry()));
+        assertFalse(offline.isLate(), "offline: stale, not late (the map labels it so)");
         RobotState back = offline.withPresence(Availability.FREE, "");
         assertNull(back.poseLag(), "it may have restarted with another clock");
         assertFalse(back.isLate());
