@@ -46,7 +46,7 @@ public final class GradientDescent {
         byte[] costs = grid.costs();
         double x = startX;
         double y = startY;
-        Waypoints points = new Waypoints();
+        Descent points = new Descent(new Shortcut(grid, density));
         points.add(x, y);
         int cell = grid.index((int) x, (int) y);
         if (value(potential, cell) == Float.POSITIVE_INFINITY) {
@@ -99,66 +99,138 @@ public final class GradientDescent {
             }
             points.add(x, y);
         }
-        return shortcut(grid, density, points);
+        return points.finish();
     }
 
     /**
      * Drops waypoints where a straight segment from the last kept waypoint costs no more than the path it replaces
      * (line integral of the density) and crosses only passable cells: removes the zig-zag a descent makes across
      * cost valleys without ever raising the path's cost, and keeps N strictly decreasing (only waypoints are removed).
-     * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length.
+     * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length. The
+     * descent's points stream through it as they are made: only the kept ones are stored (the maze's 28,694 descent
+     * points once took a growing array of a megabyte, re-allocated and copied eight times per plan).
      */
-    private static double[] shortcut(PlanningGrid grid, float[] density, Waypoints points) {
-        GridTraversal.PaddedDensity cells = new GridTraversal.PaddedDensity(grid, density);
-        Waypoints kept = new Waypoints();
-        int anchor = 0;
-        kept.add(points.x(0), points.y(0));
-        int pending = -1;
-        double pendingCost = 0;
-        for (int next = 1; next < points.size(); next++) {
-            if (pending < 0) {
-                pending = next;
-                pendingCost = integrate(points, anchor, next, cells);
-                continue;
+    private static final class Shortcut {
+        private final GridTraversal.PaddedDensity cells;
+        private final Waypoints kept = new Waypoints();
+        private double anchorX;
+        private double anchorY;
+        private boolean hasPending;
+        private double pendingX;
+        private double pendingY;
+        private double pendingCost;
+
+        Shortcut(PlanningGrid grid, float[] density) {
+            cells = new GridTraversal.PaddedDensity(grid, density);
+        }
+
+        /** Takes the path's next point (the first is always kept). */
+        void accept(double x, double y) {
+            if (kept.size() == 0) {
+                kept.add(x, y);
+                anchorX = x;
+                anchorY = y;
+                return;
             }
-            double step = integrate(points, pending, next, cells);
+            if (!hasPending) {
+                hasPending = true;
+                pendingX = x;
+                pendingY = y;
+                pendingCost = GridTraversal.integrate(anchorX, anchorY, x, y, cells);
+                return;
+            }
+            double step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
             double via = pendingCost + step;
-            double ax = points.x(next) - points.x(anchor);
-            double ay = points.y(next) - points.y(anchor);
+            double ax = x - anchorX;
+            double ay = y - anchorY;
             // the direct walk stops once it exceeds the way via the pending point: it is then rejected either way
             double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
-                    ? GridTraversal.integrate(points.x(anchor), points.y(anchor), points.x(next), points.y(next), cells,
-                            via)
+                    ? GridTraversal.integrate(anchorX, anchorY, x, y, cells, via)
                     : Double.POSITIVE_INFINITY;
             if (direct <= via) {
-                pending = next;
                 pendingCost = direct;
             } else {
-                kept.add(points.x(pending), points.y(pending));
-                anchor = pending;
-                pending = next;
+                kept.add(pendingX, pendingY);
+                anchorX = pendingX;
+                anchorY = pendingY;
                 pendingCost = step; // the integral from the new anchor, as computed for the way via it
             }
+            pendingX = x;
+            pendingY = y;
         }
-        if (pending >= 0) {
-            kept.add(points.x(pending), points.y(pending));
+
+        double[] finish() {
+            if (hasPending) {
+                kept.add(pendingX, pendingY);
+                hasPending = false;
+            }
+            return kept.toArray();
         }
-        return kept.toArray();
     }
 
-    private static double integrate(Waypoints points, int from, int to, GridTraversal.PaddedDensity cells) {
-        return GridTraversal.integrate(points.x(from), points.y(from), points.x(to), points.y(to), cells);
+    /**
+     * The descent's points: the last two are held back, since the end at the goal may replace the last one
+     * ({@link #finishAtGoal}); the others go on to the {@link Shortcut}.
+     */
+    private static final class Descent {
+        private final Shortcut shortcut;
+        private int size;
+        private double previousX;
+        private double previousY;
+        private double lastX;
+        private double lastY;
+
+        Descent(Shortcut shortcut) {
+            this.shortcut = shortcut;
+        }
+
+        void add(double x, double y) {
+            if (size >= 2) {
+                shortcut.accept(previousX, previousY);
+            }
+            previousX = lastX;
+            previousY = lastY;
+            lastX = x;
+            lastY = y;
+            size++;
+        }
+
+        void setLast(double x, double y) {
+            lastX = x;
+            lastY = y;
+        }
+
+        int size() {
+            return size;
+        }
+
+        /** The point before the last (needs {@code size() >= 2}). */
+        double previousX() {
+            return previousX;
+        }
+
+        double previousY() {
+            return previousY;
+        }
+
+        double[] finish() {
+            if (size >= 2) {
+                shortcut.accept(previousX, previousY);
+            }
+            shortcut.accept(lastX, lastY);
+            return shortcut.finish();
+        }
     }
 
     /** Ends the path at the goal point of the goal cell reached, replacing the entry point when the shortcut is clear. */
-    private static void finishAtGoal(Waypoints points, PlanningGrid grid, float[] density, double[] goals, double x,
+    private static void finishAtGoal(Descent points, PlanningGrid grid, float[] density, double[] goals, double x,
             double y) {
         int column = (int) x;
         int row = (int) y;
         for (int i = 0; i < goals.length; i += 2) {
             if ((int) goals[i] == column && (int) goals[i + 1] == row) {
-                int last = points.size() - 1;
-                if (last >= 1 && passable(grid, density, points.x(last - 1), points.y(last - 1), goals[i], goals[i + 1])) {
+                if (points.size() >= 2
+                        && passable(grid, density, points.previousX(), points.previousY(), goals[i], goals[i + 1])) {
                     points.setLast(goals[i], goals[i + 1]);
                 } else if (goals[i] != x || goals[i + 1] != y || points.size() == 1) {
                     points.add(goals[i], goals[i + 1]);
@@ -185,21 +257,8 @@ public final class GradientDescent {
             size++;
         }
 
-        void setLast(double x, double y) {
-            xy[2 * size - 2] = x;
-            xy[2 * size - 1] = y;
-        }
-
         int size() {
             return size;
-        }
-
-        double x(int i) {
-            return xy[2 * i];
-        }
-
-        double y(int i) {
-            return xy[2 * i + 1];
         }
 
         double[] toArray() {
