@@ -107,8 +107,8 @@ public final class GradientDescent {
      * (line integral of the density) and crosses only passable cells: removes the zig-zag a descent makes across
      * cost valleys without ever raising the path's cost, and keeps N strictly decreasing (only waypoints are removed).
      * Shortcuts are limited to {@value #MAX_SHORTCUT} cells so that the pass stays linear in the path length. The
-     * descent's points stream through it as they are made: only the kept ones are stored (the maze's 28,694 descent
-     * points once took a growing array of a megabyte, re-allocated and copied eight times per plan).
+     * descent's points stream through it as they are made, and only the kept ones are stored (the benchmark maze's
+     * descent makes 28,694 points, of which 3,010 are kept).
      */
     private static final class Shortcut {
         private final GridTraversal.PaddedDensity cells;
