@@ -151,7 +151,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     private PlanningGrid grid;
     private int[] potential = new int[0];
-    private float[] cellDensity = new float[0];
     /** N as a computation starts: {@link #UNREACHED} or {@link #IMPASSABLE} per cell, kept in step with the grid. */
     private int[] initialPotential = new int[0];
     /**
@@ -293,7 +292,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
             focusGoals = null;
             dropLandmarks();
             potential = new int[planningGrid.paddedSize()];
-            cellDensity = new float[planningGrid.paddedSize()];
             initialPotential = new int[planningGrid.paddedSize()];
             touched = new int[planningGrid.paddedSize() / TOUCHED_FRACTION + 16];
             touchedCount = 0;
@@ -330,7 +328,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     /** Takes a cell's cost from the grid: its density, its initial N and the grid's highest density. */
     private void takeCell(int i, byte[] costs) {
         float d = density[costs[i] & 0xFF];
-        cellDensity[i] = d;
         initialPotential[i] = d == Float.POSITIVE_INFINITY ? IMPASSABLE : UNREACHED;
         potential[i] = initialPotential[i];
         if (d > gridMaxDensity && d != Float.POSITIVE_INFINITY) {
