@@ -4,25 +4,18 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import java.util.Collection;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 
-import org.jivesoftware.smack.packet.StanzaError;
-import org.jivesoftware.smack.roster.AbstractRosterListener;
 import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
-import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
-import org.jxmpp.jid.Jid;
 
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
@@ -76,35 +69,11 @@ class FleetLoadTest {
         });
         // the workbench's rule: approve the subscriptions of the robots it follows (they subscribe back)
         sabot.fleet.SubscriptionGate.onWorkbench(wb);
-        Roster roster = Roster.getInstanceFor(wb);
-        Set<BareJid> approved = ConcurrentHashMap.newKeySet();
-        CountDownLatch allApproved = new CountDownLatch(3);
-        roster.addRosterListener(new AbstractRosterListener() {
-            @Override
-            public void entriesUpdated(Collection<Jid> addresses) {
-                for (Jid a : addresses) {
-                    RosterEntry e = roster.getEntry(a.asBareJid());
-                    if (e != null && e.canSeeHisPresence() && approved.add(a.asBareJid())) {
-                        allApproved.countDown();
-                    }
-                }
-            }
-        });
         try {
             wb.connect().login();
             List<EntityBareJid> robots = load.jids();
             assertEquals("load-01@sabot.local", robots.get(0).toString());
-            for (EntityBareJid r : robots) {
-                roster.createItemAndRequestSubscription(r, r.getLocalpart().toString(), null);
-            }
-            assertTrue(allApproved.await(30, TimeUnit.SECONDS), "robots that approved: " + approved);
-            // as the workbench does (ControlMlFleet): an explicit subscription to each robot's node besides the caps'
-            // +notify, which Prosody 0.12, like ejabberd, now and then does not honour for a new contact (seen here
-            // on a loaded CI host: no telemetry from any robot in 30 s)
-            for (EntityBareJid r : robots) {
-                Outcome<Void> followed = followWhenPublished(cm, r);
-                assertTrue(followed.isSuccess(), r + ": " + followed.errorOrNull());
-            }
+            Following.follow(wb, robots);
             assertTrue(all.await(30, TimeUnit.SECONDS), "telemetry from every robot: " + poses.keySet());
             EntityBareJid first = robots.get(0);
             // the pose moves on the robot's circle (inside the lab)
@@ -125,20 +94,6 @@ class FleetLoadTest {
         } finally {
             wb.disconnect();
         }
-    }
-
-    /**
-     * Follows the robot's position node; the node exists from the robot's first publication on (the load starts
-     * publishing as it logs in), so {@code item-not-found} is asked again, each time a round trip, for 10 s at most.
-     */
-    private static Outcome<Void> followWhenPublished(ControlMlManager cm, EntityBareJid robot) {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
-        Outcome<Void> o = cm.telemetry().follow(robot, Resources.POSITION);
-        while (!o.isSuccess() && o.errorOrNull().condition() == StanzaError.Condition.item_not_found
-                && System.nanoTime() < deadline) {
-            o = cm.telemetry().follow(robot, Resources.POSITION);
-        }
-        return o;
     }
 
     @Test

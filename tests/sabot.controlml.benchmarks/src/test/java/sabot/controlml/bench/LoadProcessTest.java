@@ -15,7 +15,6 @@ import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 
-import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -65,10 +64,7 @@ class LoadProcessTest {
                 sabot.fleet.SubscriptionGate.onWorkbench(wb);
                 try {
                     wb.connect().login();
-                    for (EntityBareJid r : load.jids()) {
-                        Roster.getInstanceFor(wb).createItemAndRequestSubscription(r, r.getLocalpart().toString(),
-                                null);
-                    }
+                    Following.follow(wb, load.jids());
                     assertTrue(both.await(30, TimeUnit.SECONDS), "telemetry from both robots: " + seen.keySet());
                 } finally {
                     wb.disconnect();
