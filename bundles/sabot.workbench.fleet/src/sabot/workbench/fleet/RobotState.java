@@ -33,8 +33,8 @@ import sabot.model.geometry.Twist2D;
  * @param trail         where the robot has been lately (oldest first, at most {@link #TRAIL_POINTS} points at least
  *                      {@link #TRAIL_SPACING_M} apart); never null
  * @param lastTelemetry when the workbench last received telemetry from it (workbench clock), or null
- * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null while it
- *                      is offline and before its first pose since it came online
+ * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null before its
+ *                      first pose since it last went offline or came online
  */
 public record RobotState(String jid, String name, Availability availability, String reason, PoseEstimate pose,
         Twist2D velocity, MissionStatus mission, TrajectoryPayload path, Obstacles obstacles, Goal goal,
@@ -76,11 +76,13 @@ public record RobotState(String jid, String name, Availability availability, Str
     }
 
     /**
-     * @return true when its last pose arrived more than {@link #STALE_AFTER} later than the robot's fastest: a backlog
-     *         on the way (the server, or the workbench's own ingest behind on a busy CPU), although poses keep coming
+     * @return true when the robot is online and its last pose arrived more than {@link #STALE_AFTER} later than the
+     *         robot's fastest: a backlog on the way (the server, or the workbench's own ingest behind on a busy CPU),
+     *         although poses keep coming. An offline robot is stale, never late, even when poses of its backlog still
+     *         arrive after its presence went.
      */
     public boolean isLate() {
-        return poseLag != null && poseLag.lag().compareTo(STALE_AFTER) > 0;
+        return availability != Availability.OFFLINE && poseLag != null && poseLag.lag().compareTo(STALE_AFTER) > 0;
     }
 
     /** @return how old the last telemetry is at {@code now}, or null when none was received */
@@ -95,11 +97,13 @@ public record RobotState(String jid, String name, Availability availability, Str
     }
 
     /**
-     * @return this state with another presence; an offline robot has no pose lag (it is not late, only stale), and one
-     *         that comes online again starts it anew (it may have restarted with another clock)
+     * @return this state with another presence; the pose lag starts anew when the robot goes offline and when it comes
+     *         online again (it may have restarted with another clock, and poses that arrived while it was offline
+     *         measured nothing about its new session)
      */
     public RobotState withPresence(Availability a, String r) {
-        PoseLag lag = a == Availability.OFFLINE ? null : poseLag;
+        boolean crossing = (a == Availability.OFFLINE) != (availability == Availability.OFFLINE);
+        PoseLag lag = crossing ? null : poseLag;
         return new RobotState(jid, name, a, r, pose, velocity, mission, path, obstacles, goal, trail, lastTelemetry,
                 lag);
     }

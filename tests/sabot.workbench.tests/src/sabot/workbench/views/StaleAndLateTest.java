@@ -152,6 +152,14 @@ class StaleAndLateTest {
         assertNull(back.poseLag(), "it may have restarted with another clock");
         assertFalse(back.isLate());
         assertFalse(back.isStale(back.lastTelemetry()));
+        // the backlog's last poses arrive after the robot went offline: still not late, and forgotten when it is back
+        r.state = offline;
+        r.deliver(2 * PERIOD_NS, 2 * PERIOD_NS + TRANSIT_NS);
+        r.deliver(3 * PERIOD_NS, 3 * PERIOD_NS + TRANSIT_NS + 5_000_000_000L);
+        assertTrue(r.state.poseLag().lag().compareTo(RobotState.STALE_AFTER) > 0, "these poses lag: " + r.state
+                .poseLag());
+        assertFalse(r.state.isLate(), "offline: stale, not late, whatever arrives: " + r.state.poseLag());
+        assertNull(r.state.withPresence(Availability.FREE, "").poseLag(), "a lag measured while offline is dropped");
     }
 
     @Test
