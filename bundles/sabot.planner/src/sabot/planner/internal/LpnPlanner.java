@@ -110,7 +110,8 @@ public final class LpnPlanner implements Planner {
     /**
      * {@link CostModel#pathCost} of the waypoints on the costmap just synced, over the grid's copy of its cells: the
      * same integral, cell for cell (the copy holds the costmap's costs, and its padding ring is lethal like the
-     * outside of the map), without the costmap's checked lookup and the virtual call per cell of the shared traversal.
+     * outside of the map), without the costmap's checked lookup (the final {@code PaddedDensity}'s lookup is inlined
+     * into the shared traversal).
      */
     private double pathCost(List<Point2D> waypoints) {
         return GridTraversal.integrate(grid.geometry(), waypoints, new GridTraversal.PaddedDensity(grid, density));

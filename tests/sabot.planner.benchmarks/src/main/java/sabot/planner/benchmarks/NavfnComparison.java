@@ -240,6 +240,9 @@ public final class NavfnComparison {
         try (BufferedReader in = new BufferedReader(
                 new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
             results.read(in);
+        } catch (IOException e) {
+            process.destroyForcibly(); // an unreadable report: the measuring JVM (and its navfn driver) end with it
+            throw e;
         }
         int status = process.waitFor();
         if (status != 0) {
