@@ -128,11 +128,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float gridMaxDensity;
     private final float bucketWidth;
     private final float inverseBucketWidth;
-    /**
-     * Old values are capped here before {@link #relax} computes their bucket: the start of bucket 2^30, so that the
-     * conversion stays in int range (N stays below it unless a grid holds some 10^8 cells).
-     */
-    private final float bucketCap;
     /** Mask of the bucket ring (its size is a power of two). */
     private final int bucketMask;
     /**
@@ -245,7 +240,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.maxDensity = costModel.maxDensity();
         this.bucketWidth = BUCKET_MARGIN * costModel.minDensity() * INV_SQRT2;
         this.inverseBucketWidth = 1f / bucketWidth;
-        this.bucketCap = (1 << 30) * bucketWidth;
         int reach = (int) Math.ceil(SQRT2 * costModel.maxDensity() / bucketWidth) + 2;
         this.minDensity = costModel.minDensity();
         this.bucketMask = (Integer.highestOneBit(reach + 1) << 1) - 1;
@@ -1124,12 +1118,13 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
      * Written without branches on the data (C2 compiles the selections to conditional moves): whether the update
-     * improves the target, whether the target is reached for the first time and whether it changes bucket are each
-     * close to a coin toss, and a mispredicted branch costs more than the arithmetic. The lower value is stored
-     * whatever happens ({@code min} of the bits: the old value when the update does not improve it), the target is
-     * written to the end of its bucket and the bucket's size advanced only when it must be queued (improved and
-     * reached for the first time or moved to another bucket: a lowered cell that stays in its bucket is popped with
-     * its new value).
+     * improves the target is close to a coin toss, and a mispredicted branch costs more than the arithmetic. The
+     * lower value is stored whatever happens ({@code min} of the bits: the old value when the update does not improve
+     * it), the target is written to the end of its bucket and the bucket's size advanced when it improved. A target
+     * lowered again is queued again, also when it stays in its bucket: the entry popped first finalises it and the
+     * others are skipped as final (maze-1000: 819,565 entries for 784,064 cells, random-1000 833,868 for 736,265).
+     * Queueing only a first reach or a change of bucket left fewer entries but cost the old value's bucket on
+     * every update, which was slower (maze-1000 8 % slower).
      *
      * @return 1 when the target was queued (the caller counts it in {@link #queued}), else 0. Reached cells are recorded for the reset by {@link #propagate} (when popped, and those still
      * queued when it stops), not here.
@@ -1138,13 +1133,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
             float[] halfDensity, byte[] costs, int[] buckets, int shift, int currentBucket) {
         float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
         int bestBits = Float.floatToRawIntBits(best);
-        boolean improved = bestBits < targetBits;
-        boolean first = targetBits == UNREACHED;
+        int queue = bestBits < targetBits ? 1 : 0;
         int bucket = (int) (best * inverseBucketWidth);
-        // the old value capped so that the conversion stays in int range (an unreached +infinity or a retracted cell
-        // would overflow, which C2 handles in an out-of-line stub); both are queued by `first` or the bucket change
-        int oldBucket = (int) (Math.min(Float.intBitsToFloat(targetBits), bucketCap) * inverseBucketWidth);
-        int queue = improved & (first | bucket != oldBucket) ? 1 : 0;
         potential[target] = Math.min(targetBits, bestBits);
         int slot = Math.max(bucket, currentBucket) & bucketMask;
         int size = bucketSizes[slot];
