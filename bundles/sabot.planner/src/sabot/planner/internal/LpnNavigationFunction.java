@@ -1153,11 +1153,14 @@ public final class LpnNavigationFunction implements AutoCloseable {
     static float update(float value, float corner, float c) {
         float limit = c * INV_SQRT2;
         float delta = value - corner;
-        delta = delta < 0f ? 0f : delta > limit ? limit : delta;
-        // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner
+        delta = delta < 0f ? 0f : delta;
+        // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner; the choice
+        // is by delta alone: below the limit the crossing is never dearer (sqrt(c^2 - delta^2) + delta <= c sqrt 2,
+        // equal at the limit), above it the square root is of a negative number (NaN) and not chosen. One selection
+        // less than the minimum of both; the same values on the benchmark grids, bit for bit
         float interior = value + (float) Math.sqrt(c * c - delta * delta);
         float straight = corner + c * SQRT2;
-        return interior < straight ? interior : straight;
+        return delta < limit ? interior : straight;
     }
 
     private void push(int cell, float value) {
