@@ -945,12 +945,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
                     int westBits = potential[cell - 1];
                     int northBits = potential[cell + stride];
                     int southBits = potential[cell - stride];
-                    float northValue = decode(northBits);
-                    float southValue = decode(southBits);
-                    float eastValue = decode(eastBits);
-                    float westValue = decode(westBits);
-                    float northSouthCorner = northValue < southValue ? northValue : southValue;
-                    float eastWestCorner = eastValue < westValue ? eastValue : westValue;
+                    float northSouthCorner = lower(northBits, southBits);
+                    float eastWestCorner = lower(eastBits, westBits);
                     if (eastBits >= 0) {
                         pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity,
                                 costs, buckets, shift, current);
@@ -1089,12 +1085,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         int westBits = potential[west];
         int northBits = potential[north];
         int southBits = potential[south];
-        float eastValue = decode(eastBits);
-        float westValue = decode(westBits);
-        float northValue = decode(northBits);
-        float southValue = decode(southBits);
-        float northSouthCorner = northValue < southValue ? northValue : southValue;
-        float eastWestCorner = eastValue < westValue ? eastValue : westValue;
+        float northSouthCorner = lower(northBits, southBits);
+        float eastWestCorner = lower(eastBits, westBits);
         if (eastBits >= 0) {
             pushed += relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs, buckets,
                     bucketShift, currentBucket);
@@ -1117,8 +1109,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
     /**
      * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
-     * Written without branches on the data (C2 compiles the selections to conditional moves): whether the update
-     * improves the target is close to a coin toss, and a mispredicted branch costs more than the arithmetic. The
+     * Written without branches on the data, with integer selections only (C2 compiles them to conditional moves; see
+     * {@link #updateBits} for the float ones): whether the update improves the target is close to a coin toss, and a
+     * mispredicted branch costs more than the arithmetic. The
      * lower value is stored whatever happens ({@code min} of the bits: the old value when the update does not improve
      * it), the target is written to the end of its bucket and the bucket's size advanced when it improved. A target
      * lowered again is queued again, also when it stays in its bucket: the entry popped first finalises it and the
@@ -1131,8 +1124,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     private int relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
             float[] halfDensity, byte[] costs, int[] buckets, int shift, int currentBucket) {
-        float best = update(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
-        int bestBits = Float.floatToRawIntBits(best);
+        int bestBits = updateBits(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
+        float best = Float.intBitsToFloat(bestBits);
         int queue = bestBits < targetBits ? 1 : 0;
         int bucket = (int) (best * inverseBucketWidth);
         potential[target] = Math.min(targetBits, bestBits);
@@ -1144,23 +1137,43 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
+     * The lower of two stored values, decoded: the minimum of their value bits as ints (non-negative floats order like
+     * their bits), which C2 compiles to an integer conditional move. A float selection ({@code a < b ? a : b}) is
+     * compiled on x86 to a compare and a jump (there is no conditional move for floats), and whether a corner is lower
+     * is a coin toss: the three selections of each update as jumps cost maze-1000's navigation function 20 %.
+     */
+    private static float lower(int bits, int otherBits) {
+        return Float.intBitsToFloat(Math.min(bits & VALUE, otherBits & VALUE));
+    }
+
+    /**
      * The interpolated update (see the class comment) of a cell from a final axis neighbour of value {@code value}
      * through the lower of its two diagonal corners next to that neighbour, {@code corner}, for edge density
      * {@code c}. A corner at or above {@code value} gives the axis step {@code value + c}, whatever its value.
-     * Selections are written as conditional expressions (compiled to conditional moves): whether a corner is lower is
-     * unpredictable, and mispredicted branches, not arithmetic, dominate the propagation.
      */
     static float update(float value, float corner, float c) {
+        return Float.intBitsToFloat(updateBits(value, corner, c));
+    }
+
+    /**
+     * {@link #update} as float bits, computed without a jump: whether a corner is lower, and whether the crossing is
+     * interior, are coin tosses, and C2 compiles a float selection to a compare and a jump on x86, so both selections
+     * are made on the bits with integer operations (see {@link #lower}).
+     */
+    static int updateBits(float value, float corner, float c) {
         float limit = c * INV_SQRT2;
-        float delta = value - corner;
-        delta = delta < 0f ? 0f : delta;
+        // delta = max(0, N(a) - N(corner)): a negative difference (sign bit set) masked to +0
+        int deltaBits = Float.floatToRawIntBits(value - corner);
+        deltaBits &= ~(deltaBits >> 31);
+        float delta = Float.intBitsToFloat(deltaBits);
         // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner; the choice
         // is by delta alone: below the limit the crossing is never dearer (sqrt(c^2 - delta^2) + delta <= c sqrt 2,
-        // equal at the limit), above it the square root is of a negative number (NaN) and not chosen. One selection
-        // less than the minimum of both; the same values on the benchmark grids, bit for bit
+        // equal at the limit), above it the square root is of a negative number (NaN) and not chosen
         float interior = value + (float) Math.sqrt(c * c - delta * delta);
         float straight = corner + c * SQRT2;
-        return delta < limit ? interior : straight;
+        // delta < limit, both non-negative: compared as bits, the difference's sign is the mask of the interior
+        int interiorMask = (deltaBits - Float.floatToRawIntBits(limit)) >> 31;
+        return Float.floatToRawIntBits(interior) & interiorMask | Float.floatToRawIntBits(straight) & ~interiorMask;
     }
 
     private void push(int cell, float value) {
