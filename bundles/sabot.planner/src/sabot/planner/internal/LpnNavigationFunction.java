@@ -528,7 +528,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float landmarkBound(int cell) {
         float gap = Math.abs(activeLandmark[cell] - activeAtStart);
         float otherGap = Math.abs(otherActiveLandmark[cell] - otherActiveAtStart);
-        return (1 - LANDMARK_SLACK) * (gap > otherGap ? gap : otherGap);
+        // the larger gap as the integer maximum of the bits (both are non-negative): a float selection is a jump
+        return (1 - LANDMARK_SLACK) * Float.intBitsToFloat(
+                Math.max(Float.floatToRawIntBits(gap), Float.floatToRawIntBits(otherGap)));
     }
 
     /**
