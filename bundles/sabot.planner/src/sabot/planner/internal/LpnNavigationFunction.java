@@ -1117,9 +1117,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
      * Written without branches on the data, with integer selections only (C2 compiles them to conditional moves; see
      * {@link #updateBits} for the float ones): whether the update improves the target is close to a coin toss, and a
-     * mispredicted branch costs more than the arithmetic. The
-     * lower value is stored whatever happens ({@code min} of the bits: the old value when the update does not improve
-     * it), the target is written to the end of its bucket and the bucket's size advanced when it improved. A target
+     * mispredicted branch costs more than the arithmetic. The lower value is stored whatever happens ({@code min} of
+     * the bits: the old value when the update does not improve it), the target is written to the end of its bucket
+     * and the bucket's size advanced when it improved. A target
      * lowered again is queued again, also when it stays in its bucket: the entry popped first finalises it and the
      * others are skipped as final (maze-1000: 819,565 entries for 784,064 cells, random-1000 833,868 for 736,265).
      * Queueing only a first reach or a change of bucket left fewer entries but cost the old value's bucket on
