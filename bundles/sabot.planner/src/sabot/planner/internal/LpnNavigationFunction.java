@@ -216,6 +216,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int bandShift;
     private int[] bandCounts = new int[2];
     private int[] sortBuffer = new int[0];
+    /** The running computation's stop (see {@link #propagate}) and the counts of its ranges ({@link #expandRange}). */
+    private float stopAbove;
+    private int rangeFinalized;
+    private int rangeDeferred;
 
     /** A navigation function computed on the calling thread. */
     public LpnNavigationFunction(CostModel costModel) {
@@ -876,18 +880,15 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     private void propagate(int stopAtCell, boolean repairing) {
-        final int[] potential = this.potential;
-        final float[] halfDensity = this.halfDensity;
-        final byte[] costs = grid.costs();
         final int stride = grid.stride();
-        float stopAbove = Float.POSITIVE_INFINITY;
+        stopAbove = Float.POSITIVE_INFINITY;
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
         final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
                 focusByLandmarks ? (1 - LANDMARK_SLACK) * activeReach : 0f);
         final double inverseStride = 1.0 / stride;
-        int finalized = 0;
-        int deferredHere = 0;
+        rangeFinalized = 0;
+        rangeDeferred = 0;
         while ((queued > 0 || checkSize > 0) && currentBucket * bucketWidth <= stopAbove) {
             if (checkSize > 0) {
                 injectSeeds();
@@ -902,92 +903,23 @@ public final class LpnNavigationFunction implements AutoCloseable {
             if (bucketSizes[slot] >= bandCounts.length >> 3) {
                 sortByMemoryBand(slot);
             }
-            // counters in locals, written back after the bucket: fields would be loaded and stored on every update
-            // (C2 keeps no field in a register across a loop), a chain of store-to-load forwarding through the loop
-            int pushed = 0;
-            int record = touchedCount;
-            final int[] touched = this.touched;
-            final int lastTouched = touched.length - 1;
             int head = 0;
-            int counted = 0;
             // cells may be queued into the bucket being expanded (one lowered by the straight diagonal from a low
             // corner lands at or below the current bucket; a repair's re-expansions): expand it again up to its new end
             for (int end = bucketSizes[slot]; head < end; end = bucketSizes[slot]) {
-                fillBound += pushed - counted;
-                counted = pushed;
                 makeRoom((end - head) * (repairing ? PUSHES_PER_REPAIRED_CELL : PUSHES_PER_CELL));
-                // the ring cannot grow while the bucket is expanded, so its array and shift are loop invariants in
-                // registers: a growth call inside the loop (compiled in once a computation had to grow) made C2 reload
-                // them at every update, 20-25 % slower on 1000 x 1000 after a run on 2000 x 2000 had grown the ring
-                final int[] buckets = this.buckets;
-                final int shift = bucketShift;
-                final int current = currentBucket;
-                for (; head < end; head++) {
-                    int cell = buckets[(slot << shift) + head];
-                    int bits = potential[cell];
-                    if (bits < 0) {
-                        continue;
-                    }
-                    // recorded without a branch: the list overflows once a computation has reached an eighth of the
-                    // grid, and C2 compiled the first computation's loop before that with the overflow as an uncommon
-                    // trap, then (in about half of the JVMs, as the compilations' timing fell) the loop that followed
-                    // it from a profile of the computation's start: maze-1000 25-27 ms instead of 16-18 ms. Past the
-                    // end the last slot is overwritten; an overflowed list is not read (resetTouched copies the grid)
-                    touched[Math.min(record, lastTouched)] = cell;
-                    record++;
-                    float value = Float.intBitsToFloat(bits);
-                    if (value > focusFrom && outsideFocus(cell, value, stride, inverseStride)) {
-                        deferredHere++; // reached (recorded for the reset), left out
-                        continue;
-                    }
-                    potential[cell] = bits | FINAL;
-                    finalized++;
-                    if (cell == stopAtCell) {
-                        stopAbove = value + 2 * SQRT2 * maxDensity;
-                    }
-                    // expand(cell, ...) written out: the hot loop stays one compiled method with relax inlined
-                    float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
-                    int eastBits = potential[cell + 1];
-                    int westBits = potential[cell - 1];
-                    int northBits = potential[cell + stride];
-                    int southBits = potential[cell - stride];
-                    float northSouthCorner = lower(northBits, southBits);
-                    float eastWestCorner = lower(eastBits, westBits);
-                    if (eastBits >= 0) {
-                        pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity,
-                                costs, buckets, shift, current);
-                    }
-                    if (westBits >= 0) {
-                        pushed += relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity,
-                                costs, buckets, shift, current);
-                    }
-                    if (northBits >= 0) {
-                        pushed += relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity,
-                                costs, buckets, shift, current);
-                    }
-                    if (southBits >= 0) {
-                        pushed += relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity,
-                                costs, buckets, shift, current);
-                    }
-                    if (repairing) {
-                        // a repaired cell is also the corner of triangles through its final axis neighbours, which a
-                        // fresh computation would expand after it: let them see its new value
-                        pushed += reexpand(cell + 1, value, potential, costs, stride);
-                        pushed += reexpand(cell - 1, value, potential, costs, stride);
-                        pushed += reexpand(cell + stride, value, potential, costs, stride);
-                        pushed += reexpand(cell - stride, value, potential, costs, stride);
-                    }
-                }
+                int pushed = expandRange(slot, head, end, stopAtCell, repairing, focusFrom, inverseStride);
+                fillBound += pushed;
+                queued += pushed;
+                head = end;
             }
-            fillBound += pushed - counted;
-            queued += pushed - head;
-            touchedCount = record;
+            queued -= head;
             bucketSizes[slot] = 0;
             currentBucket++;
         }
-        finalizedCount += finalized;
-        expandedCount += finalized;
-        deferred += deferredHere;
+        finalizedCount += rangeFinalized;
+        expandedCount += rangeFinalized;
+        deferred += rangeDeferred;
         // cells reached but not final when a bounded computation stops are still queued: record them for the reset
         for (int slot = 0; queued > 0 && slot <= bucketMask; slot++) {
             for (int i = 0; i < bucketSizes[slot]; i++) {
@@ -998,6 +930,99 @@ public final class LpnNavigationFunction implements AutoCloseable {
             }
             queued -= bucketSizes[slot];
         }
+    }
+
+    /**
+     * Expands the entries {@code [head, end)} of the current bucket's slot: the hot loop, a method of its own so that
+     * C2 compiles it from its own profile, apart from the per-bucket work of {@link #propagate} (the memory-band sort,
+     * the ring's growth, seeds), whose branches are first taken in the middle of a computation. Written in one method,
+     * the sort's test (first true on random-1000 once the front has grown) was an uncommon trap of the first
+     * computation's compiled loop, and about a third of the JVMs ran the loop recompiled after it at 24-26 ms instead
+     * of 18-20 ms; as a method of its own (too large for C2 to inline into propagate) no JVM of ten did, for a call
+     * per bucket (maze-1000's 24,563 buckets: about 3 %).
+     *
+     * @return the cells queued
+     */
+    private int expandRange(int slot, int head, int end, int stopAtCell, boolean repairing, float focusFrom,
+            double inverseStride) {
+        final int[] potential = this.potential;
+        final float[] halfDensity = this.halfDensity;
+        final byte[] costs = grid.costs();
+        final int stride = grid.stride();
+        // the ring cannot grow while the bucket is expanded, so its array and shift are loop invariants in
+        // registers: a growth call inside the loop (compiled in once a computation had to grow) made C2 reload
+        // them at every update, 20-25 % slower on 1000 x 1000 after a run on 2000 x 2000 had grown the ring
+        final int[] buckets = this.buckets;
+        final int shift = bucketShift;
+        final int current = currentBucket;
+        final int[] touched = this.touched;
+        final int lastTouched = touched.length - 1;
+        // counters in locals, written back after the range: fields would be loaded and stored on every update
+        // (C2 keeps no field in a register across a loop), a chain of store-to-load forwarding through the loop
+        int pushed = 0;
+        int record = touchedCount;
+        int finalized = 0;
+        int deferredHere = 0;
+        for (; head < end; head++) {
+            int cell = buckets[(slot << shift) + head];
+            int bits = potential[cell];
+            if (bits < 0) {
+                continue;
+            }
+            // recorded without a branch: the list overflows once a computation has reached an eighth of the grid, and
+            // C2 compiled the first computation's loop before that with the overflow as an uncommon trap, then (in
+            // about half of the JVMs, as the compilations' timing fell) the loop that followed it from a profile of the
+            // computation's start: maze-1000 25-27 ms instead of 16-18 ms. Past the end the last slot is overwritten;
+            // an overflowed list is not read (resetTouched copies the grid)
+            touched[Math.min(record, lastTouched)] = cell;
+            record++;
+            float value = Float.intBitsToFloat(bits);
+            if (value > focusFrom && outsideFocus(cell, value, stride, inverseStride)) {
+                deferredHere++; // reached (recorded for the reset), left out
+                continue;
+            }
+            potential[cell] = bits | FINAL;
+            finalized++;
+            if (cell == stopAtCell) {
+                stopAbove = value + 2 * SQRT2 * maxDensity;
+            }
+            // expand(cell, ...) written out: the hot loop stays one compiled method with relax inlined
+            float ownHalfDensity = halfDensity[costs[cell] & 0xFF];
+            int eastBits = potential[cell + 1];
+            int westBits = potential[cell - 1];
+            int northBits = potential[cell + stride];
+            int southBits = potential[cell - stride];
+            float northSouthCorner = lower(northBits, southBits);
+            float eastWestCorner = lower(eastBits, westBits);
+            if (eastBits >= 0) {
+                pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs,
+                        buckets, shift, current);
+            }
+            if (westBits >= 0) {
+                pushed += relax(cell - 1, westBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs,
+                        buckets, shift, current);
+            }
+            if (northBits >= 0) {
+                pushed += relax(cell + stride, northBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs,
+                        buckets, shift, current);
+            }
+            if (southBits >= 0) {
+                pushed += relax(cell - stride, southBits, value, eastWestCorner, ownHalfDensity, halfDensity, costs,
+                        buckets, shift, current);
+            }
+            if (repairing) {
+                // a repaired cell is also the corner of triangles through its final axis neighbours, which a
+                // fresh computation would expand after it: let them see its new value
+                pushed += reexpand(cell + 1, value, potential, costs, stride);
+                pushed += reexpand(cell - 1, value, potential, costs, stride);
+                pushed += reexpand(cell + stride, value, potential, costs, stride);
+                pushed += reexpand(cell - stride, value, potential, costs, stride);
+            }
+        }
+        touchedCount = record;
+        rangeFinalized += finalized;
+        rangeDeferred += deferredHere;
+        return pushed;
     }
 
     /**
@@ -1075,8 +1100,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * A target's two diagonal corners next to the cell are the cell's other axis neighbours, so the four neighbours
      * are loaded once: east and west share the corner min(N(north), N(south)), north and south min(N(east), N(west)).
      * Reading a corner before a sibling update lowered it gives the same result: a value this expansion writes lies
-     * above {@code value}, and a corner above {@code value} gives the axis step whichever it is. The propagation loop
-     * writes this method out in place (see there); this copy serves the repair's re-expansions.
+     * above {@code value}, and a corner above {@code value} gives the axis step whichever it is. The propagation's loop
+     * ({@link #expandRange}) writes this method out in place; this copy serves the repair's re-expansions.
      *
      * @return the number of cells queued
      */
