@@ -624,7 +624,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
         return withdrawnCount;
     }
 
-    /** @return number of cells the last computation left out by its focus (see {@link #computeFocused}) */
+    /**
+     * @return number of times the last computation left a popped cell out by its focus (see {@link #computeFocused}):
+     *         the cells left out, a cell lowered after it was left out counted again
+     */
     public int deferredCount() {
         return deferred;
     }
@@ -1144,11 +1147,11 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * {@link #updateBits} for the float ones): whether the update improves the target is close to a coin toss, and a
      * mispredicted branch costs more than the arithmetic. The lower value is stored whatever happens ({@code min} of
      * the bits: the old value when the update does not improve it), the target is written to the end of its bucket
-     * and the bucket's size advanced when it improved. A target
-     * lowered again is queued again, also when it stays in its bucket: the entry popped first finalises it and the
-     * others are skipped as final (maze-1000: 819,565 entries for 784,064 cells, random-1000 833,868 for 736,265).
-     * Queueing only a first reach or a change of bucket left fewer entries but cost the old value's bucket on
-     * every update, which was slower (maze-1000 8 % slower).
+     * and the bucket's size advanced when it improved. A target lowered again is queued again, also when it stays in
+     * its bucket: the entry popped first finalises it and the others are skipped as final (maze-1000: 819,565 entries
+     * for 784,064 cells, random-1000 833,868 for 736,265); a cell the focus deferred is checked again with its lower
+     * value (and counted in {@link #deferredCount} again if still outside). Queueing only a first reach or a change of
+     * bucket left fewer entries but cost the old value's bucket on every update, which was slower (maze-1000 8 %).
      *
      * @return 1 when the target was queued (the caller counts it in {@link #queued}), else 0. Reached cells are recorded for the reset by {@link #propagate} (when popped, and those still
      * queued when it stops), not here.
