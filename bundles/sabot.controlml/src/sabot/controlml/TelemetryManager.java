@@ -229,9 +229,9 @@ public final class TelemetryManager extends Manager {
      * Subscribes this client explicitly (XEP-0060 {@code subscribe}) to a device's telemetry node of a resource, so
      * that its publications arrive at {@link #addListener listeners} even where the server does not honour
      * the {@code +notify} of the entity capabilities (ejabberd 23.01 now and then never does for a contact, Prosody
-     * 0.12 more rarely, while both always deliver to explicit subscribers). Servers keep one subscription per JID, so calling again does no harm.
-     * The node exists once the device has published the resource: before that the answer is {@code item-not-found};
-     * call again when the device comes online or publishes.
+     * 0.12 more rarely, while both always deliver to explicit subscribers). Servers keep one subscription per JID, so
+     * calling again does no harm. The node exists once the device has published the resource: before that the answer
+     * is {@code item-not-found}; call again when the device comes online or publishes.
      *
      * @param device the device's bare JID (the owner of the PEP node)
      * @return done, or why not ({@code item-not-found}, {@code forbidden} without a presence subscription, timeout,

@@ -7,7 +7,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.IOException;
 import java.nio.file.Files;
-import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
 import java.nio.file.Paths;
 import java.util.List;
@@ -54,13 +53,11 @@ class LoadProcessTest {
                         int nice;
                         try {
                             nice = niceOf(t);
-                        } catch (NoSuchFileException ended) {
-                            continue;
                         } catch (IOException e) {
                             if (Files.exists(t)) {
                                 throw e;
                             }
-                            continue; // ended while its stat was read
+                            continue; // the thread ended (no such file, or no such process while it was read)
                         }
                         assertEquals(19, nice, () -> "thread " + t + " of the load process");
                         checked++;
