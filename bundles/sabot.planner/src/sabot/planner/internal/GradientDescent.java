@@ -1,5 +1,7 @@
 package sabot.planner.internal;
 
+import sabot.model.map.Costmap;
+
 /**
  * Path extraction: steepest descent on the interpolated navigation function, from the start point to the goal set,
  * in grid coordinates (cell (c, r) spans [c, c+1) x [r, r+1)).
@@ -42,11 +44,20 @@ public final class GradientDescent {
      */
     public static double[] descend(PlanningGrid grid, int[] potential, float[] density, float minDensity,
             double startX, double startY, double[] goals) {
+        return descend(grid, potential, density, minDensity, startX, startY, goals, true);
+    }
+
+    /**
+     * @param freeBoxes false to decide every shortcut by the traversal's sums (the same path, for the test that shows
+     *                  it)
+     */
+    static double[] descend(PlanningGrid grid, int[] potential, float[] density, float minDensity, double startX,
+            double startY, double[] goals, boolean freeBoxes) {
         int stride = grid.stride();
         byte[] costs = grid.costs();
         double x = startX;
         double y = startY;
-        Descent points = new Descent(new Shortcut(grid, density));
+        Descent points = new Descent(new Shortcut(grid, density, freeBoxes));
         points.add(x, y);
         int cell = grid.index((int) x, (int) y);
         if (value(potential, cell) == Float.POSITIVE_INFINITY) {
@@ -57,6 +68,7 @@ public final class GradientDescent {
         // once per cell first the cell's own centre, see pastCorner)
         long maxSteps = (long) (value(potential, cell) / (minDrop * STEP / 2)) + 2L * grid.paddedSize() + 16;
         double[] gradient = new double[2];
+        double reached = Double.NaN; // N at (x, y) when the last step was a gradient step, which computed it
         for (long step = 0; ; step++) {
             if (step > maxSteps) {
                 throw new IllegalStateException("gradient descent did not reach the goal in " + maxSteps + " steps");
@@ -66,7 +78,8 @@ public final class GradientDescent {
                 finishAtGoal(points, grid, density, goals, x, y);
                 break;
             }
-            double value = GridField.interpolate(potential, stride, x, y);
+            double value = reached == reached ? reached : GridField.interpolate(potential, stride, x, y);
+            reached = Double.NaN;
             boolean moved = false;
             if (gradient(potential, stride, x, y, gradient)) {
                 double norm = Math.sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1]);
@@ -74,12 +87,15 @@ public final class GradientDescent {
                     double nx = x - length * gradient[0] / norm;
                     double ny = y - length * gradient[1] / norm;
                     if (nx >= 0 && ny >= 0 && nx < grid.geometry().width() && ny < grid.geometry().height()
-                            && passable(grid, density, x, y, nx, ny)
-                            && GridField.interpolate(potential, stride, nx, ny) < value - minDrop * length) {
-                        x = nx;
-                        y = ny;
-                        moved = true;
-                        break;
+                            && passable(grid, density, x, y, nx, ny)) {
+                        double next = GridField.interpolate(potential, stride, nx, ny);
+                        if (next < value - minDrop * length) {
+                            x = nx;
+                            y = ny;
+                            reached = next;
+                            moved = true;
+                            break;
+                        }
                     }
                 }
             }
@@ -113,15 +129,19 @@ public final class GradientDescent {
     private static final class Shortcut {
         private final GridTraversal.PaddedDensity cells;
         private final Waypoints kept = new Waypoints();
+        private final FreeBoxes free;
         private double anchorX;
         private double anchorY;
         private boolean hasPending;
         private double pendingX;
         private double pendingY;
         private double pendingCost;
+        /** False while {@link #pendingCost} is the closed form of a free box rather than the traversal's sum. */
+        private boolean pendingExact;
 
-        Shortcut(PlanningGrid grid, float[] density) {
+        Shortcut(PlanningGrid grid, float[] density, boolean freeBoxes) {
             cells = new GridTraversal.PaddedDensity(grid, density);
+            free = freeBoxes ? new FreeBoxes(grid, density) : null;
         }
 
         /** Takes the path's next point (the first is always kept). */
@@ -137,23 +157,46 @@ public final class GradientDescent {
                 pendingX = x;
                 pendingY = y;
                 pendingCost = GridTraversal.integrate(anchorX, anchorY, x, y, cells);
+                pendingExact = true;
                 return;
             }
             double step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
-            double via = pendingCost + step;
             double ax = x - anchorX;
             double ay = y - anchorY;
-            // the direct walk stops once it exceeds the way via the pending point: it is then rejected either way
-            double direct = ax * ax + ay * ay <= MAX_SHORTCUT * MAX_SHORTCUT
-                    ? GridTraversal.integrate(anchorX, anchorY, x, y, cells, via)
-                    : Double.POSITIVE_INFINITY;
-            if (direct <= via) {
-                pendingCost = direct;
+            boolean shortcut;
+            if (ax * ax + ay * ay > MAX_SHORTCUT * MAX_SHORTCUT) {
+                shortcut = false;
             } else {
+                double via = pendingCost + step;
+                double closed = free == null ? Double.NaN : free.integral(anchorX, anchorY, x, y);
+                // the closed form decides when it is clear of the way via by more than both can differ from the
+                // traversal's sums (see FreeBoxes); else, and off free boxes, the traversal's sums decide
+                if (closed < via * (1 - FreeBoxes.DECISIVE)) {
+                    shortcut = true;
+                    pendingCost = closed;
+                    pendingExact = false;
+                } else if (closed > via * (1 + FreeBoxes.DECISIVE)) {
+                    shortcut = false;
+                } else {
+                    if (!pendingExact) {
+                        pendingCost = GridTraversal.integrate(anchorX, anchorY, pendingX, pendingY, cells);
+                        pendingExact = true;
+                        via = pendingCost + step;
+                    }
+                    // the direct walk stops once it exceeds the way via the pending point: it is then rejected
+                    double direct = GridTraversal.integrate(anchorX, anchorY, x, y, cells, via);
+                    shortcut = direct <= via;
+                    if (shortcut) {
+                        pendingCost = direct;
+                    }
+                }
+            }
+            if (!shortcut) {
                 kept.add(pendingX, pendingY);
                 anchorX = pendingX;
                 anchorY = pendingY;
                 pendingCost = step; // the integral from the new anchor, as computed for the way via it
+                pendingExact = true;
             }
             pendingX = x;
             pendingY = y;
@@ -165,6 +208,50 @@ public final class GradientDescent {
                 hasPending = false;
             }
             return kept.toArray();
+        }
+    }
+
+    /**
+     * The integral of a segment whose cells' bounding box is all free: its length times the free density, without the
+     * traversal. Only where it is decisive: the traversal sums the segment's pieces cell by cell (at most 2 x
+     * {@value GradientDescent#MAX_SHORTCUT} + 2 of them, each product and sum rounded, the crossing parameters
+     * accumulated), which differs from the closed form by a few hundred units in the last place at most, far below
+     * {@value #DECISIVE} of either; so where the closed form and the way via the pending point differ by more than that
+     * fraction, the traversal's sums would decide the same, and the path is the same point for point
+     * ({@code GradientDescentTest} compares both on random grids).
+     */
+    static final class FreeBoxes {
+        /** Relative difference beyond which the closed form decides a shortcut. */
+        static final double DECISIVE = 1e-10;
+        /** Shortest segment the closed form is used for (the traversal counts pieces below 1e-9 as points). */
+        private static final double MIN_LENGTH = 1e-6;
+        private final byte[] runs;
+        private final int stride;
+        private final double freeDensity;
+
+        FreeBoxes(PlanningGrid grid, float[] density) {
+            this.runs = grid.freeRuns();
+            this.stride = grid.stride();
+            this.freeDensity = density[Costmap.FREE];
+        }
+
+        /** @return the closed-form integral from (x0, y0) to (x1, y1), or NaN when a cell of its box is not free */
+        double integral(double x0, double y0, double x1, double y1) {
+            int c0 = (int) Math.floor(Math.min(x0, x1));
+            int c1 = (int) Math.floor(Math.max(x0, x1));
+            int r0 = (int) Math.floor(Math.min(y0, y1));
+            int r1 = (int) Math.floor(Math.max(y0, y1));
+            int width = c1 - c0;
+            // points lie inside the grid: the box's rows and its left column have padded indices
+            for (int i = (r0 + 1) * stride + c0 + 1, end = (r1 + 1) * stride + c0 + 1; i <= end; i += stride) {
+                if (runs[i] <= width) {
+                    return Double.NaN;
+                }
+            }
+            double dx = x1 - x0;
+            double dy = y1 - y0;
+            double length = Math.sqrt(dx * dx + dy * dy);
+            return length >= MIN_LENGTH ? length * freeDensity : Double.NaN;
         }
     }
 

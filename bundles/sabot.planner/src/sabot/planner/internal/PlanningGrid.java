@@ -13,11 +13,15 @@ import sabot.model.map.GridGeometry;
  */
 public final class PlanningGrid {
 
+    /** Longest run of free cells {@link #freeRuns} counts. */
+    public static final int MAX_FREE_RUN = 64;
+
     private Costmap source;
     private long sourceVersion;
     private GridGeometry geometry;
     private int stride;
     private byte[] costs = new byte[0];
+    private byte[] freeRuns = new byte[0];
     private byte[] previous = new byte[0];
     private CellRegion previousRegion = CellRegion.EMPTY;
 
@@ -35,8 +39,10 @@ public final class PlanningGrid {
             int padded = stride * (geometry.height() + 2);
             if (costs.length != padded) {
                 costs = new byte[padded];
+                freeRuns = new byte[padded];
             }
             java.util.Arrays.fill(costs, (byte) Costmap.LETHAL);
+            java.util.Arrays.fill(freeRuns, (byte) 0); // the ring's runs, which are never recounted
             changed = geometry.bounds();
         } else {
             changed = costmap.changedSince(sourceVersion);
@@ -58,8 +64,23 @@ public final class PlanningGrid {
         }
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             costmap.copyRow(row, changed.minColumn(), changed.maxColumn(), costs, index(changed.minColumn(), row));
+            countFreeRuns(row, changed.minColumn(), changed.maxColumn());
         }
         return changed;
+    }
+
+    /**
+     * Recounts {@link #freeRuns} of a row from {@code maxColumn} leftwards: the cells of the changed columns and the
+     * {@value #MAX_FREE_RUN} to their left, whose runs may reach into them.
+     */
+    private void countFreeRuns(int row, int minColumn, int maxColumn) {
+        int from = index(maxColumn, row);
+        int to = index(Math.max(-1, minColumn - MAX_FREE_RUN), row);
+        int next = freeRuns[from + 1];
+        for (int i = from; i >= to; i--) {
+            next = costs[i] == Costmap.FREE ? Math.min(MAX_FREE_RUN, next + 1) : 0;
+            freeRuns[i] = (byte) next;
+        }
     }
 
     /**
@@ -92,6 +113,15 @@ public final class PlanningGrid {
     /** @return the padded cost array (unsigned bytes); read-only for callers */
     public byte[] costs() {
         return costs;
+    }
+
+    /**
+     * @return by padded index, the number of free cells (cost {@link Costmap#FREE}) from that cell rightwards in its row,
+     *         up to {@value #MAX_FREE_RUN}: a box of cells is all free when the run at its left edge covers its width in
+     *         each of its rows; read-only for callers
+     */
+    public byte[] freeRuns() {
+        return freeRuns;
     }
 
     /** @return padded index of an in-grid cell */
