@@ -68,6 +68,7 @@ public final class GradientDescent {
         // once per cell first the cell's own centre, see pastCorner)
         long maxSteps = (long) (value(potential, cell) / (minDrop * STEP / 2)) + 2L * grid.paddedSize() + 16;
         double[] gradient = new double[2];
+        Centres centres = new Centres(potential, stride);
         double reached = Double.NaN; // N at (x, y) when the last step was a gradient step, which computed it
         for (long step = 0; ; step++) {
             if (step > maxSteps) {
@@ -81,7 +82,7 @@ public final class GradientDescent {
             double value = reached == reached ? reached : GridField.interpolate(potential, stride, x, y);
             reached = Double.NaN;
             boolean moved = false;
-            if (gradient(potential, stride, x, y, gradient)) {
+            if (gradient(centres, x, y, gradient)) {
                 double norm = Math.sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1]);
                 for (double length = STEP; norm > 0 && length >= STEP / 2; length /= 2) {
                     double nx = x - length * gradient[0] / norm;
@@ -160,7 +161,11 @@ public final class GradientDescent {
                 pendingExact = true;
                 return;
             }
-            double step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
+            double step = free == null ? Double.NaN : free.integral(pendingX, pendingY, x, y);
+            boolean stepExact = step != step;
+            if (stepExact) {
+                step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
+            }
             double ax = x - anchorX;
             double ay = y - anchorY;
             boolean shortcut;
@@ -181,8 +186,12 @@ public final class GradientDescent {
                     if (!pendingExact) {
                         pendingCost = GridTraversal.integrate(anchorX, anchorY, pendingX, pendingY, cells);
                         pendingExact = true;
-                        via = pendingCost + step;
                     }
+                    if (!stepExact) {
+                        step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
+                        stepExact = true;
+                    }
+                    via = pendingCost + step;
                     // the direct walk stops once it exceeds the way via the pending point: it is then rejected
                     double direct = GridTraversal.integrate(anchorX, anchorY, x, y, cells, via);
                     shortcut = direct <= via;
@@ -196,7 +205,7 @@ public final class GradientDescent {
                 anchorX = pendingX;
                 anchorY = pendingY;
                 pendingCost = step; // the integral from the new anchor, as computed for the way via it
-                pendingExact = true;
+                pendingExact = stepExact;
             }
             pendingX = x;
             pendingY = y;
@@ -359,36 +368,70 @@ public final class GradientDescent {
      * of jumping at cell borders (the gradient of the bilinear interpolation itself is discontinuous there, and makes
      * the path zig-zag in valleys of cost). False when a cell around the point is unreached.
      */
-    private static boolean gradient(int[] potential, int stride, double x, double y, double[] out) {
+    private static boolean gradient(Centres centres, double x, double y, double[] out) {
         double u = x - 0.5;
         double v = y - 0.5;
         int c0 = (int) Math.floor(u);
         int r0 = (int) Math.floor(v);
         double fu = u - c0;
         double fv = v - r0;
-        int i00 = (r0 + 1) * stride + c0 + 1;
+        int i00 = (r0 + 1) * centres.stride + c0 + 1;
         double gx = 0;
         double gy = 0;
         for (int k = 0; k < 4; k++) {
-            int cell = i00 + (k & 1) + (k >> 1) * stride;
-            double weight = ((k & 1) == 0 ? 1 - fu : fu) * ((k >> 1) == 0 ? 1 - fv : fv);
-            float centre = value(potential, cell);
-            if (centre == Float.POSITIVE_INFINITY) {
+            int slot = centres.slot(i00 + (k & 1) + (k >> 1) * centres.stride);
+            if (slot < 0) {
                 return false;
             }
-            double dx = difference(value(potential, cell - 1), centre, value(potential, cell + 1));
-            double dy = difference(value(potential, cell - stride), centre, value(potential, cell + stride));
-            // sqrt rather than Math.hypot: no overflow to guard against here, and hypot (a software routine) made
-            // the descent as costly as the navigation function on small grids
-            double norm = Math.sqrt(dx * dx + dy * dy);
-            if (norm > 0) {
-                gx += weight * dx / norm;
-                gy += weight * dy / norm;
-            }
+            double weight = ((k & 1) == 0 ? 1 - fu : fu) * ((k >> 1) == 0 ? 1 - fv : fv);
+            gx += weight * centres.ux[slot];
+            gy += weight * centres.uy[slot];
         }
         out[0] = gx;
         out[1] = gy;
         return true;
+    }
+
+    /**
+     * The normalised gradients of the cell centres a descent has blended last, by cell (a half-cell step mostly keeps
+     * the four centres around it, or two of them): a small table indexed by the cell's low bits, so that a centre is
+     * computed once while the descent passes it.
+     */
+    private static final class Centres {
+        private static final int SLOTS = 64;
+        private final int[] potential;
+        private final int stride;
+        private final int[] cells = new int[SLOTS];
+        private final boolean[] reached = new boolean[SLOTS];
+        private final double[] ux = new double[SLOTS];
+        private final double[] uy = new double[SLOTS];
+
+        Centres(int[] potential, int stride) {
+            this.potential = potential;
+            this.stride = stride;
+            java.util.Arrays.fill(cells, -1);
+        }
+
+        /** @return the slot holding the cell's normalised gradient, or -1 when the cell is unreached */
+        int slot(int cell) {
+            int slot = cell & (SLOTS - 1);
+            if (cells[slot] != cell) {
+                cells[slot] = cell;
+                float centre = value(potential, cell);
+                reached[slot] = centre != Float.POSITIVE_INFINITY;
+                if (!reached[slot]) {
+                    return -1; // perhaps a cell of the padding ring, whose outer neighbours do not exist
+                }
+                double dx = difference(value(potential, cell - 1), centre, value(potential, cell + 1));
+                double dy = difference(value(potential, cell - stride), centre, value(potential, cell + stride));
+                // sqrt rather than Math.hypot: no overflow to guard against here, and hypot (a software routine) made
+                // the descent as costly as the navigation function on small grids
+                double norm = Math.sqrt(dx * dx + dy * dy);
+                ux[slot] = norm > 0 ? dx / norm : 0;
+                uy[slot] = norm > 0 ? dy / norm : 0;
+            }
+            return reached[slot] ? slot : -1;
+        }
     }
 
     /** Central difference of N across a cell, one-sided where a neighbour is unreached. */
@@ -532,6 +575,10 @@ public final class GradientDescent {
             byte[] costs = grid.costs();
             int stride = grid.stride();
             int i00 = (r0 + 1) * stride + c0 + 1;
+            byte[] runs = grid.freeRuns();
+            if (runs[i00] > c1 - c0 && runs[(r1 + 1) * stride + c0 + 1] > c1 - c0) {
+                return true;
+            }
             int i11 = (r1 + 1) * stride + c1 + 1;
             int i01 = (r1 + 1) * stride + c0 + 1;
             int i10 = (r0 + 1) * stride + c1 + 1;
