@@ -237,11 +237,15 @@ public final class GradientDescent {
         private static final double MIN_LENGTH = 1e-6;
         private final byte[] runs;
         private final int stride;
+        private final int width;
+        private final int height;
         private final double freeDensity;
 
         FreeBoxes(PlanningGrid grid, float[] density) {
             this.runs = grid.freeRuns();
             this.stride = grid.stride();
+            this.width = grid.geometry().width();
+            this.height = grid.geometry().height();
             this.freeDensity = density[Costmap.FREE];
         }
 
@@ -251,10 +255,12 @@ public final class GradientDescent {
             int c1 = (int) Math.floor(Math.max(x0, x1));
             int r0 = (int) Math.floor(Math.min(y0, y1));
             int r1 = (int) Math.floor(Math.max(y0, y1));
-            int width = c1 - c0;
-            // points lie inside the grid: the box's rows and its left column have padded indices
+            if (c0 < 0 || r0 < 0 || c1 >= width || r1 >= height) {
+                return Double.NaN; // the descent's points lie inside the grid; the traversal knows the outside
+            }
+            int span = c1 - c0;
             for (int i = (r0 + 1) * stride + c0 + 1, end = (r1 + 1) * stride + c0 + 1; i <= end; i += stride) {
-                if (runs[i] <= width) {
+                if (runs[i] <= span) {
                     return Double.NaN;
                 }
             }

@@ -68,6 +68,8 @@ class GradientDescentTest {
         assertTrue(Double.isNaN(boxes.integral(0.5, 18.5, 4.5, 12.5)), "lethal cell inside the box");
         assertEquals(5 * free, boxes.integral(8.5, 6.5, 11.5, 10.5), 1e-12, "the box just below the graded cell");
         assertEquals(Math.sqrt(2) * free, boxes.integral(19.0, 19.0, 18.0, 18.0), 1e-12, "at the grid's corner");
+        assertTrue(Double.isNaN(boxes.integral(19.5, 19.5, 20.5, 19.5)), "a point outside the grid");
+        assertTrue(Double.isNaN(boxes.integral(0.5, 0.5, -0.5, 0.5)), "a point outside the grid");
     }
 
     @Test
