@@ -9,7 +9,6 @@ import java.util.Random;
 
 import org.junit.jupiter.api.Test;
 
-import sabot.model.geometry.Point2D;
 import sabot.model.map.CellRegion;
 import sabot.model.map.Costmap;
 import sabot.planner.CostModel;
