@@ -163,7 +163,7 @@ public final class GradientDescent {
                 pendingExact = true;
                 return;
             }
-            double step = free == null ? Double.NaN : free.integral(pendingX, pendingY, x, y);
+            double step = closedForm(pendingX, pendingY, x, y);
             boolean stepExact = Double.isNaN(step);
             if (stepExact) {
                 step = GridTraversal.integrate(pendingX, pendingY, x, y, cells);
@@ -175,7 +175,7 @@ public final class GradientDescent {
                 shortcut = false;
             } else {
                 double via = pendingCost + step;
-                double closed = free == null ? Double.NaN : free.integral(anchorX, anchorY, x, y);
+                double closed = closedForm(anchorX, anchorY, x, y);
                 // the closed form decides when it is clear of the way via by more than both can differ from the
                 // traversal's sums (see FreeBoxes); else, and off free boxes, the traversal's sums decide
                 if (closed < via * (1 - FreeBoxes.DECISIVE)) {
@@ -211,6 +211,11 @@ public final class GradientDescent {
             }
             pendingX = x;
             pendingY = y;
+        }
+
+        /** The closed form of a free box's integral ({@link FreeBoxes}), or NaN where there is none or it is off. */
+        private double closedForm(double x0, double y0, double x1, double y1) {
+            return free == null ? Double.NaN : free.integral(x0, y0, x1, y1);
         }
 
         double[] finish() {
@@ -585,6 +590,7 @@ public final class GradientDescent {
             int stride = grid.stride();
             int i00 = (r0 + 1) * stride + c0 + 1;
             byte[] runs = grid.freeRuns();
+            // both rows' free runs cover the box: all free, so passable (two loads instead of the eight below)
             if (runs[i00] > c1 - c0 && runs[(r1 + 1) * stride + c0 + 1] > c1 - c0) {
                 return true;
             }
