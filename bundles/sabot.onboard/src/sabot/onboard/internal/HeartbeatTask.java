@@ -18,6 +18,7 @@ import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.onboard.task.NamedThreads;
 import sabot.onboard.task.OnboardTask;
 
 /**

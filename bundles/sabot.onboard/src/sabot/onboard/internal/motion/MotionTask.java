@@ -56,7 +56,7 @@ import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
-import sabot.onboard.internal.NamedThreads;
+import sabot.onboard.task.NamedThreads;
 import sabot.onboard.internal.RealtimeScheduling;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;

@@ -41,7 +41,7 @@ import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
 import sabot.identity.InventorySource;
 import sabot.identity.QrInventory;
-import sabot.onboard.internal.NamedThreads;
+import sabot.onboard.task.NamedThreads;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;

@@ -1,8 +1,8 @@
-package sabot.onboard.internal;
+package sabot.onboard.task;
 
 import java.util.concurrent.ThreadFactory;
 
-/** Thread factories of the onboard tasks: every thread is named (a stack dump says which task it is) and a daemon. */
+/** Thread factories of the onboard tasks (for every task bundle): every thread is named (a stack dump says which task it is) and a daemon. */
 public final class NamedThreads {
 
     private NamedThreads() {
