@@ -135,7 +135,7 @@ public final class OnboardApplication implements IApplication {
     }
 
     /** @return the {@link TaskSettingsCheck} services registered for a task (see its {@link TaskSettingsCheck#TASK}) */
-    private static List<TaskSettingsCheck> settingsChecks(BundleContext bc, String task) {
+    static List<TaskSettingsCheck> settingsChecks(BundleContext bc, String task) {
         List<TaskSettingsCheck> checks = new ArrayList<>();
         try {
             for (ServiceReference<TaskSettingsCheck> ref : bc.getServiceReferences(TaskSettingsCheck.class, "("

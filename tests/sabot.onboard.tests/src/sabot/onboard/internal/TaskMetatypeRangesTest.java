@@ -113,7 +113,8 @@ class TaskMetatypeRangesTest {
         assertTrue(e.getMessage().contains("onboard.conf:2"), e.getMessage());
     }
 
-    private static <S> S service(BundleContext context, Class<S> type) throws InterruptedException {
+    /** @return the service of that type, waited for up to 10 s */
+    static <S> S service(BundleContext context, Class<S> type) throws InterruptedException {
         ServiceTracker<S, S> t = new ServiceTracker<>(context, type, null);
         t.open();
         S s = t.waitForService(10_000);

@@ -1,0 +1,501 @@
+package sabot.onboard.controlml.internal.session;
+
+import java.time.Duration;
+import java.util.List;
+import java.util.Map;
+import java.util.TreeMap;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
+
+import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
+import org.jivesoftware.smack.ConnectionListener;
+import org.jivesoftware.smack.SmackException;
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.XMPPException;
+import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
+import org.osgi.framework.BundleContext;
+import org.osgi.framework.ServiceReference;
+import org.osgi.service.component.annotations.Activate;
+import org.osgi.service.component.annotations.Component;
+import org.osgi.service.component.annotations.ConfigurationPolicy;
+import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.component.annotations.Reference;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.util.tracker.ServiceTracker;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.PresenceLevel;
+import sabot.controlml.StaleCommandPolicy;
+import sabot.fleet.NoDelaySocketFactory;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.IdentityResult;
+import sabot.identity.InventorySource;
+import sabot.identity.QrInventory;
+import sabot.onboard.task.NamedThreads;
+import sabot.onboard.session.RobotSession;
+import sabot.onboard.session.SessionListener;
+import sabot.onboard.task.OnboardTask;
+
+/**
+ * The {@code controlml} task: the robot's XMPP session ({@link RobotSession}). One {@link XMPPTCPConnection} for the
+ * component's life, so the {@link ControlMlManager} and the handlers registered on it survive reconnections.
+ * <p>
+ * Activation never waits for the network: the thread {@code sabot-session-connect} connects, and after a failed
+ * attempt or a loss tries again after {@code reconnectMin}, doubling the delay up to {@code reconnectMax}, forever.
+ * After each login it publishes the vCard identity with the QR inventory (again when the set of running tasks
+ * changes), then sends the robot's presence (the last {@link #setPresence}; at first FREE "idle"). Listeners are told on the
+ * thread {@code sabot-session-events}, in the order the changes happened.
+ * <p>
+ * Settings: {@link ControlMlSettings.Config}, read by {@link ControlMlSettings}; authorization: {@link OperatorPolicy}.
+ */
+@Designate(ocd = ControlMlSettings.Config.class, factory = false)
+@Component(name = "sabot.task.controlml", configurationPolicy = ConfigurationPolicy.REQUIRE, immediate = true,
+        service = { OnboardTask.class, RobotSession.class })
+public final class ControlMlSession implements OnboardTask, RobotSession {
+
+    private static final Logger LOG = LoggerFactory.getLogger(ControlMlSession.class);
+
+    /** Failed attempts in a row logged one by one; later ones go to debug until the session is back. */
+    static final int LOGGED_FAILURES = 3;
+    /** How long a connection attempt may wait for the server's TCP accept and stream. */
+    static final Duration CONNECT_TIMEOUT = Duration.ofSeconds(10);
+    /** Tasks start in a burst: the identity is published again once the set of tasks has been still this long. */
+    static final Duration IDENTITY_SETTLE = Duration.ofSeconds(1);
+
+    private final ControlMlSettings settings;
+    private final InventorySource inventorySource;
+    private final String version;
+    private final XMPPTCPConnection connection;
+    private final ControlMlManager controlMl;
+    private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
+            "sabot-session-connect"));
+    private final ExecutorService notifier = Executors.newSingleThreadExecutor(
+            NamedThreads.daemon("sabot-session-events"));
+    private final List<SessionListener> listeners = new CopyOnWriteArrayList<>();
+    private final ServiceTracker<OnboardTask, OnboardTask> tasks;
+
+    private final Object lock = new Object();
+    /** Guarded by {@link #lock}: the state listeners were last told. */
+    private boolean online;
+    /** Guarded by {@link #lock}: a connection attempt is scheduled. */
+    private boolean connectPending;
+    /** Guarded by {@link #lock}: an identity publication is scheduled. */
+    private boolean identityPending;
+    /** Guarded by {@link #lock}: an attempt is running (it handles a loss during itself). */
+    private boolean attempting;
+    /** Guarded by {@link #lock}. */
+    private String lastLoss = "not connected yet";
+    private volatile boolean stopping;
+
+    /** Connector thread only: failed attempts since the last login. */
+    private int failures;
+    private volatile long offlineSinceNanos = System.nanoTime();
+
+    private record Announced(PresenceLevel level, String reason) {
+    }
+
+    private volatile Announced presence = new Announced(PresenceLevel.FREE, "idle");
+
+    @Activate
+    public ControlMlSession(@Reference InventorySource inventorySource, BundleContext context,
+            Map<String, Object> properties) {
+        this.settings = ControlMlSettings.of(properties);
+        this.inventorySource = inventorySource;
+        this.version = context.getBundle().getVersion().toString();
+        XMPPTCPConnectionConfiguration.Builder config = XMPPTCPConnectionConfiguration.builder();
+        try {
+            config.setXmppDomain(settings.jid().asDomainBareJid())
+                    .setHostAddressByNameOrIp(settings.server()) // a name is resolved when connecting, not here
+                    .setPort(settings.port())
+                    .setUsernameAndPassword(settings.jid().getLocalpart(), settings.password())
+                    .setResource(settings.resource())
+                    .setSecurityMode(securityFor(settings.server()))
+                    .setSocketFactory(new NoDelaySocketFactory())
+                    .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
+                    .setSendPresence(false); // the session sends its own presence, with level and reason
+        } catch (org.jxmpp.stringprep.XmppStringprepException e) {
+            throw new IllegalArgumentException("resource '" + settings.resource() + "': " + e.getMessage(), e);
+        }
+        connection = new XMPPTCPConnection(config.build());
+        connection.setUseStreamManagement(true);
+        connection.setUseStreamManagementResumption(true);
+        Roster roster = Roster.getInstanceFor(connection);
+        OperatorPolicy policy = new OperatorPolicy(settings.operators(), roster);
+        roster.addSubscribeListener((from, request) -> policy.approvesSubscription(from)
+                ? SubscribeAnswer.ApproveAndAlsoRequestIfRequired : SubscribeAnswer.Deny);
+        controlMl = ControlMlManager.getInstanceFor(connection);
+        controlMl.setAccessPolicy(policy);
+        controlMl.setStaleCommandPolicy(StaleCommandPolicy.refuseOlderThan(settings.staleCommandAfter()));
+        connection.addConnectionListener(new ConnectionListener() {
+            @Override
+            public void connectionClosedOnError(Exception e) {
+                lost(describe(e));
+            }
+
+            @Override
+            public void connectionClosed() {
+                if (!stopping) {
+                    lost("the connection was closed");
+                }
+            }
+        });
+        tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
+            @Override
+            public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
+                OnboardTask task = super.addingService(reference);
+                scheduleIdentity();
+                return task;
+            }
+
+            @Override
+            public void removedService(ServiceReference<OnboardTask> reference, OnboardTask task) {
+                scheduleIdentity();
+                super.removedService(reference, task);
+            }
+        };
+        tasks.open();
+        LOG.info("controlml task started: {} on {}:{} (resource {}), {}", settings.jid(), settings.server(),
+                settings.port(), settings.resource(), settings.operators().isEmpty()
+                        ? "operators: contacts with a mutual subscription"
+                        : "operators: " + settings.operators());
+        scheduleConnect(Duration.ZERO);
+    }
+
+    /**
+     * Plain TCP to a server on this machine (the private test and demo servers, which offer STARTTLS without a usable
+     * certificate); elsewhere TLS is required, so the password never crosses a network in clear.
+     */
+    static SecurityMode securityFor(String server) {
+        boolean loopback = server.equals("localhost") || server.startsWith("127.") || server.equals("::1")
+                || server.equals("[::1]");
+        return loopback ? SecurityMode.disabled : SecurityMode.required;
+    }
+
+    @Deactivate
+    void deactivate() {
+        stopping = true;
+        tasks.close();
+        connector.shutdownNow();
+        try {
+            // an attempt in progress ends within the connect timeout (a blocking socket connect ignores interrupts)
+            connector.awaitTermination(CONNECT_TIMEOUT.toMillis() + 1000, TimeUnit.MILLISECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        boolean wasOnline;
+        synchronized (lock) {
+            wasOnline = online;
+            online = false;
+        }
+        if (connection.isConnected()) {
+            try {
+                connection.disconnect(connection.getStanzaFactory().buildPresenceStanza().ofType(
+                        Presence.Type.unavailable).setStatus("stopped").build());
+            } catch (SmackException.NotConnectedException e) {
+                connection.instantShutdown();
+            }
+        }
+        if (wasOnline) {
+            notify(l -> l.offline("the controlml task stopped"));
+        }
+        notifier.shutdown();
+        try {
+            notifier.awaitTermination(5, TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        LOG.info("controlml task stopped: {} disconnected", settings.jid());
+    }
+
+    // ------------------------------------------------------------------------------------------ connecting
+
+    private void scheduleConnect(Duration delay) {
+        synchronized (lock) {
+            if (stopping || connectPending) {
+                return;
+            }
+            connectPending = true;
+        }
+        try {
+            connector.schedule(this::attempt, delay.toNanos(), TimeUnit.NANOSECONDS);
+        } catch (RejectedExecutionException stopped) {
+            // deactivated meanwhile
+        }
+    }
+
+    /** One connection attempt, on the connector thread. */
+    private void attempt() {
+        synchronized (lock) {
+            connectPending = false;
+            if (stopping) {
+                return;
+            }
+            attempting = true;
+        }
+        boolean nowOnline = false;
+        try {
+            try {
+                if (!connection.isConnected()) {
+                    connection.connect();
+                }
+                if (!connection.isAuthenticated()) {
+                    connection.login();
+                }
+            } catch (SmackException | XMPPException | java.io.IOException | RuntimeException e) {
+                failed(describe(e));
+                return;
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt(); // deactivation
+                return;
+            }
+            boolean retry;
+            synchronized (lock) {
+                attempting = false;
+                // a loss between login and here was left to this attempt by lost()
+                nowOnline = connection.isAuthenticated() && !stopping;
+                retry = !nowOnline && !stopping;
+                if (nowOnline) {
+                    online = true;
+                    notify(SessionListener::online);
+                }
+            }
+            if (retry) {
+                failed("the connection was lost right after login");
+            }
+        } finally {
+            synchronized (lock) {
+                attempting = false;
+            }
+        }
+        if (!nowOnline) {
+            return;
+        }
+        double offlineFor = (System.nanoTime() - offlineSinceNanos) / 1e9;
+        LOG.info("online as {}{}", connection.getUser(), failures == 0 ? "" : String.format(
+                " after %d failed attempt(s), %.1f s offline", failures, offlineFor));
+        failures = 0;
+        publishIdentity(); // first: whoever sees the presence finds the vCard already stored
+        sendPresence();
+    }
+
+    private void failed(String reason) {
+        failures++;
+        Duration delay = backoff(failures, settings.reconnectMin(), settings.reconnectMax());
+        if (failures <= LOGGED_FAILURES) {
+            LOG.warn("cannot connect to {}:{} as {} (attempt {}): {}; next attempt in {} s{}", settings.server(),
+                    settings.port(), settings.jid(), failures, reason, delay.toMillis() / 1000.0,
+                    failures == LOGGED_FAILURES ? " (further failures are logged at debug level until the session is"
+                            + " back; it keeps trying every " + settings.reconnectMax().toMillis() / 1000.0
+                            + " s at most)" : "");
+        } else {
+            LOG.debug("cannot connect (attempt {}): {}; next attempt in {} s", failures, reason, delay.toMillis()
+                    / 1000.0);
+        }
+        scheduleConnect(delay); // before the shutdown below, whose closed callback would schedule the minimum
+        if (connection.isConnected()) {
+            connection.instantShutdown(); // e.g. connected but refused at login: start the next attempt afresh
+        }
+    }
+
+    /** @return the delay after the n-th failure in a row: min, 2 min, 4 min... capped at max */
+    static Duration backoff(int failures, Duration min, Duration max) {
+        long nanos = min.toNanos();
+        for (int i = 1; i < failures && nanos < max.toNanos(); i++) {
+            nanos *= 2;
+        }
+        return Duration.ofNanos(Math.min(nanos, max.toNanos()));
+    }
+
+    /** The connection was lost (Smack's reader or writer thread, or a ping). */
+    private void lost(String reason) {
+        synchronized (lock) {
+            if (stopping) {
+                return;
+            }
+            lastLoss = reason;
+            if (online) {
+                online = false;
+                offlineSinceNanos = System.nanoTime();
+                LOG.warn("offline: {}; reconnecting in {} s", reason, settings.reconnectMin().toMillis() / 1000.0);
+                notify(l -> l.offline(reason));
+            }
+            if (attempting) {
+                return; // the attempt in progress schedules the next one
+            }
+        }
+        scheduleConnect(settings.reconnectMin());
+    }
+
+    private static String describe(Throwable e) {
+        String message = e.getMessage();
+        return e.getClass().getSimpleName() + (message == null || message.isBlank() ? "" : ": " + message.strip());
+    }
+
+    /** Queues a notification; call with {@link #lock} held so that notifications keep the order of the changes. */
+    private void notify(java.util.function.Consumer<SessionListener> event) {
+        for (SessionListener l : listeners) {
+            try {
+                notifier.execute(() -> {
+                    try {
+                        event.accept(l);
+                    } catch (RuntimeException e) {
+                        LOG.warn("session listener {} failed", l, e);
+                    }
+                });
+            } catch (RejectedExecutionException stopped) {
+                return;
+            }
+        }
+    }
+
+    // ------------------------------------------------------------------------------------------ announcing
+
+    private void sendPresence() {
+        Announced p = presence;
+        try {
+            connection.sendStanza(connection.getStanzaFactory().buildPresenceStanza().ofType(Presence.Type.available)
+                    .setMode(p.level().mode()).setStatus(p.reason()).build());
+        } catch (SmackException.NotConnectedException e) {
+            LOG.debug("presence not sent (offline); sent again at the next login");
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    private void scheduleIdentity() {
+        synchronized (lock) {
+            if (!online || identityPending || stopping) {
+                return; // published anyway at the next login
+            }
+            identityPending = true;
+        }
+        try {
+            connector.schedule(() -> {
+                synchronized (lock) {
+                    identityPending = false;
+                }
+                if (isOnline()) {
+                    publishIdentity();
+                }
+            }, IDENTITY_SETTLE.toNanos(), TimeUnit.NANOSECONDS);
+        } catch (RejectedExecutionException stopped) {
+            // deactivated meanwhile
+        }
+    }
+
+    private void publishIdentity() {
+        Map<String, String> running = runningTasks();
+        IdentityResult<QrInventory.Encoded> result;
+        try {
+            result = DeviceIdentityManager.getInstanceFor(connection).publish(RobotIdentity.profile(settings, version,
+                    running), RobotIdentity.inventory(inventorySource, settings, running));
+        } catch (RuntimeException e) {
+            LOG.warn("vCard identity not published: {}", describe(e));
+            return;
+        }
+        if (result instanceof IdentityResult.Err<QrInventory.Encoded> err) {
+            if (stopping) {
+                return; // interrupted by deactivation
+            }
+            LOG.warn("vCard identity not published: {} ({})", err.text(), err.problem());
+        } else {
+            QrInventory.Encoded qr = result.orElseThrow();
+            LOG.info("vCard identity published: {} task(s), inventory of {} bytes as a {} QR code", running.size(),
+                    qr.xmlBytes(), qr.form());
+        }
+    }
+
+    /** @return the running tasks' names and their bundles' versions, sorted by name */
+    private Map<String, String> runningTasks() {
+        Map<String, String> running = new TreeMap<>();
+        ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
+        if (refs != null) {
+            for (ServiceReference<OnboardTask> ref : refs) {
+                OnboardTask task = tasks.getService(ref);
+                if (task != null && ref.getBundle() != null) {
+                    running.put(task.name(), ref.getBundle().getVersion().toString());
+                }
+            }
+        }
+        return running;
+    }
+
+    // ------------------------------------------------------------------------------------------ RobotSession
+
+    @Override
+    public String jid() {
+        return settings.jid().toString();
+    }
+
+    @Override
+    public XMPPConnection connection() {
+        return connection;
+    }
+
+    @Override
+    public ControlMlManager controlMl() {
+        return controlMl;
+    }
+
+    @Override
+    public boolean isOnline() {
+        synchronized (lock) {
+            return online;
+        }
+    }
+
+    @Override
+    public void setPresence(PresenceLevel level, String reason) {
+        presence = new Announced(java.util.Objects.requireNonNull(level, "level"), reason == null ? "" : reason);
+        if (isOnline()) {
+            try {
+                connector.execute(this::sendPresence); // never on the caller's thread: it may be the control loop
+            } catch (RejectedExecutionException stopped) {
+                // deactivated meanwhile
+            }
+        }
+    }
+
+    @Override
+    public void addListener(SessionListener listener) {
+        synchronized (lock) {
+            listeners.add(listener);
+            if (online) {
+                try {
+                    notifier.execute(listener::online);
+                } catch (RejectedExecutionException stopped) {
+                    // deactivated meanwhile
+                }
+            }
+        }
+    }
+
+    @Override
+    public void removeListener(SessionListener listener) {
+        listeners.remove(listener);
+    }
+
+    // ------------------------------------------------------------------------------------------ OnboardTask
+
+    @Override
+    public String name() {
+        return ControlMlSettings.TASK;
+    }
+
+    @Override
+    public String status() {
+        synchronized (lock) {
+            return online ? "online as " + connection.getUser() : "offline (" + lastLoss + "), reconnecting";
+        }
+    }
+}

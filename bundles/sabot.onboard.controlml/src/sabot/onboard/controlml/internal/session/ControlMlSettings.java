@@ -1,0 +1,253 @@
+package sabot.onboard.controlml.internal.session;
+
+import java.nio.file.Path;
+import java.nio.file.Paths;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.Jid;
+import org.jxmpp.jid.impl.JidCreate;
+import org.jxmpp.stringprep.XmppStringprepException;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
+
+import sabot.onboard.task.InvalidSettings;
+import sabot.onboard.task.TaskProperties;
+import sabot.onboard.task.OnboardTask;
+import sabot.onboard.task.TaskSettingsCheck.Problem;
+
+/**
+ * The settings of the {@code controlml} task that the session uses (all of {@link Config} but the telemetry rates,
+ * which belong to the ControlML endpoint). Types and ranges are the Metatype's; this adds what it cannot say: JID
+ * syntax, the password file's existence and permissions, reconnectMin &le; reconnectMax.
+ *
+ * @param server            the XMPP server's host name or IP address
+ * @param port              its c2s port
+ * @param jid               the robot's account
+ * @param password          read from the password file
+ * @param resource          the resource the session binds
+ * @param reconnectMin      first delay after a loss or failed attempt; doubles up to {@code reconnectMax}
+ * @param reconnectMax      longest delay between two attempts
+ * @param operators         who may set; empty: contacts with a mutual subscription (see {@link OperatorPolicy})
+ * @param staleCommandAfter sets that waited longer at the server are refused
+ * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
+ */
+public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, String resource,
+        Duration reconnectMin, Duration reconnectMax, Set<EntityBareJid> operators, Duration staleCommandAfter,
+        String robotName) {
+
+    /** The task's name. */
+    public static final String TASK = "controlml";
+
+    static final String DEFAULT_SERVER = "127.0.0.1";
+    static final int DEFAULT_PORT = 5222;
+    static final String DEFAULT_RESOURCE = "onboard";
+    static final double DEFAULT_RECONNECT_MIN_S = 1;
+    static final double DEFAULT_RECONNECT_MAX_S = 30;
+    /** {@code StaleCommandPolicy.DEFAULT}'s age, s (a test checks they agree: a Metatype default is a constant). */
+    static final double DEFAULT_STALE_COMMAND_AFTER_S = 30;
+    /** Shortest reconnection delay, s. */
+    static final double MIN_RECONNECT_S = 0.001;
+
+    /** Keys (setting ids) of the settings read here. */
+    static final String SERVER = "server", PORT = "port", JID = "jid", PASSWORD_FILE = "passwordFile",
+            RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
+            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter";
+
+    /**
+     * The {@code controlml} task's settings: its Metatype description, generated from these annotations. The session
+     * reads them through {@link ControlMlSettings#of}; the ControlML endpoint, which shares the configuration, takes
+     * the telemetry rates through this type.
+     */
+    @ObjectClassDefinition(id = OnboardTask.PID_PREFIX + TASK, name = "ControlML session", description = "The "
+            + "robot's XMPP account, its reconnection, who may command it, and the telemetry rates.")
+    public @interface Config {
+        /** Highest telemetry rate, Hz. */
+        double MAX_RATE_HZ = 100;
+
+        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address. To this "
+                + "machine (127.x, ::1, localhost) the session uses plain TCP; to any other server it requires TLS "
+                + "(STARTTLS with a certificate the JVM trusts).")
+        String server() default DEFAULT_SERVER;
+
+        @AttributeDefinition(name = "Port", description = "The server's client-to-server TCP port.", min = "1",
+                max = "65535")
+        int port() default DEFAULT_PORT;
+
+        @AttributeDefinition(name = "Account", description = "The robot's bare JID, e.g. sabot-01@sabot.local.")
+        String jid();
+
+        @AttributeDefinition(name = "Password file", description = "File whose first line is the account's password; "
+                + "a regular file readable by its owner only (chmod 600).")
+        String passwordFile();
+
+        @AttributeDefinition(name = "Resource", description = "The XMPP resource of the robot's session.")
+        String resource() default DEFAULT_RESOURCE;
+
+        @AttributeDefinition(name = "First reconnection delay", description = "Seconds before the first new attempt "
+                + "after a loss or a failed attempt; the delay doubles after each failure.", min = "" + MIN_RECONNECT_S,
+                max = "3600")
+        double reconnectMin() default DEFAULT_RECONNECT_MIN_S;
+
+        @AttributeDefinition(name = "Longest reconnection delay", description = "Seconds between two attempts at "
+                + "most; at least reconnectMin.", min = "" + MIN_RECONNECT_S, max = "3600")
+        double reconnectMax() default DEFAULT_RECONNECT_MAX_S;
+
+        @AttributeDefinition(name = "Operators", required = false, description = "Comma-separated bare JIDs that may "
+                + "send set requests (the robot's other contacts with a mutual subscription may only get). Empty: "
+                + "every contact with a mutual subscription in the robot's roster may set.")
+        String operators() default "";
+
+        @AttributeDefinition(name = "Stale command age", description = "Seconds a set may have waited at the server "
+                + "(offline delivery) before it is refused as stale.", min = "0", max = "86400")
+        double staleCommandAfter() default DEFAULT_STALE_COMMAND_AFTER_S;
+
+        @AttributeDefinition(name = "Position telemetry rate", description = "Hz at which cm.position is published "
+                + "to subscribers; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double positionRate() default 10;
+
+        @AttributeDefinition(name = "Velocity telemetry rate", description = "Hz at which cm.velocity is published; "
+                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double velocityRate() default 10;
+
+        @AttributeDefinition(name = "Mission telemetry rate", description = "Hz at which cm.mission is published; 0: "
+                + "not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double missionRate() default 1;
+
+        @AttributeDefinition(name = "Obstacles telemetry rate", description = "Hz at which cm.obstacles is published; "
+                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double obstaclesRate() default 2;
+    }
+
+    public ControlMlSettings {
+        operators = Set.copyOf(operators);
+    }
+
+    /**
+     * @param properties the task's configuration
+     * @throws InvalidSettings listing every problem
+     */
+    public static ControlMlSettings of(Map<String, ?> properties) {
+        List<Problem> problems = new ArrayList<>();
+        ControlMlSettings s = parse(properties, problems);
+        if (s == null) {
+            throw new InvalidSettings(TASK, problems);
+        }
+        return s;
+    }
+
+    /** @return the problems of a configuration, in key order of the Metatype; empty when {@link #of} succeeds */
+    public static List<Problem> problems(Map<String, ?> properties) {
+        List<Problem> problems = new ArrayList<>();
+        parse(properties, problems);
+        return problems;
+    }
+
+    @Override
+    public String toString() { // never the password
+        return "ControlMlSettings[server=" + server + ", port=" + port + ", jid=" + jid + ", resource=" + resource
+                + ", reconnect " + reconnectMin + ".." + reconnectMax + ", operators=" + operators + "]";
+    }
+
+    private static ControlMlSettings parse(Map<String, ?> properties, List<Problem> problems) {
+        TaskProperties p = new TaskProperties(properties);
+        String server = p.string(SERVER, DEFAULT_SERVER);
+        if (server.isEmpty()) {
+            problems.add(new Problem(SERVER, "no server given (a host name or an IP address)"));
+        }
+        int port = DEFAULT_PORT;
+        try {
+            long n = p.integer(PORT, DEFAULT_PORT);
+            if (n < 1 || n > 65535) {
+                problems.add(new Problem(PORT, "'" + n + "' is not a TCP port (1..65535)"));
+            }
+            port = (int) n;
+        } catch (IllegalArgumentException e) {
+            problems.add(new Problem(PORT, e.getMessage()));
+        }
+        EntityBareJid jid = null;
+        if (!p.has(JID)) {
+            problems.add(new Problem(JID, "no account given (the robot's bare JID, e.g. sabot-01@sabot.local)"));
+        } else {
+            jid = bareJid(p.string(JID, ""), JID, "", problems);
+        }
+        String password = null;
+        if (!p.has(PASSWORD_FILE)) {
+            problems.add(new Problem(PASSWORD_FILE, "no password file given"));
+        } else {
+            Path file = Paths.get(p.string(PASSWORD_FILE, "")).toAbsolutePath().normalize();
+            try {
+                password = PasswordFile.read(file);
+            } catch (PasswordFile.Refused e) {
+                problems.add(new Problem(PASSWORD_FILE, e.getMessage()));
+            }
+        }
+        String resource = p.string(RESOURCE, DEFAULT_RESOURCE);
+        if (resource.isEmpty() || resource.chars().anyMatch(c -> Character.isWhitespace(c) || c == '/')) {
+            problems.add(new Problem(RESOURCE, "'" + resource + "' is not a resource (a word without spaces or /)"));
+        }
+        Duration reconnectMin = seconds(p, RECONNECT_MIN, DEFAULT_RECONNECT_MIN_S, MIN_RECONNECT_S, problems);
+        Duration reconnectMax = seconds(p, RECONNECT_MAX, DEFAULT_RECONNECT_MAX_S, MIN_RECONNECT_S, problems);
+        if (reconnectMin != null && reconnectMax != null && reconnectMax.compareTo(reconnectMin) < 0) {
+            problems.add(new Problem(RECONNECT_MAX, "reconnectMax (" + seconds(reconnectMax)
+                    + " s) is below reconnectMin (" + seconds(reconnectMin) + " s)"));
+        }
+        Set<EntityBareJid> operators = new LinkedHashSet<>();
+        for (String item : p.string(OPERATORS, "").split(",")) {
+            if (!item.isBlank()) {
+                EntityBareJid op = bareJid(item.strip(), OPERATORS, " in the operator list", problems);
+                if (op != null) {
+                    operators.add(op);
+                }
+            }
+        }
+        Duration stale = seconds(p, STALE_COMMAND_AFTER, DEFAULT_STALE_COMMAND_AFTER_S, 0, problems);
+        String robotName = p.string(OnboardTask.ROBOT_NAME, "");
+        if (robotName.isEmpty() && jid != null) {
+            robotName = jid.getLocalpart().toString();
+        }
+        if (!problems.isEmpty()) {
+            return null;
+        }
+        return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax, operators,
+                stale, robotName);
+    }
+
+    private static EntityBareJid bareJid(String text, String key, String where, List<Problem> problems) {
+        try {
+            Jid jid = JidCreate.from(text);
+            if (jid.isEntityBareJid()) {
+                return jid.asEntityBareJidIfPossible();
+            }
+        } catch (XmppStringprepException | IllegalArgumentException e) {
+            // reported below, with the expected form
+        }
+        problems.add(new Problem(key, "'" + text + "'" + where
+                + " is not a bare JID (local@domain without a resource, e.g. sabot-01@sabot.local)"));
+        return null;
+    }
+
+    private static Duration seconds(TaskProperties p, String key, double fallback, double min,
+            List<Problem> problems) {
+        try {
+            double s = p.number(key, fallback);
+            if (!Double.isFinite(s) || s < min) {
+                problems.add(new Problem(key, "'" + s + "' s is not a duration of at least " + min + " s"));
+                return null;
+            }
+            return Duration.ofNanos(Math.round(s * 1e9));
+        } catch (IllegalArgumentException e) {
+            problems.add(new Problem(key, e.getMessage()));
+            return null;
+        }
+    }
+
+    private static String seconds(Duration d) {
+        return Double.toString(d.toNanos() / 1e9);
+    }
+}
