@@ -21,7 +21,8 @@ public record TaskList(List<TaskInfo> tasks) {
             RecordBuilder b = new RecordBuilder().count("count", t.tasks().size());
             int i = 0;
             for (TaskInfo task : t.tasks()) {
-                b.add("task" + i++, new RecordBuilder().text("name", task.name()).text("version", task.version())
+                b.add("task" + i++, new RecordBuilder().text("name", task.name()).text("bundle", task.bundle())
+                        .text("version", task.version())
                         .category("state", task.state()).build());
             }
             return b.build();
@@ -33,8 +34,9 @@ public record TaskList(List<TaskInfo> tasks) {
             RecordReader r = RecordReader.of(payload, names);
             List<TaskInfo> tasks = new ArrayList<>();
             for (int i = 1; i < names.length; i++) {
-                RecordReader t = r.record(names[i], "name", "version", "state");
-                tasks.add(new TaskInfo(t.text("name", 128), t.text("version", 64), t.category("state", TASK_STATES)));
+                RecordReader t = r.record(names[i], "name", "bundle", "version", "state");
+                tasks.add(new TaskInfo(t.text("name", 128), t.text("bundle", 255), t.text("version", 64),
+                        t.category("state", TASK_STATES)));
             }
             return new TaskList(tasks);
         }

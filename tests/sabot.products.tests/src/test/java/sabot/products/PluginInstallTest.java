@@ -5,9 +5,12 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.IOException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.StandardCopyOption;
+import java.nio.file.attribute.PosixFilePermissions;
 import java.util.List;
 import java.util.stream.Stream;
 
@@ -63,7 +66,9 @@ class PluginInstallTest {
     /**
      * The update site alone is enough to install Sabot Onboard into a bare Equinox with p2 (a copy of the director
      * product): its features list what products otherwise get through autoIncludeRequirements — the OSGi service APIs
-     * of the base runtime, and ControlML with the whole Smack client that sabot.onboard's remote FS needs.
+     * of the base runtime, and ControlML with the whole Smack client that the session and remote FS tasks need. The
+     * installed runtime then runs as the onboard application: the tasks the file enables start from their own task
+     * bundles (the runtime's heartbeat, the ControlML session's bundle, the remote FS's bundle).
      */
     @Test
     void onboardFeatureInstallsFromTheUpdateSiteIntoABareRuntime() throws Exception {
@@ -71,7 +76,8 @@ class PluginInstallTest {
         Path target = copy(director, dir.resolve("runtime"));
         Path site = ProductProcess.root().resolve("product/sabot.site/target/repository");
         Path bundlesInfo = target.resolve("configuration/org.eclipse.equinox.simpleconfigurator/bundles.info");
-        List<String> needed = List.of("sabot.onboard", "sabot.controlml", "sabot.model", "smack-core", "smack-tcp",
+        List<String> needed = List.of("sabot.onboard", "sabot.onboard.controlml", "sabot.onboard.remotefs",
+                "sabot.controlml", "sabot.model", "smack-core", "smack-tcp",
                 "smack-streammanagement", "smack-xmlparser-xpp3", "smack-java8", "smack-resolver-javax",
                 "org.osgi.service.cm", "org.apache.felix.scr");
         String before = Files.readString(bundlesInfo);
@@ -91,6 +97,32 @@ class PluginInstallTest {
         for (String bundle : needed) {
             assertTrue(bundles.lines().anyMatch(l -> l.startsWith(bundle + ",")), bundle + " not installed:\n"
                     + bundles);
+        }
+
+        // configured, the installed tasks start (no XMPP server listens: the session keeps trying in the background)
+        Path password = dir.resolve("robot.pw");
+        Files.writeString(password, "secret\n");
+        Files.setPosixFilePermissions(password, PosixFilePermissions.fromString("rw-------"));
+        Path root = Files.createDirectories(dir.resolve("files"));
+        Path config = dir.resolve("onboard.conf");
+        Files.writeString(config, String.join("\n", "robot.name = lab-07", "tasks = heartbeat, controlml, remotefs",
+                "controlml.jid = lab-07@sabot.local", "controlml.passwordFile = " + password,
+                "controlml.server = 127.0.0.1", "controlml.port = " + unusedPort(), "remotefs.root = " + root, ""));
+        try (ProductProcess onboard = ProductProcess.start(target, List.of(), List.of("-application",
+                "sabot.onboard.application", "-config", config.toString()))) {
+            String loaded = onboard.await(l -> l.contains("task(s) loaded") || l.contains("did not start"),
+                    "the tasks loaded");
+            assertTrue(loaded.endsWith("running as 'lab-07': 3 task(s) loaded: controlml, heartbeat, remotefs"),
+                    onboard.output());
+            onboard.terminate();
+            assertEquals(0, onboard.waitFor(), onboard.output());
+        }
+    }
+
+    /** @return a loopback TCP port nobody listens on (bound and released) */
+    private static int unusedPort() throws IOException {
+        try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            return s.getLocalPort();
         }
     }
 

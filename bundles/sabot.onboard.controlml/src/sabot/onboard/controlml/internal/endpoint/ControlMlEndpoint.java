@@ -245,7 +245,8 @@ public final class ControlMlEndpoint {
         for (Map.Entry<ServiceReference<OnboardTask>, OnboardTask> e : tasks.entrySet()) {
             Bundle bundle = e.getKey().getBundle();
             if (bundle != null) { // null once unregistered: the unbind follows
-                list.add(new TaskInfo(e.getValue().name(), bundle.getVersion().toString(), bundleState(bundle)));
+                list.add(new TaskInfo(e.getValue().name(), bundle.getSymbolicName(), bundle.getVersion().toString(),
+                        bundleState(bundle)));
             }
         }
         list.sort(Comparator.comparing(TaskInfo::name));

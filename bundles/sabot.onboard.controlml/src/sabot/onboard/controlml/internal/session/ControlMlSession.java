@@ -397,8 +397,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         Map<String, String> running = runningTasks();
         IdentityResult<QrInventory.Encoded> result;
         try {
-            result = DeviceIdentityManager.getInstanceFor(connection).publish(RobotIdentity.profile(settings, version,
-                    running), RobotIdentity.inventory(inventorySource, settings, running));
+            result = DeviceIdentityManager.getInstanceFor(connection).publish(OnboardIdentity.profile(settings, version,
+                    running), OnboardIdentity.inventory(inventorySource, settings, running));
         } catch (RuntimeException e) {
             LOG.warn("vCard identity not published: {}", describe(e));
             return;

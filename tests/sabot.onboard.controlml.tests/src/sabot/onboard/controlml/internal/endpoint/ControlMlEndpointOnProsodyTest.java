@@ -338,12 +338,14 @@ class ControlMlEndpointOnProsodyTest {
 
     @Test
     void tasksListsTheOnboardTaskServicesAsTheyComeAndGo() {
+        // registered by this fragment's host: each task is reported with the bundle that registered its service
         String version = context.getBundle().getVersion().toString();
         register(OnboardTask.class, task("planner"));
         ServiceRegistration<?> localizer = register(OnboardTask.class, task("localizer"));
 
-        assertEquals(List.of(new TaskInfo("localizer", version, "active"), new TaskInfo("planner", version,
-                "active")), workbench.get(robotJid, Resources.TASKS).orElseThrow().tasks());
+        assertEquals(List.of(new TaskInfo("localizer", "sabot.onboard.controlml", version, "active"), new TaskInfo(
+                "planner", "sabot.onboard.controlml", version, "active")), workbench.get(robotJid, Resources.TASKS)
+                .orElseThrow().tasks());
 
         localizer.unregister();
         registrations.remove(localizer);

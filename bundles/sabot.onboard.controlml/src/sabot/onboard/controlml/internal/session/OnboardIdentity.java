@@ -19,7 +19,7 @@ import sabot.identity.InventorySource;
  * Until the robot description carries a serial number, the serial is the robot's bare JID: unique in a fleet and
  * stable, so the vCard's {@code urn:uuid:} stays the same across restarts.
  */
-final class RobotIdentity {
+final class OnboardIdentity {
 
     static final String CATEGORY = "mobile robot (differential drive)";
     static final String MANUFACTURER = "Sabot";
@@ -27,7 +27,7 @@ final class RobotIdentity {
     static final String ROLE = "robot";
     static final String BOARD = "onboard computer";
 
-    private RobotIdentity() {
+    private OnboardIdentity() {
     }
 
     /** @return the serial the URN is derived from */
