@@ -112,7 +112,7 @@ class PluginInstallTest {
                 "sabot.onboard.application", "-config", config.toString()))) {
             String loaded = onboard.await(l -> l.contains("task(s) loaded") || l.contains("did not start"),
                     "the tasks loaded");
-            assertTrue(loaded.endsWith("running as 'lab-07': 3 task(s) loaded: controlml, heartbeat, remotefs"),
+            assertTrue(loaded.endsWith("running as 'lab-07': 3 task(s) loaded: heartbeat, controlml, remotefs"),
                     onboard.output());
             onboard.terminate();
             assertEquals(0, onboard.waitFor(), onboard.output());
