@@ -71,9 +71,14 @@ sabot_planner_bench_jar() { # ./sabot bench planner, ./sabot bench navfn
         bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools,tests/sabot.planner.benchmarks \
         docs/sabot-robot.properties
 }
-sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench, ./sabot load
+sabot_load_jar() { # ./sabot load
+    sabot_jar "load" tools/sabot.load/target/sabot-load.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tools/sabot.load \
+        docs/sabot-robot.properties
+}
+sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench
     sabot_jar "ControlML benchmark" tests/sabot.controlml.benchmarks/target/sabot-bench-controlml.jar \
-        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tests/sabot.controlml.benchmarks \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tools/sabot.load,tests/sabot.controlml.benchmarks \
         docs/sabot-robot.properties
 }
 sabot_motion_bench_jar() { # ./sabot bench control
