@@ -26,6 +26,11 @@ import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.mam.MamManager;
+import org.jivesoftware.smackx.pubsub.GetItemsRequest;
+import org.jivesoftware.smackx.pubsub.ItemsExtension;
+import org.jivesoftware.smackx.pubsub.PayloadItem;
+import org.jivesoftware.smackx.pubsub.PubSubElementType;
+import org.jivesoftware.smackx.pubsub.packet.PubSub;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInfo;
@@ -33,6 +38,7 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 
 import sabot.controlml.AccessLevel;
+import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -611,6 +617,47 @@ abstract class ControlMlOnServerTest {
         }
         assertEquals(List.of(101.0, 102.0, 103.0, 104.0, 105.0, 106.0, 107.0), xs.stream().filter(x -> x > 100)
                 .toList(), "every publication once, in order");
+    }
+
+    /**
+     * The first values of a new telemetry node in a burst, before the server has answered the first (which carries
+     * the publish-options; ejabberd 23.01 refuses them, and the first value is sent again): every value is
+     * acknowledged, and the node's item is the last value, not an older one sent again after it.
+     */
+    @Test
+    void aBurstOfFirstPublicationsLeavesTheNodeAtTheLastValue(TestInfo info) throws Exception {
+        String wbName = unique(info, "wb");
+        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).build());
+        closeAfterClass.add(wb);
+        wb.connect().login();
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
+        Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
+        int burst = 20;
+        TelemetryManager telemetry = robot.manager().telemetry();
+        for (int x = 1; x <= burst; x++) {
+            telemetry.publishNow(Resources.POSITION, poseAt(x));
+        }
+        // the acknowledgements are counted as they arrive, with no event to wait on: asked every 10 ms
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        while (telemetry.statistics().published() < burst && System.nanoTime() < deadline) {
+            TimeUnit.MILLISECONDS.sleep(10);
+        }
+        assertEquals(burst, telemetry.statistics().published(), "acknowledged: " + telemetry.statistics());
+        assertEquals(0, telemetry.statistics().failed());
+
+        PubSub get = PubSub.createPubsubPacket(robot.jid().asBareJid(), IQ.Type.get, new GetItemsRequest(ControlMl
+                .telemetryNode(Resources.POSITION.name()), 1));
+        PubSub answer;
+        try (StanzaCollector c = wb.createStanzaCollectorAndSend(get)) {
+            answer = c.nextResultOrThrow(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
+        }
+        ItemsExtension items = answer.getExtension(PubSubElementType.ITEMS);
+        assertEquals(1, items.getItems().size(), answer.toXML().toString());
+        ControlMlElement item = (ControlMlElement) ((PayloadItem<?>) items.getItems()
+                .get(0)).getPayload();
+        assertEquals(burst, item.value(Resources.POSITION).pose().x(), "the node's item");
     }
 
     private static PoseEstimate poseAt(double x) {
