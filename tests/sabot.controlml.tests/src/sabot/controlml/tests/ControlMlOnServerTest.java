@@ -525,11 +525,7 @@ abstract class ControlMlOnServerTest {
 
     @Test
     void telemetryReachesASubscribedWorkbenchThroughPep(TestInfo info) throws Exception {
-        String wbName = unique(info, "wb");
-        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
-        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
-                PrivateXmppServer.DEFAULT_PASSWORD).build());
-        closeAfterClass.add(wb);
+        XMPPTCPConnection wb = workbench(info);
         BlockingQueue<PoseEstimate> poses = new ArrayBlockingQueue<>(1000);
         AtomicInteger fromOthers = new AtomicInteger();
         Robot robot = robot(server().login(unique(info, "robot")), Map.of());
@@ -626,11 +622,7 @@ abstract class ControlMlOnServerTest {
      */
     @Test
     void aBurstOfFirstPublicationsLeavesTheNodeAtTheLastValue(TestInfo info) throws Exception {
-        String wbName = unique(info, "wb");
-        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
-        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
-                PrivateXmppServer.DEFAULT_PASSWORD).build());
-        closeAfterClass.add(wb);
+        XMPPTCPConnection wb = workbench(info);
         wb.connect().login();
         Robot robot = robot(server().login(unique(info, "robot")), Map.of());
         Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
@@ -658,6 +650,16 @@ abstract class ControlMlOnServerTest {
         ControlMlElement item = (ControlMlElement) ((PayloadItem<?>) items.getItems()
                 .get(0)).getPayload();
         assertEquals(burst, item.value(Resources.POSITION).pose().x(), "the node's item");
+    }
+
+    /** A workbench's connection on a new account of the test, not yet connected; closed after the class. */
+    private XMPPTCPConnection workbench(TestInfo info) throws Exception {
+        String name = unique(info, "wb");
+        server().register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(name, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).build());
+        closeAfterClass.add(wb);
+        return wb;
     }
 
     private static PoseEstimate poseAt(double x) {
