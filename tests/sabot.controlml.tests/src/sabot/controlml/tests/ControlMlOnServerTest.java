@@ -26,11 +26,6 @@ import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.mam.MamManager;
-import org.jivesoftware.smackx.pubsub.GetItemsRequest;
-import org.jivesoftware.smackx.pubsub.ItemsExtension;
-import org.jivesoftware.smackx.pubsub.PayloadItem;
-import org.jivesoftware.smackx.pubsub.PubSubElementType;
-import org.jivesoftware.smackx.pubsub.packet.PubSub;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInfo;
@@ -38,7 +33,6 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 
 import sabot.controlml.AccessLevel;
-import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -85,7 +79,7 @@ abstract class ControlMlOnServerTest {
         }
     }
 
-    private static String unique(TestInfo info, String role) {
+    static String unique(TestInfo info, String role) {
         return role + "-" + Integer.toHexString(info.getDisplayName().hashCode() & 0xffffff);
     }
 
@@ -615,45 +609,8 @@ abstract class ControlMlOnServerTest {
                 .toList(), "every publication once, in order");
     }
 
-    /**
-     * The first values of a new telemetry node in a burst, before the server has answered the first (which carries
-     * the publish-options; ejabberd 23.01 refuses them, and the first value is sent again): every value is
-     * acknowledged, and the node's item is the last value, not an older one sent again after it.
-     */
-    @Test
-    void aBurstOfFirstPublicationsLeavesTheNodeAtTheLastValue(TestInfo info) throws Exception {
-        XMPPTCPConnection wb = workbench(info);
-        wb.connect().login();
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
-        Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
-        int burst = 20;
-        TelemetryManager telemetry = robot.manager().telemetry();
-        for (int x = 1; x <= burst; x++) {
-            telemetry.publishNow(Resources.POSITION, poseAt(x));
-        }
-        // the acknowledgements are counted as they arrive, with no event to wait on: asked every 10 ms
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
-        while (telemetry.statistics().published() < burst && System.nanoTime() < deadline) {
-            TimeUnit.MILLISECONDS.sleep(10);
-        }
-        assertEquals(burst, telemetry.statistics().published(), "acknowledged: " + telemetry.statistics());
-        assertEquals(0, telemetry.statistics().failed());
-
-        PubSub get = PubSub.createPubsubPacket(robot.jid().asBareJid(), IQ.Type.get, new GetItemsRequest(ControlMl
-                .telemetryNode(Resources.POSITION.name()), 1));
-        PubSub answer;
-        try (StanzaCollector c = wb.createStanzaCollectorAndSend(get)) {
-            answer = c.nextResultOrThrow(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
-        }
-        ItemsExtension items = answer.getExtension(PubSubElementType.ITEMS);
-        assertEquals(1, items.getItems().size(), answer.toXML().toString());
-        ControlMlElement item = (ControlMlElement) ((PayloadItem<?>) items.getItems()
-                .get(0)).getPayload();
-        assertEquals(burst, item.value(Resources.POSITION).pose().x(), "the node's item");
-    }
-
     /** A workbench's connection on a new account of the test, not yet connected; closed after the class. */
-    private XMPPTCPConnection workbench(TestInfo info) throws Exception {
+    XMPPTCPConnection workbench(TestInfo info) throws Exception {
         String name = unique(info, "wb");
         server().register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
         XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(name, PrivateXmppServer.DOMAIN,
@@ -662,7 +619,7 @@ abstract class ControlMlOnServerTest {
         return wb;
     }
 
-    private static PoseEstimate poseAt(double x) {
+    static PoseEstimate poseAt(double x) {
         return new PoseEstimate(Samples.T, new Pose2D(x, 0, 0), Samples.POSE.covariance());
     }
 
