@@ -71,9 +71,14 @@ sabot_planner_bench_jar() { # ./sabot bench planner, ./sabot bench navfn
         bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools,tests/sabot.planner.benchmarks \
         docs/sabot-robot.properties
 }
-sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench, ./sabot load
+sabot_load_jar() { # ./sabot load
+    sabot_jar "load" tools/sabot.load/target/sabot-load.jar \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tools/sabot.load \
+        docs/sabot-robot.properties
+}
+sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench
     sabot_jar "ControlML benchmark" tests/sabot.controlml.benchmarks/target/sabot-bench-controlml.jar \
-        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tests/sabot.controlml.benchmarks \
+        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.controlml,bundles/sabot.identity,bundles/sabot.fleet,tests/sabot.testsupport,tools/sabot.load,tests/sabot.controlml.benchmarks \
         docs/sabot-robot.properties
 }
 sabot_motion_bench_jar() { # ./sabot bench control
@@ -178,6 +183,108 @@ sabot_onboard_jvm_options() {
     local file="$1/etc/jvm.options"
     [ -f "$file" ] || return 0
     sed -e 's/#.*//' -e 's/^[[:space:]]*//' -e 's/[[:space:]]*$//' "$file" | grep -v '^$' || true
+}
+
+# sabot_onboard_exec CONFIG [JVM_OPTION...]
+# Runs (exec) the onboard product in its folder with configuration file CONFIG ("": its etc/onboard.conf), its
+# etc/jvm.options and the extra JVM options: ./sabot onboard, and the rig's robots (their pid is then the JVM's).
+sabot_onboard_exec() {
+    local config=$1; shift
+    local dir jh launcher jvm=() args=()
+    dir=$(sabot_product_dir onboard)
+    jh=$(sabot_java_home)
+    launcher=$(sabot_launcher_jar "$dir")
+    mapfile -t jvm < <(sabot_onboard_jvm_options "$dir")
+    [ -z "$config" ] || args=(-config "$config")
+    cd "$dir"
+    exec "$jh/bin/java" ${jvm[@]+"${jvm[@]}"} "$@" -Dlogback.configurationFile="$dir/etc/logback.xml" -jar "$launcher" \
+        -consoleLog ${args[@]+"${args[@]}"}
+}
+
+# --- the rig: private XMPP server + sabot-sim on the lab map + one onboard product per robot -----------------------
+# ./sabot demo's and ./sabot bench onboard's (tests/sabot.system.tests build the same rig in Java from the fixtures
+# of sabot.testsupport, which also give a test the simulator's control channel and the product's console).
+SABOT_RIG_MAP="$SABOT_ROOT/onboard-bridge/maps/lab.yaml"
+SABOT_RIG_DOMAIN=sabot.local
+SABOT_RIG_OPERATOR=operator SABOT_RIG_OPERATOR_PASSWORD=sabot
+# sabot-sim puts robot i (1-based) at +0.8 (i - 1) m in y from robot 1 (its --help)
+SABOT_RIG_ROBOT_SPACING_Y=0.8
+
+# Builds what the rig runs (the onboard product, sabot-sim) before the first process starts.
+sabot_rig_build() {
+    sabot_products onboard
+    make -s -C "$SABOT_ROOT/onboard-bridge" build/sabot-sim >&2 || sabot_die "building sabot-sim failed"
+}
+
+# sabot_rig_start DIR PORT ROBOTS X,Y,THETA [JVM_OPTION...]
+# Brings the rig up in folder DIR (made empty first): a private Prosody on 127.0.0.1:PORT (0: a free port) with state
+# in DIR/xmpp, the accounts sabot-0I@sabot.local (random password in DIR/robotI/password) and the operator's,
+# sabot-sim on the lab map with ROBOTS robots, robot 1 at X,Y,THETA (ground truth DIR/truth.csv, its control channel
+# on a free loopback port), and per robot an onboard product (configuration DIR/robotI/onboard.conf, remote files
+# DIR/robotI/files, console DIR/robotI/onboard.log; JVM options added). Returns once they are started, not online
+# (sabot_rig_await_online). Sets RIG_DIR, RIG_PORT, RIG_SIM_PID, RIG_SIM_CONTROL, RIG_ROBOT_PIDS (robot I at I-1).
+sabot_rig_start() {
+    local dir=$1 port=$2 robots=$3 start=$4 i line x y theta links=()
+    shift 4
+    RIG_DIR=$dir RIG_PORT="" RIG_SIM_PID="" RIG_SIM_CONTROL="" RIG_ROBOT_PIDS=()
+    rm -rf "$dir"; mkdir -p "$dir"
+    line=$("$SABOT_ROOT/product/bin/sabot-xmpp" start --run "$dir/xmpp" --port "$port" \
+        --archive "${SABOT_ARCHIVE_STORE:-internal}" --timeout 30) || sabot_die "the private Prosody did not start"
+    RIG_PORT=$(sed -n 's/.* port=\([0-9]*\) .*/\1/p' <<<"$line")
+    for ((i = 1; i <= robots; i++)); do
+        mkdir -p "$dir/robot$i/files"
+        (umask 077; openssl rand -hex 16 | tr -d "\n" >"$dir/robot$i/password")
+        sabot_rig_register "sabot-0$i@$SABOT_RIG_DOMAIN" "$(cat "$dir/robot$i/password")"
+    done
+    sabot_rig_register "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$SABOT_RIG_OPERATOR_PASSWORD"
+
+    # one simulator process, one pty per robot; its first stdout line (JSON) says they are ready
+    "$SABOT_ROOT/onboard-bridge/build/sabot-sim" --map "$SABOT_RIG_MAP" --robots "$robots" --seed 1 --start "$start" \
+        --link "$dir/sim-robot" --truth "$dir/truth.csv" --control 0 >"$dir/sim.out" 2>"$dir/sim.log" &
+    RIG_SIM_PID=$!
+    sabot_await_line "$dir/sim.out" '"robots"' 10 "$RIG_SIM_PID" "the simulator" "$dir/sim.log"
+    ! grep -q warning "$dir/sim.log" || { cat "$dir/sim.log" >&2; sabot_die "the simulator refused the start pose(s)"; }
+    mapfile -t links < <(head -n 1 "$dir/sim.out" | python3 -c 'import json, sys
+j = json.load(sys.stdin)
+print(j["control"])
+for r in j["robots"]: print(r["link"])')
+    RIG_SIM_CONTROL=${links[0]}
+    links=("${links[@]:1}")
+    [ ${#links[@]} = "$robots" ] || sabot_die "the simulator announced ${#links[@]} robots, not $robots: $(head -n 1 "$dir/sim.out")"
+    sabot_log "simulator: $robots robot(s) on the lab map (pid $RIG_SIM_PID), buses ${links[*]}, control channel 127.0.0.1:$RIG_SIM_CONTROL, ground truth $dir/truth.csv"
+
+    IFS=, read -r x y theta <<<"$start"
+    for ((i = 1; i <= robots; i++)); do
+        sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" \
+            "$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta" \
+            "$RIG_PORT" "$dir/robot$i/password" "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$dir/robot$i/files" \
+            >"$dir/robot$i/onboard.conf"
+        (sabot_onboard_exec "$dir/robot$i/onboard.conf" "$@") >"$dir/robot$i/onboard.log" 2>&1 &
+        RIG_ROBOT_PIDS+=($!)
+        sabot_log "robot sabot-0$i@$SABOT_RIG_DOMAIN (pid $!): config $dir/robot$i/onboard.conf, log $dir/robot$i/onboard.log"
+    done
+}
+
+sabot_rig_register() { # JID PASSWORD
+    "$SABOT_ROOT/product/bin/sabot-xmpp" register --run "$RIG_DIR/xmpp" "$1" "$2" >/dev/null 2>&1 \
+        || sabot_die "could not register $1 (see $RIG_DIR/xmpp)"
+}
+
+# sabot_rig_await_online I TIMEOUT: waits until robot I's ControlML session is online.
+sabot_rig_await_online() {
+    sabot_await_line "$RIG_DIR/robot$1/onboard.log" 'XMPP session online' "$2" "${RIG_ROBOT_PIDS[$(($1 - 1))]}" \
+        "the onboard product of sabot-0$1"
+}
+
+# sabot_rig_stop [PID...]
+# Stops the rig: the PIDs (its clients) together with the robots (their JVMs stop in parallel; a robot brakes on
+# SIGTERM), then the simulator they drove, then the server. Each step waits for its processes (SIGKILL after 20 s).
+sabot_rig_stop() {
+    sabot_terminate 20 "$@" ${RIG_ROBOT_PIDS[@]+"${RIG_ROBOT_PIDS[@]}"}
+    RIG_ROBOT_PIDS=()
+    sabot_terminate 20 "${RIG_SIM_PID:-}"
+    RIG_SIM_PID=""
+    [ -z "${RIG_DIR:-}" ] || "$SABOT_ROOT/product/bin/sabot-xmpp" stop --run "$RIG_DIR/xmpp" >/dev/null 2>&1 || true
 }
 
 # --- processes ----------------------------------------------------------------------------------------------------

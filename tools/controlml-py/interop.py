@@ -341,11 +341,15 @@ async def telemetry(args, robot: str) -> None:
         delivered = peer.items[start:]
         taken: list[tuple[str, float]] = []
         last = None
-        for rid, x in delivered:  # the dedup rule: take an id only when it is greater than the last taken
+        # the dedup rule: take an id only when it is greater than the last taken, over the whole session as a client
+        # keeps it: the item a server sends on the subscription (its last one) may be older than one +notify brought
+        # before the subscription's answer
+        for n, (rid, x) in enumerate(peer.items):
             key = (rid.split(":")[0], int(rid.split(":")[1]))
             if last is None or key > last:
-                taken.append((rid, x))
                 last = key
+                if n >= start:
+                    taken.append((rid, x))
         xs = [x for _, x in taken]
         copies = len(delivered) - len(taken)
         check(f"session {session}: each publication taken once, in order, none lost "

@@ -1,5 +1,7 @@
 package sabot.controlml;
 
+import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
@@ -67,6 +69,13 @@ public final class TelemetryManager extends Manager {
 
     private final ControlMlManager controlMl;
     private final Set<String> publishWithoutOptions = ConcurrentHashMap.newKeySet();
+    /**
+     * By node whose first publication (the one with the options) awaits the server's answer: the values published
+     * meanwhile, in order. They are sent once the answer has come, after that first value again when the server
+     * refused the options: sent at once, a later value would reach the server before the refused first one's second
+     * sending, and subscribers would drop the older id as a copy (the node going back in time on the way).
+     */
+    private final Map<String, List<ControlMlElement>> heldBack = new HashMap<>();
     private final AtomicInteger activePublications = new AtomicInteger();
     private ScheduledExecutorService scheduler;
     /** What {@link #addListener} registered, by PEP node: each item of the node from a device goes to each of them. */
@@ -183,14 +192,63 @@ public final class TelemetryManager extends Manager {
         return b.addElement("value", value).build();
     }
 
-    /** Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. */
+    /**
+     * Publishes one value to the resource's PEP node now, without waiting for the server's acknowledgement. The node's
+     * first publication carries the publish-options; values published before the server has answered it follow it
+     * once it has, in order.
+     */
     public <T> void publishNow(Resource<T, ?> resource, T value) {
-        ControlMlElement element = ControlMlElement.result(controlMl.nextId(), resource.name(), resource.codec().encode(
-                value)).withTextForm(controlMl.isTextForm());
         String node = ControlMl.telemetryNode(resource.name());
         // The options are needed only until the server has created the node with them: checking them costs the
         // server a data-form comparison on every publication.
-        sendPublication(node, element, !publishWithoutOptions.contains(node));
+        if (publishWithoutOptions.contains(node)) {
+            sendPublication(node, element(resource, value), false);
+            return;
+        }
+        synchronized (heldBack) {
+            ControlMlElement element = element(resource, value); // its id after those of the values held back
+            if (publishWithoutOptions.contains(node)) {
+                sendPublication(node, element, false);
+            } else if (heldBack.containsKey(node)) {
+                heldBack.get(node).add(element);
+            } else {
+                heldBack.put(node, new ArrayList<>());
+                sendPublication(node, element, true);
+            }
+        }
+    }
+
+    private <T> ControlMlElement element(Resource<T, ?> resource, T value) {
+        return ControlMlElement.result(controlMl.nextId(), resource.name(), resource.codec().encode(value))
+                .withTextForm(controlMl.isTextForm());
+    }
+
+    /**
+     * The node's first publication was answered: taken with the options ({@code refusedFirst} null), or refused for
+     * them ({@code refusedFirst}, sent again without). Then the values held back, and from now on every value at once.
+     */
+    private void firstPublicationAnswered(String node, ControlMlElement refusedFirst) {
+        synchronized (heldBack) {
+            if (refusedFirst != null) {
+                sendPublication(node, refusedFirst, false);
+            }
+            for (ControlMlElement e : heldBack.getOrDefault(node, List.of())) {
+                sendPublication(node, e, false);
+            }
+            heldBack.remove(node);
+            publishWithoutOptions.add(node);
+        }
+    }
+
+    /** The node's first publication failed without an answer on its options: the next value held back tries them. */
+    private void firstPublicationFailed(String node) {
+        synchronized (heldBack) {
+            List<ControlMlElement> held = heldBack.remove(node);
+            if (held != null && !held.isEmpty()) {
+                heldBack.put(node, held);
+                sendPublication(node, held.remove(0), true);
+            }
+        }
     }
 
     private void sendPublication(String node, ControlMlElement element, boolean withOptions) {
@@ -203,25 +261,29 @@ public final class TelemetryManager extends Manager {
             connection().sendIqRequestAsync(publish).onSuccess(r -> {
                 published.incrementAndGet();
                 if (withOptions) {
-                    publishWithoutOptions.add(node); // the node exists with the options now
+                    firstPublicationAnswered(node, null); // the node exists with the options now
                 }
             }).onError(
                     e -> {
                         if (withOptions && e instanceof XMPPErrorException x) {
-                            // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node:
-                            // publish with the server's defaults from now on, this item included
-                            if (publishWithoutOptions.add(node)) {
-                                LOG.info("server refused telemetry publish-options on {} ({}); publishing with its"
-                                        + " defaults", node, x.getStanzaError().getCondition());
-                            }
-                            sendPublication(node, element, false);
+                            // e.g. ejabberd 23.01 refuses these publish-options on an auto-created PEP node
+                            // (resource-constraint): publish with the server's defaults from now on, this item first
+                            LOG.info("server refused telemetry publish-options on {} ({}); publishing with its"
+                                    + " defaults", node, x.getStanzaError().getCondition());
+                            firstPublicationAnswered(node, element);
                             return;
                         }
                         failed.incrementAndGet();
                         LOG.debug("telemetry publication failed", e);
+                        if (withOptions) {
+                            firstPublicationFailed(node);
+                        }
                     });
         } catch (RuntimeException e) {
             failed.incrementAndGet();
+            if (withOptions) {
+                firstPublicationFailed(node);
+            }
         }
     }
 

@@ -24,6 +24,8 @@ import org.junit.jupiter.params.provider.EnumSource;
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
 import sabot.modbus.internal.ModbusMap;
+import sabot.testsupport.robot.SimProcess;
+import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * The Modbus master against a real {@code sabot-sim}: over its pty (j2mod's serial transport, jSerialComm) and over
@@ -62,7 +64,8 @@ class ModbusMasterTest {
             return f.si(f.defaultValue());
         }
         Properties robot = new Properties();
-        try (Reader r = Files.newBufferedReader(SimProcess.root().resolve("docs/sabot-robot.properties"))) {
+        try (Reader r = Files.newBufferedReader(PrivateXmppServer.repositoryRoot().resolve(
+                "docs/sabot-robot.properties"))) {
             robot.load(r);
         }
         String value = robot.getProperty(f.defaultFrom());
@@ -381,7 +384,7 @@ class ModbusMasterTest {
     @EnumSource(Via.class)
     void aLandmarkInViewIsSightedWhereTheTruthSaysAndOutOfViewIsNone(Via via) throws Exception {
         // the markers the simulator loads, read by the map model's own reader
-        List<MapLandmark> marks = MapServerFormat.readLandmarks(SimProcess.root().resolve(
+        List<MapLandmark> marks = MapServerFormat.readLandmarks(PrivateXmppServer.repositoryRoot().resolve(
                 "onboard-bridge/maps/lab.yaml"));
         LandmarkSighting sighting;
         LandmarkConfig defaults;

@@ -21,6 +21,12 @@ import sabot.testsupport.robot.OnboardProcess;
  * One simulated robot as a lab runs it: {@code sabot-sim} on the lab map, the onboard product on the simulator's pty
  * with an account on the private server, and an operator's Smack client with its ControlML manager. Closed in reverse
  * order of start.
+ * <p>
+ * The rig of {@code ./sabot demo} and {@code ./sabot bench onboard} (product/bin/lib.sh, sabot_rig_start) from the same
+ * pieces (the sabot-xmpp script behind {@link PrivateXmppServer}, the sabot-sim binary, the product started as
+ * {@code ./sabot onboard} starts it), but in Java: each test sets its own start pose, simulator options and extra
+ * configuration, talks to the simulator's control channel and waits on the product's console lines, and the rig comes
+ * up without a shell, Python and a JDK probe per test.
  */
 final class RobotRig implements AutoCloseable {
 

@@ -28,6 +28,7 @@ import org.osgi.service.metatype.MetaTypeService;
 import org.osgi.util.tracker.ServiceTracker;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
+import org.slf4j.bridge.SLF4JBridgeHandler;
 
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck;
@@ -56,6 +57,9 @@ public final class OnboardApplication implements IApplication {
 
     @Override
     public Object start(IApplicationContext context) throws Exception {
+        // Smack logs through java.util.logging: into SLF4J, so that etc/logback.xml governs its lines too
+        SLF4JBridgeHandler.removeHandlersForRootLogger();
+        SLF4JBridgeHandler.install();
         Bundle bundle = FrameworkUtil.getBundle(getClass());
         BundleContext bc = bundle.getBundleContext();
         String version = bundle.getVersion().toString();

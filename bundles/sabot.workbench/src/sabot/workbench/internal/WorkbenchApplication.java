@@ -7,6 +7,7 @@ import org.eclipse.ui.IWorkbench;
 import org.eclipse.ui.PlatformUI;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
+import org.slf4j.bridge.SLF4JBridgeHandler;
 
 /** The Sabot Workbench RCP application (3.x workbench API on the e4 compatibility layer). */
 public final class WorkbenchApplication implements IApplication {
@@ -15,6 +16,9 @@ public final class WorkbenchApplication implements IApplication {
 
     @Override
     public Object start(IApplicationContext context) {
+        // Smack logs through java.util.logging: into SLF4J, so that etc/logback.xml governs its lines too
+        SLF4JBridgeHandler.removeHandlersForRootLogger();
+        SLF4JBridgeHandler.install();
         String[] args = (String[]) context.getArguments().getOrDefault(IApplicationContext.APPLICATION_ARGS,
                 new String[0]);
         LaunchOptions options = LaunchOptions.parse(args);

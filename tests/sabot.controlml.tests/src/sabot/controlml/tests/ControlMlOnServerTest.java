@@ -79,7 +79,7 @@ abstract class ControlMlOnServerTest {
         }
     }
 
-    private static String unique(TestInfo info, String role) {
+    static String unique(TestInfo info, String role) {
         return role + "-" + Integer.toHexString(info.getDisplayName().hashCode() & 0xffffff);
     }
 
@@ -519,11 +519,7 @@ abstract class ControlMlOnServerTest {
 
     @Test
     void telemetryReachesASubscribedWorkbenchThroughPep(TestInfo info) throws Exception {
-        String wbName = unique(info, "wb");
-        server().register(wbName, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
-        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(wbName, PrivateXmppServer.DOMAIN,
-                PrivateXmppServer.DEFAULT_PASSWORD).build());
-        closeAfterClass.add(wb);
+        XMPPTCPConnection wb = workbench(info);
         BlockingQueue<PoseEstimate> poses = new ArrayBlockingQueue<>(1000);
         AtomicInteger fromOthers = new AtomicInteger();
         Robot robot = robot(server().login(unique(info, "robot")), Map.of());
@@ -613,7 +609,17 @@ abstract class ControlMlOnServerTest {
                 .toList(), "every publication once, in order");
     }
 
-    private static PoseEstimate poseAt(double x) {
+    /** A workbench's connection on a new account of the test, not yet connected; closed after the class. */
+    XMPPTCPConnection workbench(TestInfo info) throws Exception {
+        String name = unique(info, "wb");
+        server().register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        XMPPTCPConnection wb = new XMPPTCPConnection(server().configuration(name, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).build());
+        closeAfterClass.add(wb);
+        return wb;
+    }
+
+    static PoseEstimate poseAt(double x) {
         return new PoseEstimate(Samples.T, new Pose2D(x, 0, 0), Samples.POSE.covariance());
     }
 

@@ -1,8 +1,6 @@
 package sabot.testsupport.robot;
 
-import java.io.BufferedReader;
 import java.io.IOException;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.Paths;
@@ -14,6 +12,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.function.Predicate;
 import java.util.stream.Stream;
 
+import sabot.testsupport.process.ProcessConsole;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
@@ -26,19 +25,13 @@ public final class OnboardProcess implements AutoCloseable {
     public static final long TIMEOUT_S = 60;
 
     private final Process process;
-    private final List<String> lines = new ArrayList<>();
     private final Path config;
-    private final Thread reader;
-
-    private final Path log;
+    private final ProcessConsole console;
 
     private OnboardProcess(Process process, Path config, Path log) {
         this.process = process;
         this.config = config;
-        this.log = log;
-        this.reader = new Thread(this::pump, "onboard-console");
-        reader.setDaemon(true);
-        reader.start();
+        this.console = ProcessConsole.tail("onboard product", process, log);
     }
 
     /** The settings of one robot's configuration file. */
@@ -125,41 +118,6 @@ public final class OnboardProcess implements AutoCloseable {
     }
 
     /**
-     * Tails the console file: a line is taken once its newline is written; at the end of the file the tail waits
-     * 10 ms while the process runs (a file has no event to wait on), and reads what is left once it has ended.
-     */
-    private void pump() {
-        try (BufferedReader r = java.nio.file.Files.newBufferedReader(log, StandardCharsets.UTF_8)) {
-            StringBuilder partial = new StringBuilder();
-            while (true) {
-                boolean ended = !process.isAlive();
-                int c;
-                while ((c = r.read()) >= 0) {
-                    if (c == '\n') {
-                        synchronized (lines) {
-                            lines.add(partial.toString());
-                            lines.notifyAll();
-                        }
-                        partial.setLength(0);
-                    } else {
-                        partial.append((char) c);
-                    }
-                }
-                if (ended) {
-                    break;
-                }
-                TimeUnit.MILLISECONDS.sleep(10);
-            }
-        } catch (IOException | InterruptedException ended) {
-            // file gone or test over
-        } finally {
-            synchronized (lines) {
-                lines.notifyAll();
-            }
-        }
-    }
-
-    /**
      * Waits for a console line matching {@code p} (one already printed counts).
      *
      * @param what for the failure message, e.g. "the robot's XMPP login"
@@ -169,46 +127,17 @@ public final class OnboardProcess implements AutoCloseable {
     }
 
     public String await(Predicate<String> p, String what, long seconds) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
-        int seen = 0;
-        synchronized (lines) {
-            while (true) {
-                for (; seen < lines.size(); seen++) {
-                    if (p.test(lines.get(seen))) {
-                        return lines.get(seen);
-                    }
-                }
-                long left = deadline - System.nanoTime();
-                if (left <= 0 || !process.isAlive() && seen == lines.size()) {
-                    throw new AssertionError("onboard product: no line " + what + " within " + seconds
-                            + " s; exit " + (process.isAlive() ? "-" : process.exitValue()) + "; console:\n"
-                            + output());
-                }
-                TimeUnit.NANOSECONDS.timedWait(lines, left);
-            }
-        }
+        return console.await(p, what, seconds);
     }
 
     /** Waits until {@code count} console lines match {@code p} (e.g. the second login after a reconnection). */
     public void awaitCount(Predicate<String> p, int count, String what) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
-        synchronized (lines) {
-            while (lines.stream().filter(p).count() < count) {
-                long left = deadline - System.nanoTime();
-                if (left <= 0 || !process.isAlive()) {
-                    throw new AssertionError("onboard product: fewer than " + count + " lines " + what + "; console:\n"
-                            + output());
-                }
-                TimeUnit.NANOSECONDS.timedWait(lines, left);
-            }
-        }
+        console.awaitCount(p, count, what, TIMEOUT_S);
     }
 
     /** @return the console so far */
     public String output() {
-        synchronized (lines) {
-            return String.join("\n", lines);
-        }
+        return console.output();
     }
 
     /** @return the configuration file */
@@ -223,7 +152,7 @@ public final class OnboardProcess implements AutoCloseable {
             process.destroyForcibly();
             throw new AssertionError("onboard product did not stop within " + TIMEOUT_S + " s:\n" + output());
         }
-        reader.join(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, still in the pipe
+        console.drain(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, not yet read
         return process.exitValue();
     }
 
@@ -232,7 +161,7 @@ public final class OnboardProcess implements AutoCloseable {
         if (!process.waitFor(TIMEOUT_S, TimeUnit.SECONDS)) {
             throw new AssertionError("onboard product still running after " + TIMEOUT_S + " s:\n" + output());
         }
-        reader.join(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, still in the pipe
+        console.drain(TimeUnit.SECONDS.toMillis(5)); // the console's last lines, not yet read
         return process.exitValue();
     }
 

@@ -1,9 +1,6 @@
 package sabot.products;
 
-import java.io.BufferedReader;
 import java.io.IOException;
-import java.io.InputStreamReader;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.DirectoryStream;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -12,6 +9,8 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Predicate;
+
+import sabot.testsupport.process.ProcessConsole;
 
 /**
  * A materialized product started the way ./sabot starts it ({@code java -jar plugins/org.eclipse.equinox.launcher_*.jar}),
@@ -22,14 +21,11 @@ final class ProductProcess implements AutoCloseable {
     static final long TIMEOUT_S = 60;
 
     private final Process process;
-    private final List<String> lines = new ArrayList<>();
-    private final Thread reader;
+    private final ProcessConsole console;
 
     private ProductProcess(Process process) {
         this.process = process;
-        this.reader = new Thread(this::pump, "product-console");
-        this.reader.setDaemon(true);
-        this.reader.start();
+        this.console = ProcessConsole.ofPipe("product", process, line -> System.out.println("  | " + line));
     }
 
     /** @return the repository root (system property sabot.root, set by the pom) */
@@ -85,45 +81,9 @@ final class ProductProcess implements AutoCloseable {
         throw new IllegalStateException("no Equinox launcher in " + productDir);
     }
 
-    private void pump() {
-        try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(),
-                StandardCharsets.UTF_8))) {
-            String line;
-            while ((line = r.readLine()) != null) {
-                System.out.println("  | " + line);
-                synchronized (lines) {
-                    lines.add(line);
-                    lines.notifyAll();
-                }
-            }
-        } catch (IOException e) {
-            // the process ended
-        } finally {
-            synchronized (lines) {
-                lines.notifyAll();
-            }
-        }
-    }
-
     /** Waits until a console line matches; fails when the process ends first or after the timeout. */
     String await(Predicate<String> matcher, String what) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
-        int seen = 0;
-        synchronized (lines) {
-            while (true) {
-                for (; seen < lines.size(); seen++) {
-                    if (matcher.test(lines.get(seen))) {
-                        return lines.get(seen);
-                    }
-                }
-                long left = deadline - System.nanoTime();
-                if (left <= 0 || (!process.isAlive() && !reader.isAlive())) {
-                    throw new AssertionError("no console line " + what + " (process alive=" + process.isAlive()
-                            + "); output:\n" + String.join("\n", lines));
-                }
-                TimeUnit.NANOSECONDS.timedWait(lines, Math.min(left, TimeUnit.MILLISECONDS.toNanos(200)));
-            }
-        }
+        return console.await(matcher, what, TIMEOUT_S);
     }
 
     /**
@@ -146,18 +106,16 @@ final class ProductProcess implements AutoCloseable {
             process.destroyForcibly();
             throw new AssertionError("product did not exit within " + timeoutS + " s; output:\n" + output());
         }
-        reader.join(TimeUnit.SECONDS.toMillis(10));
+        console.drain(TimeUnit.SECONDS.toMillis(10));
         return process.exitValue();
     }
 
     List<String> lines() {
-        synchronized (lines) {
-            return List.copyOf(lines);
-        }
+        return console.lines();
     }
 
     String output() {
-        return String.join("\n", lines());
+        return console.output();
     }
 
     @Override

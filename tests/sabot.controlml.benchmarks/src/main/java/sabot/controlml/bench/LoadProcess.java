@@ -14,6 +14,8 @@ import java.util.concurrent.TimeUnit;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 
+import sabot.tools.load.FleetLoad;
+
 /**
  * {@link FleetLoad}'s robots in a Java process of their own (its {@code --attach} mode on the benchmark's server),
  * started at a nice value: all of their threads, the collector's and the JIT's included, then take the CPU only as

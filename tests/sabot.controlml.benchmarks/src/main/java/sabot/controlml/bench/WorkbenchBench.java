@@ -30,6 +30,7 @@ import org.jxmpp.jid.EntityBareJid;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Resources;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.tools.load.FleetLoad;
 
 /**
  * {@code ./sabot bench workbench}: the real workbench product (a process, on the display it is given) against

@@ -23,6 +23,8 @@ import org.jxmpp.jid.EntityBareJid;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Resources;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.tools.load.FleetLoad;
+import sabot.tools.load.Following;
 
 /** The load robots in a process of their own at a nice value, driven over its standard input and output. */
 class LoadProcessTest {

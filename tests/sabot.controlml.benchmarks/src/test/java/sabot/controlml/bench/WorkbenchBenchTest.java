@@ -34,4 +34,10 @@ class WorkbenchBenchTest {
     void noLogMeansNoPauses(@TempDir Path dir) throws IOException {
         assertEquals(List.of(), WorkbenchBench.gcPauses(dir.resolve("missing.log"), 0, Long.MAX_VALUE));
     }
+
+    @Test
+    void theGrowthSlopeIsTheLeastSquaresLine() {
+        assertEquals(0.5, WorkbenchBench.slope(List.of(new double[] { 0, 10 }, new double[] { 2, 11 }, new double[] {
+                4, 12 }), 1), 1e-12);
+    }
 }

@@ -1,4 +1,4 @@
-package sabot.controlml.bench;
+package sabot.tools.load;
 
 import java.io.IOException;
 import java.io.PrintStream;
@@ -46,7 +46,7 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * {@code ./sabot load}: N simulated robots, each a real ControlML endpoint (the {@code sabot.controlml} library's
- * device side, as in {@link ControlMlBench}) on its own XMPP account of a private Prosody or ejabberd. Each robot
+ * device side) on its own XMPP account of a private Prosody or ejabberd. Each robot
  * drives a circle of its own (centre on a grid over the lab, radius, speed and phase drawn from a fixed seed: the same
  * seed gives the same fleet), publishes {@code cm.position} and {@code cm.velocity} at the rate given (default 10 Hz)
  * and {@code cm.mission} at 1 Hz (the onboard product's defaults, docs/CONTROLML.md §4), and answers gets of position,
@@ -392,8 +392,8 @@ public final class FleetLoad implements AutoCloseable {
 
     /**
      * {@code --attach PORT}: the robots on a server another process started (the workbench benchmark's, which runs
-     * the load in a process of its own: {@link LoadProcess}). Standard output then carries the protocol
-     * {@link LoadProcess} reads: {@value #READY} and the robots' JIDs, comma-separated, once all are online; for each
+     * the load in a process of its own: the workbench benchmark's LoadProcess). Standard output then carries the
+     * protocol LoadProcess reads: {@value #READY} and the robots' JIDs, comma-separated, once all are online; for each
      * line {@value #COUNTS} read on standard input, {@value #COUNTS} with the publications acknowledged and failed so
      * far. The end of standard input stops the robots and the process.
      */
@@ -416,12 +416,12 @@ public final class FleetLoad implements AutoCloseable {
     }
 
     /** {@link #attached} protocol: the line that says the robots are online. */
-    static final String READY = "[load] ready";
+    public static final String READY = "[load] ready";
     /** {@link #attached} protocol: the request for the counts and the start of the answer. */
-    static final String COUNTS = "[load] counts";
+    public static final String COUNTS = "[load] counts";
 
     /** @return the server kind named on the command line, or a precise error */
-    static PrivateXmppServer.Kind serverKind(String name) {
+    public static PrivateXmppServer.Kind serverKind(String name) {
         return switch (name) {
             case "prosody" -> PrivateXmppServer.Kind.PROSODY;
             case "ejabberd" -> PrivateXmppServer.Kind.EJABBERD;
@@ -437,7 +437,7 @@ public final class FleetLoad implements AutoCloseable {
     }
 
     /** Smack as the benchmarks use it: one parser factory, generous reply timeout (100 logins at once). */
-    static void setUpSmack() {
+    public static void setUpSmack() {
         SmackXmlParser.setXmlPullParserFactory(SmackXmlParser.getXmlPullParserFactory());
         SmackConfiguration.setDefaultReplyTimeout(20_000);
         if (System.getProperty("sabot.root") == null && System.getenv("SABOT_ROOT") != null) {

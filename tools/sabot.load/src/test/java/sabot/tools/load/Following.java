@@ -1,4 +1,4 @@
-package sabot.controlml.bench;
+package sabot.tools.load;
 
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -29,7 +29,7 @@ import sabot.controlml.Resources;
  * to the robot's position node besides the caps' {@code +notify}, which neither ejabberd 23.01 nor, more rarely,
  * Prosody 0.12 always honours for a new contact (both tests here once had no telemetry from any robot in 30 s).
  */
-final class Following {
+public final class Following {
 
     private static final Duration WAIT = Duration.ofSeconds(30);
 
@@ -37,7 +37,7 @@ final class Following {
     }
 
     /** Subscribes the logged-in {@code operator} to each robot, waits for every approval and follows each robot. */
-    static void follow(XMPPTCPConnection operator, List<EntityBareJid> robots) throws Exception {
+    public static void follow(XMPPTCPConnection operator, List<EntityBareJid> robots) throws Exception {
         Roster roster = Roster.getInstanceFor(operator);
         Set<BareJid> approved = ConcurrentHashMap.newKeySet();
         CountDownLatch all = new CountDownLatch(robots.size());

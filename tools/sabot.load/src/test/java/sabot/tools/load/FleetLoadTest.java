@@ -1,4 +1,4 @@
-package sabot.controlml.bench;
+package sabot.tools.load;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -126,11 +126,5 @@ class FleetLoadTest {
         assertEquals(100, h.cells()[0]);
         assertEquals(-1, h.cells()[1]); // all unknown
         assertEquals(new Pose2D(1, 2, 0), h.origin());
-    }
-
-    @Test
-    void theGrowthSlopeIsTheLeastSquaresLine() {
-        assertEquals(0.5, WorkbenchBench.slope(List.of(new double[] { 0, 10 }, new double[] { 2, 11 }, new double[] {
-                4, 12 }), 1), 1e-12);
     }
 }
