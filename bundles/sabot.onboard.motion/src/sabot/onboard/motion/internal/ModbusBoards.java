@@ -1,4 +1,4 @@
-package sabot.onboard.internal.motion;
+package sabot.onboard.motion.internal;
 
 import java.io.IOException;
 import java.time.Duration;

@@ -1,4 +1,4 @@
-package sabot.onboard.internal;
+package sabot.onboard.motion.internal;
 
 import java.io.IOException;
 import java.nio.charset.StandardCharsets;

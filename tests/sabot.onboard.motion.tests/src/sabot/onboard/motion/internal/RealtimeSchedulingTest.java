@@ -1,4 +1,4 @@
-package sabot.onboard.internal;
+package sabot.onboard.motion.internal;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;

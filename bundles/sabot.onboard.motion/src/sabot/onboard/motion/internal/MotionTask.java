@@ -1,4 +1,4 @@
-package sabot.onboard.internal.motion;
+package sabot.onboard.motion.internal;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -57,7 +57,6 @@ import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.task.NamedThreads;
-import sabot.onboard.internal.RealtimeScheduling;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;

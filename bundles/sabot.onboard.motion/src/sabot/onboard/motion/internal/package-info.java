@@ -3,4 +3,4 @@
  * ({@code planner}), the trajectory tracker ({@code tracker}), the joystick ({@code teleop}) and the fixed-rate control
  * loop that ties them together and provides {@link sabot.onboard.robot.RobotMotion} ({@code motion}).
  */
-package sabot.onboard.internal.motion;
+package sabot.onboard.motion.internal;

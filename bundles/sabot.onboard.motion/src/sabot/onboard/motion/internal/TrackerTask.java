@@ -1,4 +1,4 @@
-package sabot.onboard.internal.motion;
+package sabot.onboard.motion.internal;
 
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
