@@ -27,6 +27,7 @@ import sabot.modbus.Parity;
 import sabot.modbus.SactClient;
 import sabot.modbus.LandmarkClient;
 import sabot.modbus.SonarClient;
+import sabot.onboard.motion.loop.RobotBoards;
 import sabot.onboard.task.OnboardTask;
 
 /**

@@ -12,6 +12,8 @@ import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 import sabot.model.geometry.Pose2D;
 import sabot.model.map.MapLandmark;
 import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.motion.loop.Localizer;
+import sabot.onboard.motion.loop.LocalizerSettings;
 import sabot.onboard.task.OnboardTask;
 
 /**
@@ -93,12 +95,15 @@ public final class LocalizerTask implements OnboardTask {
      * @return a new estimator at the configured start pose
      */
     Localizer newLocalizer(List<MapLandmark> landmarks) {
-        return new Localizer(RobotDescriptions.defaults(), config, config.useLandmarks() ? landmarks : List.of());
+        return new Localizer(RobotDescriptions.defaults(), settings(), config.useLandmarks() ? landmarks : List.of());
     }
 
-    /** @return the configured settings */
-    Config config() {
-        return config;
+    /** @return the configured settings, as the control loop takes them */
+    LocalizerSettings settings() {
+        Config c = config;
+        return new LocalizerSettings(start(), c.initialSigmaXY(), c.initialSigmaTheta(), c.useImu(),
+                c.useAccelerometer(), c.imuSettleTime(), c.odometryTimeout(), c.landmarkRangeSigma(),
+                c.landmarkBearingSigma(), c.maxPositionSigma());
     }
 
     /** @return the configured start pose */

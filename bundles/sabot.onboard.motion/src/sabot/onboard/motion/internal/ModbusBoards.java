@@ -11,14 +11,17 @@ import sabot.model.geometry.Point2D;
 import sabot.modbus.Board;
 import sabot.modbus.BoardException;
 import sabot.modbus.InsMotion;
+import sabot.modbus.LandmarkSighting;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.Motor;
 import sabot.modbus.MotorGains;
 import sabot.modbus.SactConfig;
 import sabot.modbus.SonarReading;
 import sabot.modbus.StepCapture;
+import sabot.modbus.WheelCounts;
 import sabot.modbus.WheelState;
 import sabot.modbus.Wheels;
+import sabot.onboard.motion.loop.RobotBoards;
 
 /** {@link RobotBoards} over the three board clients of one Modbus bus. */
 final class ModbusBoards implements RobotBoards {
@@ -43,8 +46,7 @@ final class ModbusBoards implements RobotBoards {
 
     @Override
     public WheelCounts readEncoders() throws IOException {
-        sabot.modbus.WheelCounts c = bus.sact().readPositions();
-        return new WheelCounts(c.left(), c.right());
+        return bus.sact().readPositions();
     }
 
     @Override
@@ -97,8 +99,7 @@ final class ModbusBoards implements RobotBoards {
 
     @Override
     public LandmarkSighting readLandmark() throws IOException {
-        sabot.modbus.LandmarkSighting s = bus.landmark().readLatest();
-        return new LandmarkSighting(s.sequence(), s.landmarkId(), s.range(), s.bearing(), s.age().toNanos() * 1e-9);
+        return bus.landmark().readLatest();
     }
 
     @Override

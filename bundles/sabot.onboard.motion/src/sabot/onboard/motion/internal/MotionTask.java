@@ -9,11 +9,15 @@ import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
+import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
 import java.util.function.Consumer;
 
 import org.osgi.service.component.annotations.Activate;
@@ -42,7 +46,6 @@ import sabot.controlml.payload.PidGains;
 import sabot.pidstep.StepFigures;
 import sabot.pidstep.StepSample;
 import sabot.pidstep.controlml.StepTest;
-import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
@@ -52,10 +55,13 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
-import sabot.model.path.Trajectory;
-import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.motion.loop.ControlLoop;
+import sabot.onboard.motion.loop.LoopClock;
+import sabot.onboard.motion.loop.LoopHost;
+import sabot.onboard.motion.loop.LoopSettings;
+import sabot.onboard.motion.loop.RobotBoards;
 import sabot.onboard.task.NamedThreads;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
@@ -71,7 +77,10 @@ import sabot.onboard.task.OnboardTask;
  * smoother bounds it, and the wheel speeds are written; in the periods without an encoder read, the inertial board,
  * one sonar sensor or the landmark board is read after the write (its wire time is budgeted, so the loop does not
  * overrun on it). Nothing in the loop waits on the
- * network; planning runs on the thread {@code sabot-planner}. Settings: {@link Config}.
+ * network; planning runs on the thread {@code sabot-planner} (a goal's first plan too: the request waits for it).
+ * The loop itself is {@link ControlLoop}; this component is its host: it schedules it, queues the other threads'
+ * commands for it, plans for it, publishes its state, and hands it one {@link LoopSettings} snapshot built from the
+ * motion tasks' settings. Settings: {@link Config}.
  */
 @Designate(ocd = MotionTask.Config.class, factory = false)
 @Component(name = "sabot.task.motion", configurationPolicy = ConfigurationPolicy.REQUIRE,
@@ -136,7 +145,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private PlannerTask plannerTask;
     @Reference
     private TrackerTask trackerTask;
-    @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
     private volatile TeleopTask teleopTask;
 
     private final List<MotionListener> listeners = new CopyOnWriteArrayList<>();
@@ -151,7 +159,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         public void offline(String reason) {
             if (config.stopOnDisconnect() && snapshot.moving()) {
                 LOG.warn("XMPP connection lost while moving: braking ({})", reason);
-                commands.add(loop -> loop.fault("XMPP connection lost while moving"));
+                commands.add(l -> l.fault("XMPP connection lost while moving"));
             }
         }
     };
@@ -165,13 +173,29 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private ExecutorService plannerThread;
     private ExecutorService notifier;
     private ControlLoop loop;
-    private volatile Snapshot snapshot;
+    /** What other threads read: the loop's state at the end of its last period or command. */
+    private volatile ControlLoop.Snapshot snapshot;
     private volatile RobotSession session;
+    private final LoopClock clock = LoopClock.SYSTEM;
+    private final LoopHost host = new LoopHost() {
+        @Override
+        public void missionChanged(MissionStatus status) {
+            MotionTask.this.missionChanged(status);
+        }
 
-    /** What other threads read: the loop's state at the end of its last period. Immutable. */
-    record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
-            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing) {
-    }
+        @Override
+        public void planRequested(PlanRequest r) {
+            plannerThread.execute(() -> {
+                ControlLoop.Plan plan = loop.planPath(r.from(), r.goal(), r.obstacles());
+                commands.add(l -> l.replanned(r, plan));
+            });
+        }
+
+        @Override
+        public void applyPendingCommands() {
+            applyCommands();
+        }
+    };
 
     @Activate
     void activate(Config c) throws IOException {
@@ -185,11 +209,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         boards.writeWheelSpeeds(0, 0);
         notifier = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-motion-events"));
         plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
-        loop = new ControlLoop(this, c, boards, robot, localizerTask, plannerTask, trackerTask);
-        snapshot = loop.snapshot(Instant.now());
+        loop = new ControlLoop(host, clock, boards, robot, localizerTask.newLocalizer(plannerTask.landmarks()),
+                plannerTask.planner(), trackerTask, settings(), limits);
+        snapshot = loop.snapshot();
         loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
                 Thread.MAX_PRIORITY));
-        long periodNanos = Math.round(1e9 / c.rate());
+        long periodNanos = loop.timing().periodNanos();
         loopThread.execute(() -> timerSlack(c.timerSlack()));
         if (c.realtimePriority() > 0) {
             loopThread.execute(() -> realtime(c.realtimePriority()));
@@ -200,6 +225,40 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 + "each after a {} ms inter-frame silence)", c.rate(), plannerTask.planner().algorithm(),
                 trackerTask.config().controller(), ms(boards.wheelWriteWireTime()), ms(boards.encoderReadWireTime()),
                 ms(boards.optionalReadWireTime()), ms(boards.interFrameDelay()));
+    }
+
+    /** @return the loop's settings, from the motion tasks' configurations as they are now */
+    private LoopSettings settings() {
+        Config m = config;
+        PlannerTask.Config p = plannerTask.config();
+        TrackerTask.Config t = trackerTask.config();
+        TeleopTask teleop = teleopTask;
+        return new LoopSettings(m.rate(), m.statusPeriod(), m.obstacleMemory(), m.blockedLookahead(),
+                m.blockedClearance(), m.goalTolerance(), teleop != null, teleop != null ? teleop.config().timeout()
+                        : TeleopTask.DEFAULT_TIMEOUT, p.robotRadius(), p.blockedTimeout(), t.speedHeadroom(),
+                t.accelerationHeadroom(), t.progressRadius(), t.progressTime(), t.settleTimeout(),
+                localizerTask.settings());
+    }
+
+    @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
+    void bindTeleop(TeleopTask t) {
+        teleopTask = t;
+        teleopChanged();
+    }
+
+    void unbindTeleop(TeleopTask t) {
+        if (teleopTask == t) {
+            teleopTask = null;
+            teleopChanged();
+        }
+    }
+
+    /** The teleop task came or went (or was reconfigured): the loop takes the joystick's new settings. */
+    private void teleopChanged() {
+        if (loop != null) {
+            LoopSettings s = settings();
+            commands.add(l -> l.settingsChanged(s));
+        }
     }
 
     private static String ms(double seconds) {
@@ -274,7 +333,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
         if (applied) {
             // a caller waiting in apply() reads the new state as soon as its command has been taken
-            snapshot = loop.snapshot(Instant.now());
+            snapshot = loop.snapshot();
             synchronized (commands) {
                 commands.notifyAll();
             }
@@ -282,7 +341,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     private void tick() {
-        long start = System.nanoTime();
+        long start = clock.nanoTime();
         // inside its run a periodic task's delay is the time since it was due (negative or zero): the executor's own
         // schedule, which the loop's jitter is measured against (the first run may come before the assignment)
         ScheduledFuture<?> s = schedule;
@@ -301,20 +360,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
      * Called by the loop (its thread) when the mission's status changed: the new state is published at once, before
      * the loop logs it or listeners hear of it, so that whoever reacts reads it.
      */
-    void missionChanged(MissionStatus status) {
-        snapshot = loop.snapshot(Instant.now());
+    private void missionChanged(MissionStatus status) {
+        snapshot = loop.snapshot();
         for (MotionListener l : listeners) {
             notifier.execute(() -> l.missionChanged(status));
         }
     }
 
-    /** Runs a planning job off the loop's thread; its result comes back through the command queue. */
-    void plan(Runnable job) {
-        plannerThread.execute(job);
-    }
-
     /** Queues a command for the loop's next period. */
-    void enqueue(Consumer<ControlLoop> command) {
+    private void enqueue(Consumer<ControlLoop> command) {
         commands.add(command);
     }
 
@@ -349,14 +403,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     /** Longest wait for the control loop to take a command, ms (it takes them at the start of every period). */
     private static final long APPLY_TIMEOUT_MS = 1000;
 
-    MotionLimits currentLimits() {
-        return limits;
-    }
-
-    TeleopTask teleop() {
-        return teleopTask;
-    }
-
     // ------------------------------------------------------------------------------------------------ RobotMotion
 
     @Override
@@ -388,7 +434,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         if (!twist.isFinite()) {
             throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "twist must be finite");
         }
-        Snapshot s = snapshot;
+        ControlLoop.Snapshot s = snapshot;
         if (s.mission().state() == MissionState.RUNNING || s.mission().state() == MissionState.PAUSED) {
             throw new CommandRefused(ControlMlCondition.INVALID_STATE,
                     "a mission is " + s.mission().state().name().toLowerCase() + ": abort it before driving by joystick");
@@ -400,12 +446,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         double v = clamp(twist.linear(), Math.min(t.config().maxLinear(), limits.maxLinearSpeed()));
         double w = clamp(twist.angular(), Math.min(t.config().maxAngular(), limits.maxAngularSpeed()));
         Twist2D bounded = new Twist2D(v, w);
-        long received = System.nanoTime();
+        long received = clock.nanoTime();
         enqueue(l -> l.teleop(bounded, received, sent));
         // on the loop's own thread, between two periods: takes the twist and writes it if the bus has the time
         try {
             loopThread.execute(this::drainCommands);
-        } catch (java.util.concurrent.RejectedExecutionException stopping) {
+        } catch (RejectedExecutionException stopping) {
             // the task is stopping: the robot brakes anyway
         }
     }
@@ -428,7 +474,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         requireOnMap(goal.pose().position(), "goal");
         Pose2D from = snapshot.pose().pose();
         List<Point2D> obstacles = obstaclePoints(snapshot.obstacles());
-        ControlLoop.Plan plan = loop.planPath(from, goal, obstacles);
+        ControlLoop.Plan plan = firstPlan(from, goal, obstacles);
         if (plan.refusal() != null) {
             throw new CommandRefused(ControlMlCondition.INVALID_VALUE, plan.refusal());
         }
@@ -436,6 +482,37 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         LOG.info("new goal ({}, {}, {}): path {} m", fmt(goal.pose().x()), fmt(goal.pose().y()),
                 fmt(goal.pose().theta()), fmt(plan.length()));
     }
+
+    /**
+     * Plans a new goal on the planner's thread (as every plan) and waits for it, at most {@link #PLAN_TIMEOUT_S}, so
+     * that a goal the planner refuses is answered with the reason.
+     */
+    private ControlLoop.Plan firstPlan(Pose2D from, Goal goal, List<Point2D> obstacles) throws CommandRefused {
+        Future<ControlLoop.Plan> plan;
+        try {
+            plan = plannerThread.submit(() -> loop.planPath(from, goal, obstacles));
+        } catch (RejectedExecutionException stopping) {
+            throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the motion task is stopping");
+        }
+        try {
+            return plan.get(PLAN_TIMEOUT_S, TimeUnit.SECONDS);
+        } catch (TimeoutException e) {
+            plan.cancel(true);
+            throw new CommandRefused(ControlMlCondition.TIMEOUT, "no plan within " + PLAN_TIMEOUT_S + " s");
+        } catch (ExecutionException e) {
+            LOG.error("planning failed", e.getCause());
+            throw new CommandRefused(ControlMlCondition.UNSPECIFIED, "planning failed: " + e.getCause());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "interrupted");
+        }
+    }
+
+    /**
+     * Longest wait for a goal's first plan, s: Smack's default reply timeout (5 s), after which the operator's request
+     * has failed anyway.
+     */
+    private static final long PLAN_TIMEOUT_S = 5;
 
     @Override
     public TrajectoryPayload trajectory() {
@@ -577,7 +654,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     @Override
     public void command(MissionStatus command) throws CommandRefused {
-        Snapshot s = snapshot;
+        ControlLoop.Snapshot s = snapshot;
         MissionState current = s.mission().state();
         if (command.maintenance() != s.mission().maintenance()) {
             // a maintenance switch ignores the state; entering maintenance aborts a running or paused mission
@@ -639,7 +716,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     @Override
     public String status() {
-        Snapshot s = snapshot;
+        ControlLoop.Snapshot s = snapshot;
         return "mission " + s.mission().state().name().toLowerCase() + ", control loop " + s.timing();
     }
 
@@ -682,26 +759,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         return Math.max(-bound, Math.min(bound, v));
     }
 
-    static String fmt(double v) {
-        return String.format(java.util.Locale.ROOT, "%.3f", v);
-    }
-
-    static PoseCovariance covariance(double[][] c) {
-        return new PoseCovariance(c[0][0], c[0][1], c[0][2], c[1][1], c[1][2], c[2][2]);
-    }
-
-    /** Sampling step of cm.trajectory answers, s. */
-    private static final double TRAJECTORY_REPORT_STEP = 0.1;
-
-    static List<TrajectoryPoint> sample(Trajectory t) {
-        List<TrajectoryPoint> points = new ArrayList<>();
-        int n = (int) Math.min(4095, Math.ceil(t.duration() / TRAJECTORY_REPORT_STEP));
-        double step = n == 0 ? 0 : t.duration() / n;
-        for (int i = 0; i <= n; i++) {
-            TrajectorySample s = t.sample(i * step);
-            points.add(new TrajectoryPoint(i * step, s.x(), s.y(), s.theta(), s.linearVelocity(),
-                    s.angularVelocity()));
-        }
-        return points;
+    private static String fmt(double v) {
+        return ControlLoop.fmt(v);
     }
 }

@@ -15,6 +15,7 @@ import org.osgi.service.metatype.annotations.Option;
 
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
+import sabot.onboard.motion.loop.NavigationPlanner;
 import sabot.onboard.task.OnboardTask;
 
 /**

@@ -13,6 +13,7 @@ import sabot.control.DflGains;
 import sabot.control.MotionLimits;
 import sabot.control.PseudoinverseGains;
 import sabot.control.TrackingController;
+import sabot.onboard.motion.loop.LoopControllers;
 import sabot.onboard.task.OnboardTask;
 
 /**
@@ -23,7 +24,7 @@ import sabot.onboard.task.OnboardTask;
 @Designate(ocd = TrackerTask.Config.class, factory = false)
 @Component(name = "sabot.task.tracker", configurationPolicy = ConfigurationPolicy.REQUIRE,
         service = { OnboardTask.class, TrackerTask.class })
-public final class TrackerTask implements OnboardTask {
+public final class TrackerTask implements OnboardTask, LoopControllers {
 
     /** Values of {@code controller}. */
     static final String DFL = "dfl", PSEUDOINVERSE = "pseudoinverse";
@@ -92,16 +93,17 @@ public final class TrackerTask implements OnboardTask {
         this.config = c;
     }
 
-    /** @return a new tracking controller for these limits */
-    TrackingController newTracker(MotionLimits limits) {
+    @Override
+    public TrackingController tracker(MotionLimits limits) {
         if (config.controller().equals(PSEUDOINVERSE)) {
             return Controllers.pseudoinverse(new PseudoinverseGains(config.kp(), config.kTheta()));
         }
         return Controllers.dynamicFeedbackLinearization(DflGains.of(config.omegaN(), config.zeta()), limits);
     }
 
-    /** @return a new point stabilizer (DFL) for these limits */
-    TrackingController newStabilizer(MotionLimits limits) {
+    /** The DFL point stabilizer. */
+    @Override
+    public TrackingController stabilizer(MotionLimits limits) {
         return Controllers.dflPointStabilization(DflGains.stabilizing(config.stabilizerRate()), limits);
     }
 

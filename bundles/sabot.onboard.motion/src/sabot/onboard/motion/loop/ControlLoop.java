@@ -1,15 +1,11 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.io.IOException;
+import java.time.Duration;
 import java.time.Instant;
-import java.util.ArrayDeque;
-import java.util.ArrayList;
-import java.util.Deque;
-import java.util.HashSet;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
-import java.util.Set;
 
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -23,17 +19,14 @@ import sabot.control.TrackingController;
 import sabot.control.TurnInPlace;
 import sabot.control.VelocitySmoother;
 import sabot.control.WheelSpeeds;
-import sabot.control.trajectory.InvalidPathException;
-import sabot.control.trajectory.SplineTrajectory;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
-import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
-import sabot.localization.MeasurementResult;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
@@ -43,10 +36,19 @@ import sabot.model.robot.RobotDescription;
 import sabot.planner.PlanResult;
 
 /**
- * The control loop's state and one period of it. Every method runs on the loop's thread, except {@link #planPath},
- * which only reads immutable inputs and the planner (serialised by itself).
+ * The robot's control loop: its state and one period of it ({@link #tick}), in plain Java. Whoever runs it (the
+ * {@code motion} task on the robot, a test, the motion simulation) gives it a {@link LoopHost} (plan requests, mission
+ * events, queued commands), a {@link LoopClock}, the {@link RobotBoards}, the estimator, the planner and the control
+ * laws, and one {@link LoopSettings} snapshot per configuration change. Every method runs on the loop's thread, except
+ * {@link #planPath}, which only reads immutable inputs and the planner (serialised by itself).
+ * <p>
+ * One deadman: while a joystick drives, the robot brakes when no twist has been received for
+ * {@link LoopSettings#deadman()} seconds (judged on the twist's receive time, as ros2_control's
+ * {@code cmd_vel_timeout}). The velocity smoother is given the same timeout; it is fed a target every period, so its
+ * own timeout would act only if the loop stopped feeding it. The motor board's own deadman (the motion task's
+ * {@code boardDeadman}) stops the wheels if the loop stops writing altogether.
  */
-final class ControlLoop {
+public final class ControlLoop {
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
     private static final Logger STATUS = LoggerFactory.getLogger("sabot.status");
@@ -61,8 +63,6 @@ final class ControlLoop {
     static final double TURN_FRACTION = 0.8;
     /** Gain of the turn's proportional zone near the target, 1/s (the braking curve above it). */
     static final double TURN_GAIN = 5.0;
-    /** Spacing of the waypoints the spline is fitted through, m (planner paths come cell by cell). */
-    static final double WAYPOINT_SPACING = 0.3;
     /** Seconds between two attempts to plan around a blocked path. */
     static final double REPLAN_RETRY = 1.0;
     /** The stabilizer hands over to the turn in place inside this fraction of the position tolerance. */
@@ -73,39 +73,35 @@ final class ControlLoop {
     static final double WIRE_TIME_FACTOR = 1.2;
     /** Time kept free at the end of a period, s: the next start's wake-up jitter. */
     static final double PERIOD_MARGIN = 0.001;
-    /** One optional read in this many goes to the landmark board (about 6 Hz at 50 Hz; the board measures at 10). */
-    static final int LANDMARK_SLOTS = 8;
-    /** Seconds between two reads of a landmark board that has stopped answering. */
-    static final double LANDMARK_RETRY = 2.0;
-    /** Half-angle of a sonar's beam (HC-SR04 figures, onboard-bridge/README.md): an echo lies within it. */
-    static final double SONAR_HALF_BEAM = Math.toRadians(15);
-    /** Largest number of obstacle points kept (cm.obstacles allows 1024 rows). */
-    static final int MAX_OBSTACLES = 1024;
-    /** Reported radius of one sonar obstacle point, m (one echo: the sonar's resolution, not the object's size). */
-    static final double ECHO_RADIUS = 0.05;
-
     /** What the loop is doing. */
-    enum Mode {
+    public enum Mode {
         IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT
     }
 
-    /** A planned path turned into a trajectory, or why not. */
-    record Plan(Trajectory trajectory, double length, String refusal) {
+    /** A planned path turned into a trajectory, or why not ({@code refusal}, for the operator). */
+    public record Plan(Trajectory trajectory, double length, String refusal) {
     }
 
-    private final MotionTask owner;
-    private final MotionTask.Config config;
+    /** What other threads read: the loop's state at the end of a period or a command. Immutable. */
+    public record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
+            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing, Mode mode) {
+    }
+
+    private final LoopHost host;
+    private final LoopClock clock;
     private final RobotBoards boards;
     private final DifferentialDrive drive;
     private final Localizer localizer;
-    private final LocalizerTask localizerTask;
-    private final PlannerTask plannerTask;
-    private final TrackerTask trackerTask;
-    private final long t0 = System.nanoTime();
+    private final NavigationPlanner planner;
+    private final LoopControllers controllers;
+    private final long t0;
     private final LoopTiming timing;
-    private final Deque<double[]> echoes = new ArrayDeque<>();
+    private final EchoMemory echoes;
+    private final SensorRounds sensors;
 
-    private MotionLimits limits;
+    private LoopSettings settings;
+    /** Written on the loop's thread, read by planning on the planner's. */
+    private volatile MotionLimits limits;
     private VelocitySmoother smoother;
     private TrackingController tracker;
     private TrackingController stabilizer;
@@ -133,43 +129,55 @@ final class ControlLoop {
     private boolean readyReported;
     /** Set once the settle phase reached the goal's position; the turn in place follows. */
     private boolean positionSettled;
-    private int optionalRound;
-    /** Periods since the start: the even ones read the encoders, the odd ones a sensor board (outside teleop). */
-    private long periodCount;
-    private int lastLandmarkSequence = -1;
-    private double lastLandmarkTry = Double.NEGATIVE_INFINITY;
-    private final Set<Integer> unknownLandmarks = new HashSet<>();
-    private int sonarRound;
     private double lastStatus = Double.NEGATIVE_INFINITY;
     private Pose2D pose;
     private double[] velocity = { 0, 0 };
 
-    ControlLoop(MotionTask owner, MotionTask.Config config, RobotBoards boards, RobotDescription robot,
-            LocalizerTask localizerTask, PlannerTask plannerTask, TrackerTask trackerTask) {
-        this.owner = owner;
-        this.config = config;
+    /**
+     * @param host        plan requests, mission events, queued commands
+     * @param clock       the loop's time; its origin is the loop's start
+     * @param boards      the robot's bus
+     * @param robot       the drive's geometry
+     * @param localizer   the pose estimate, at the configured start
+     * @param planner     plans on the static map plus the remembered echoes
+     * @param controllers the tracking controller and point stabilizer
+     * @param settings    the configuration's snapshot
+     * @param limits      the motion limits in force (written to the motor board)
+     */
+    public ControlLoop(LoopHost host, LoopClock clock, RobotBoards boards, RobotDescription robot, Localizer localizer,
+            NavigationPlanner planner, LoopControllers controllers, LoopSettings settings, MotionLimits limits) {
+        this.host = host;
+        this.clock = clock;
+        this.t0 = clock.nanoTime();
         this.boards = boards;
         this.drive = DifferentialDrive.of(robot);
-        this.localizerTask = localizerTask;
-        this.localizer = localizerTask.newLocalizer(plannerTask.landmarks());
-        this.plannerTask = plannerTask;
-        this.trackerTask = trackerTask;
-        this.timing = new LoopTiming(Math.round(1e9 / config.rate()));
-        this.pose = localizerTask.start();
-        limitsChanged(owner.currentLimits());
+        this.localizer = localizer;
+        this.planner = planner;
+        this.controllers = controllers;
+        this.settings = settings;
+        this.timing = new LoopTiming(settings.periodNanos());
+        this.echoes = new EchoMemory(planner);
+        this.sensors = new SensorRounds(boards, localizer, echoes, this::now);
+        this.pose = settings.localizer().start();
+        limitsChanged(limits);
     }
 
     private double now() {
-        return (System.nanoTime() - t0) * 1e-9;
+        return (clock.nanoTime() - t0) * 1e-9;
     }
 
-    LoopTiming timing() {
+    public LoopTiming timing() {
         return timing;
     }
 
     /** @return joystick twist sent → wheel set-point written, as measured so far */
-    MicrosHistogram teleopLatency() {
+    public MicrosHistogram teleopLatency() {
         return teleopLatency;
+    }
+
+    /** A new configuration's snapshot; takes effect from the next period (the rate is fixed at the start). */
+    public void settingsChanged(LoopSettings s) {
+        this.settings = s;
     }
 
     // --------------------------------------------------------------------------------------------- one period
@@ -177,23 +185,18 @@ final class ControlLoop {
     /**
      * One period of the loop.
      *
-     * @param start     System.nanoTime when the period's run began
-     * @param scheduled when the schedule had it due (System.nanoTime)
+     * @param start     the clock's nanoTime when the period's run began
+     * @param scheduled when the schedule had it due (the clock's nanoTime)
      */
-    MotionTask.Snapshot tick(long start, long scheduled) {
+    public Snapshot tick(long start, long scheduled) {
         timing.started(start, scheduled);
         double t = (start - t0) * 1e-9;
         // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
         // that read's wire time to its latency
         boolean wroteTwist = mode == Mode.TELEOP && teleopSent != null && writeTwist(t);
-        // The line carries two transactions per period with the margin the schedule needs (115200 baud: encoder
-        // read 5.2 ms + wheel write 4.8 ms of wire time, each after a 1.75 ms silence), not three. So the encoders are
-        // read every other period and a sensor board in the periods between (the encoder counts are cumulative: read
-        // at 25 Hz they lose no distance; the estimate is predicted in between). While a joystick drives, the
-        // encoders are read every period and no sensor board (its twists need the spare time).
-        boolean sensorPeriod = mode != Mode.TELEOP && (periodCount++ & 1) == 1;
+        boolean sensorPeriod = sensors.isSensorPeriod(mode == Mode.TELEOP);
         if (!sensorPeriod) {
-            readEncoders();
+            sensors.readEncoders();
         }
         pose = localizer.pose(t);
         velocity = localizer.velocity();
@@ -205,13 +208,13 @@ final class ControlLoop {
         }
         if (!readyReported && !localizer.isSettling(t)) {
             readyReported = true;
-            LOG.info("ready to move ({})", localizerTask.config().useImu() ? "inertial biases settled after "
-                    + localizerTask.config().imuSettleTime() + " s at rest" : "odometry only");
+            LOG.info("ready to move ({})", settings.localizer().useImu() ? "inertial biases settled after "
+                    + settings.localizer().imuSettleTime() + " s at rest" : "odometry only");
         }
         if (mode == Mode.TELEOP && !wroteTwist) {
             // a twist that arrived during this period's encoder read goes out with this period's wheel write, not at
             // the start of the next period
-            owner.applyCommands();
+            host.applyPendingCommands();
         }
         Twist2D command = command(t);
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
@@ -237,27 +240,15 @@ final class ControlLoop {
         if (sensorPeriod) {
             optionalReads(t);
         }
-        timing.ended(System.nanoTime());
-        if (config.statusPeriod() > 0 && t - lastStatus >= config.statusPeriod()) {
+        timing.ended(clock.nanoTime());
+        if (settings.statusPeriod() > 0 && t - lastStatus >= settings.statusPeriod()) {
             lastStatus = t;
-            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}", f3(pose.x()), f3(pose.y()),
-                    f3(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
+            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}", fmt(pose.x()), fmt(pose.y()),
+                    fmt(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
                     Math.round(mission.progress()), mission.detail().isBlank() ? "" : "(" + mission.detail() + ") ",
                     mode.name().toLowerCase(Locale.ROOT));
         }
-        return snapshot(Instant.now());
-    }
-
-    /** A failed read is not an error by itself: the localizer's odometry timeout and the bus's fault time judge. */
-    private void readEncoders() {
-        try {
-            RobotBoards.WheelCounts c = boards.readEncoders();
-            // stamped when the answer arrived, not when the period began: a retried read is tens of ms late, and
-            // odometry's speed is distance over the time between two readings
-            localizer.encoders(now(), c.left(), c.right());
-        } catch (IOException e) {
-            LOG.debug("encoder read failed: {}", e.getMessage());
-        }
+        return snapshot();
     }
 
     /** @return why the robot must stop now, or null */
@@ -269,14 +260,14 @@ final class ControlLoop {
         if (localizer.isStale(t)) {
             // odometry goes stale before the bus calls the motor board faulted (its encoders are read every other
             // period): name the board when it is the reason
-            double timeout = localizerTask.config().odometryTimeout();
+            double timeout = settings.localizer().odometryTimeout();
             return boards.motorBoardSilentFor(timeout / 2) ? "the sact board does not answer (no odometry for "
                     + timeout + " s)" : "no odometry for " + timeout + " s";
         }
         double sigma = localizer.positionSigma();
-        if (sigma > localizerTask.config().maxPositionSigma()) {
+        if (sigma > settings.localizer().maxPositionSigma()) {
             return String.format(Locale.ROOT, "position uncertainty %.2f m above the limit %.2f m", sigma,
-                    localizerTask.config().maxPositionSigma());
+                    settings.localizer().maxPositionSigma());
         }
         return null;
     }
@@ -296,91 +287,21 @@ final class ControlLoop {
             timing.skippedOptionalRead();
             return;
         }
-        int sonars = boards.sonarSensors();
-        int round = optionalRound++;
         try {
-            // every other spare slot goes to the gyro; one in eight to the landmark board (it measures at 10 Hz), the
-            // others to the sonar sensors in turn
-            if (round % LANDMARK_SLOTS == 1 && landmarkReadDue(t)) {
-                readLandmark();
-            } else if (round % 2 == 0 || sonars == 0) {
-                RobotBoards.ImuSample s = boards.readImu();
-                localizer.inertial(now(), s.yawRate(), s.forwardAcceleration());
-            } else {
-                int sensor = sonarRound++ % sonars;
-                for (Point2D p : boards.readSonar(sensor)) {
-                    addEcho(t, p);
-                }
-            }
+            sensors.readSpareSlot(t, pose);
         } catch (IOException e) {
             LOG.debug("optional read failed: {}", e.getMessage());
         }
-        pruneEchoes(t);
+        echoes.prune(t, settings.obstacleMemory());
     }
 
     /** @return how many landmark sightings the estimate used, for the log */
-    String landmarkSummary() {
+    public String landmarkSummary() {
         if (!localizer.usesLandmarks()) {
             return "no landmarks on the map";
         }
         long[] n = localizer.landmarkCounts();
         return "landmark fixes " + n[0] + " (" + n[1] + " rejected by the gate)";
-    }
-
-    /** A landmark board that stopped answering is asked again only every {@link #LANDMARK_RETRY} s. */
-    private boolean landmarkReadDue(double t) {
-        if (!localizer.usesLandmarks()) {
-            return false;
-        }
-        if (boards.landmarkBoardFaulted() && t - lastLandmarkTry < LANDMARK_RETRY) {
-            return false;
-        }
-        lastLandmarkTry = t;
-        return true;
-    }
-
-    private void readLandmark() throws IOException {
-        RobotBoards.LandmarkSighting s = boards.readLandmark();
-        if (s.sequence() == lastLandmarkSequence) {
-            return; // read again before the board measured anew
-        }
-        lastLandmarkSequence = s.sequence();
-        if (s.landmarkId() != 0) {
-            MeasurementResult r = localizer.landmark(now(), s.landmarkId(), s.range(), s.bearing(), s.age());
-            if (r == null && unknownLandmarks.add(s.landmarkId())) {
-                LOG.warn("landmark {} seen but not on the map's landmark list: ignored", s.landmarkId());
-            }
-        }
-    }
-
-    private void addEcho(double t, Point2D robotFrame) {
-        double c = Math.cos(pose.theta());
-        double s = Math.sin(pose.theta());
-        Point2D p = new Point2D(pose.x() + c * robotFrame.x() - s * robotFrame.y(),
-                pose.y() + s * robotFrame.x() + c * robotFrame.y());
-        // the board puts an echo on the beam's axis; the reflector may be anywhere across the beam at that range
-        double across = Math.hypot(robotFrame.x(), robotFrame.y()) * Math.sin(SONAR_HALF_BEAM);
-        if (plannerTask.planner().isNearStaticObstacle(p, across)) {
-            return;
-        }
-        echoes.addLast(new double[] { t, p.x(), p.y() });
-        while (echoes.size() > MAX_OBSTACLES) {
-            echoes.removeFirst();
-        }
-    }
-
-    private void pruneEchoes(double t) {
-        while (!echoes.isEmpty() && t - echoes.peekFirst()[0] > config.obstacleMemory()) {
-            echoes.removeFirst();
-        }
-    }
-
-    private List<Point2D> echoPoints() {
-        List<Point2D> points = new ArrayList<>(echoes.size());
-        for (double[] e : echoes) {
-            points.add(new Point2D(e[1], e[2]));
-        }
-        return points;
     }
 
     // -------------------------------------------------------------------------------------------------- modes
@@ -390,7 +311,7 @@ final class ControlLoop {
             if (!settlingReported) {
                 settlingReported = true;
                 LOG.info("holding still for {} s after the start while the inertial biases settle",
-                        localizerTask.config().imuSettleTime());
+                        settings.localizer().imuSettleTime());
             }
             if (mode == Mode.FOLLOW) {
                 trajectoryStart = t; // the trajectory starts when the robot may move
@@ -399,8 +320,8 @@ final class ControlLoop {
         }
         switch (mode) {
             case TELEOP -> {
-                TeleopTask teleop = owner.teleop();
-                double timeout = teleop == null ? 0 : teleop.config().timeout();
+                // a joystick twist older than the deadman stops the robot; without the teleop task, at once
+                double timeout = settings.joystick() ? settings.deadman() : 0;
                 if (t - teleopTime > timeout) {
                     LOG.warn("joystick silent for more than {} s: stopping (deadman)", timeout);
                     brake();
@@ -428,8 +349,8 @@ final class ControlLoop {
                 if (!replanPending && t - lastReplan >= REPLAN_RETRY) {
                     replan(t);
                 }
-                if (t - modeSince > plannerTask.config().blockedTimeout()) {
-                    fail("path blocked for " + plannerTask.config().blockedTimeout() + " s");
+                if (t - modeSince > settings.blockedTimeout()) {
+                    fail("path blocked for " + settings.blockedTimeout() + " s");
                 }
                 return Twist2D.ZERO;
             }
@@ -449,14 +370,15 @@ final class ControlLoop {
             stabilizer.reset();
             return settle(t);
         }
-        if (blocked(tau)) {
+        if (echoes.blocks(trajectory, tau, settings.blockedLookahead(), settings.robotRadius()
+                + settings.blockedClearance())) {
             LOG.info("obstacle on the path ahead: stopping to replan");
             setMode(Mode.BLOCKED, t);
             replan(t);
             return Twist2D.ZERO;
         }
         if (!progressChecker.isMakingProgress(t, pose)) {
-            LOG.info("no progress for {} s: replanning", trackerTask.config().progressTime());
+            LOG.info("no progress for {} s: replanning", settings.progressTime());
             progressChecker.reset();
             setMode(Mode.BLOCKED, t);
             replan(t);
@@ -477,7 +399,7 @@ final class ControlLoop {
         Pose2D target = goal == null ? trajectory.endPose() : goal.pose();
         double distance = Math.hypot(target.x() - pose.x(), target.y() - pose.y());
         double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
-        double positionTolerance = goal == null ? config.goalTolerance() : goal.positionTolerance();
+        double positionTolerance = goal == null ? settings.goalTolerance() : goal.positionTolerance();
         double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
         // at rest first: the checker latches the position once within tolerance, and a robot passing through the
         // tolerance at speed must not have it latched (it would then be done wherever it comes to rest)
@@ -486,9 +408,9 @@ final class ControlLoop {
             complete(t);
             return Twist2D.ZERO;
         }
-        if (t - modeSince > trackerTask.config().settleTimeout()) {
+        if (t - modeSince > settings.settleTimeout()) {
             fail(String.format(Locale.ROOT, "did not settle on the goal within %.0f s (%.2f m, %.2f rad away)",
-                    trackerTask.config().settleTimeout(), distance, headingError));
+                    settings.settleTimeout(), distance, headingError));
             return Twist2D.ZERO;
         }
         if (distance > positionTolerance * SETTLE_POSITION_FRACTION && !positionSettled) {
@@ -508,23 +430,6 @@ final class ControlLoop {
                 s.yDot(), s.xDdot(), s.yDdot());
     }
 
-    private boolean blocked(double tau) {
-        if (echoes.isEmpty()) {
-            return false;
-        }
-        double clearance = plannerTask.config().robotRadius() + config.blockedClearance();
-        double end = Math.min(trajectory.duration(), tau + config.blockedLookahead());
-        for (double s = tau; s <= end; s += 0.1) {
-            TrajectorySample r = trajectory.sample(s);
-            for (double[] e : echoes) {
-                if (Math.hypot(e[1] - r.x(), e[2] - r.y()) < clearance) {
-                    return true;
-                }
-            }
-        }
-        return false;
-    }
-
     private void replan(double t) {
         lastReplan = t;
         if (goal == null) {
@@ -532,25 +437,20 @@ final class ControlLoop {
             return;
         }
         replanPending = true;
-        Pose2D from = pose;
-        Goal g = goal;
-        List<Point2D> obstacles = echoPoints();
-        owner.plan(() -> {
-            Plan plan = planPath(from, g, obstacles);
-            owner.enqueue(loop -> loop.replanned(g, plan));
-        });
+        host.planRequested(new LoopHost.PlanRequest(pose, goal, echoes.points()));
     }
 
-    private void replanned(Goal g, Plan plan) {
+    /** The plan asked for with {@code request} (ignored when the mission has moved on meanwhile). */
+    public void replanned(LoopHost.PlanRequest request, Plan plan) {
         replanPending = false;
-        if (mode != Mode.BLOCKED || g != goal) {
+        if (mode != Mode.BLOCKED || request.goal() != goal) {
             return;
         }
         if (plan.refusal() != null) {
             LOG.info("no path yet: {}", plan.refusal());
             return;
         }
-        LOG.info("replanned around the obstacle: {} m", MotionTask.fmt(plan.length()));
+        LOG.info("replanned around the obstacle: {} m", fmt(plan.length()));
         setTrajectory(plan, now());
     }
 
@@ -559,55 +459,25 @@ final class ControlLoop {
     /**
      * Plans from {@code from} to the goal around {@code obstacles}; thread-safe (the planner serialises requests).
      */
-    Plan planPath(Pose2D from, Goal goal, List<Point2D> obstacles) {
-        PlanResult result = plannerTask.planner().plan(from.position(), goal.pose().position(), obstacles);
+    public Plan planPath(Pose2D from, Goal goal, List<Point2D> obstacles) {
+        PlanResult result = planner.plan(from.position(), goal.pose().position(), obstacles);
         if (result instanceof PlanResult.Unreachable u) {
             return new Plan(null, 0, "unreachable goal: " + u.detail());
         }
-        List<Point2D> path = ((PlanResult.Found) result).path().waypoints();
-        List<Point2D> waypoints = thin(path, from.position(), goal.pose().position());
-        if (waypoints.size() < 2) {
-            return new Plan(null, 0, null);
-        }
-        try {
-            MotionLimits planning = owner.currentLimits().withHeadroom(trackerTask.config().speedHeadroom(),
-                    trackerTask.config().accelerationHeadroom());
-            SplineTrajectory t = SplineTrajectory.planCurvatureLimited(waypoints, planning.maxLinearSpeed(), planning);
-            return new Plan(t, t.length(), null);
-        } catch (InvalidPathException e) {
-            return new Plan(null, 0, "no trajectory through the path: " + e.getMessage());
-        }
+        LoopSettings s = settings;
+        return TrajectoryFitter.fit(((PlanResult.Found) result).path().waypoints(), from.position(),
+                goal.pose().position(), limits.withHeadroom(s.speedHeadroom(), s.accelerationHeadroom()));
     }
 
-    /** Keeps a waypoint every {@link #WAYPOINT_SPACING} m, the exact start and the exact goal. */
-    static List<Point2D> thin(List<Point2D> path, Point2D start, Point2D goal) {
-        List<Point2D> out = new ArrayList<>();
-        out.add(start);
-        Point2D last = start;
-        for (int i = 1; i < path.size() - 1; i++) {
-            Point2D p = path.get(i);
-            if (Math.hypot(p.x() - last.x(), p.y() - last.y()) >= WAYPOINT_SPACING
-                    && Math.hypot(p.x() - goal.x(), p.y() - goal.y()) >= WAYPOINT_SPACING / 2) {
-                out.add(p);
-                last = p;
-            }
-        }
-        if (Math.hypot(goal.x() - start.x(), goal.y() - start.y()) > 1e-3) {
-            out.add(goal);
-        }
-        return out;
-    }
-
-    void startMission(Goal g, Plan plan) {
+    public void startMission(Goal g, Plan plan) {
         double t = now();
         clearFault();
         this.goal = g;
         goalChecker = new GoalChecker(g.positionTolerance(), Math.min(Math.PI, g.headingTolerance()), true);
-        setMission(MissionState.RUNNING, 0, "to (" + MotionTask.fmt(g.pose().x()) + ", "
-                + MotionTask.fmt(g.pose().y()) + ")");
+        setMission(MissionState.RUNNING, 0, "to (" + fmt(g.pose().x()) + ", " + fmt(g.pose().y()) + ")");
         if (plan.trajectory() == null) {
             trajectory = null;
-            trajectoryPayload = new TrajectoryPayload(Instant.now(), List.of());
+            trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
             stabilizer.reset();
             positionSettled = false;
             setMode(Mode.SETTLE, t);
@@ -616,21 +486,20 @@ final class ControlLoop {
         setTrajectory(plan, t);
     }
 
-    void followImposed(TrajectoryPayload imposed) {
+    public void followImposed(TrajectoryPayload imposed) {
         double t = now();
         clearFault();
         this.goal = null;
         Trajectory path = new SampledTrajectory(imposed.points());
-        goalChecker = new GoalChecker(config.goalTolerance(), Math.PI, true);
+        goalChecker = new GoalChecker(settings.goalTolerance(), Math.PI, true);
         setMission(MissionState.RUNNING, 0, "imposed trajectory");
         setTrajectory(new Plan(path, path.length(), null), t);
     }
 
     private void setTrajectory(Plan plan, double t) {
         trajectory = plan.trajectory();
-        trajectoryPayload = new TrajectoryPayload(Instant.now(), MotionTask.sample(trajectory));
-        progressChecker = new ProgressChecker(trackerTask.config().progressRadius(), trackerTask.config()
-                .progressTime());
+        trajectoryPayload = new TrajectoryPayload(clock.now(), SampledTrajectory.points(trajectory));
+        progressChecker = new ProgressChecker(settings.progressRadius(), settings.progressTime());
         double error = Pose2D.normalizeAngle(trajectory.startPose().theta() - pose.theta());
         if (Math.abs(error) > ALIGN_THRESHOLD) {
             setMode(Mode.ALIGN, t);
@@ -646,7 +515,13 @@ final class ControlLoop {
         setMode(Mode.FOLLOW, t);
     }
 
-    void teleop(Twist2D twist, long receivedNanos, Instant sent) {
+    /**
+     * A joystick twist.
+     *
+     * @param receivedNanos when it was received (the clock's nanoTime): the deadman is judged on it
+     * @param sent          when the operator sent it (wall clock), for the latency
+     */
+    public void teleop(Twist2D twist, long receivedNanos, Instant sent) {
         double t = (receivedNanos - t0) * 1e-9;
         teleopSent = sent;
         clearFault();
@@ -664,12 +539,12 @@ final class ControlLoop {
      * Writes the newest joystick twist at once when the bus is free long enough before the next period (a twist would
      * otherwise wait up to a period for its write); the period's own work is never delayed by it.
      */
-    void teleopWrite() {
+    public void teleopWrite() {
         if (mode != Mode.TELEOP || teleopSent == null) {
             return;
         }
         // the silence after the period's last answer has partly or wholly passed while the twist was on its way
-        double sinceWork = (System.nanoTime() - timing.lastEndNanos()) * 1e-9;
+        double sinceWork = (clock.nanoTime() - timing.lastEndNanos()) * 1e-9;
         if (fitsBeforeNextPeriod(Math.max(0, boards.interFrameDelay() - sinceWork), boards.wheelWriteWireTime())) {
             writeTwist(now());
         }
@@ -685,13 +560,13 @@ final class ControlLoop {
      * @param wireTime the transaction's computed wire time, seconds
      */
     private boolean fitsBeforeNextPeriod(double silence, double wireTime) {
-        double left = (timing.nextStartNanos() - System.nanoTime()) * 1e-9;
+        double left = (timing.nextStartNanos() - clock.nanoTime()) * 1e-9;
         return left >= silence + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
     }
 
     /** The newest joystick twist has reached the board (through the smoother): its latency is recorded. */
     private void teleopWritten() {
-        teleopLatency.add(java.time.Duration.between(teleopSent, Instant.now()).toNanos());
+        teleopLatency.add(Duration.between(teleopSent, clock.now()).toNanos());
         teleopSent = null;
     }
 
@@ -713,16 +588,16 @@ final class ControlLoop {
         }
     }
 
-    void relocalise(Pose2D p) {
+    public void relocalise(Pose2D p) {
         localizer.reset(p, now());
         LOG.info("re-localised at {}", p);
     }
 
-    void limitsChanged(MotionLimits l) {
+    public void limitsChanged(MotionLimits l) {
         this.limits = l;
-        smoother = new VelocitySmoother(l, 1.0);
-        tracker = trackerTask.newTracker(l);
-        stabilizer = trackerTask.newStabilizer(l);
+        smoother = new VelocitySmoother(l, settings.deadman());
+        tracker = controllers.tracker(l);
+        stabilizer = controllers.stabilizer(l);
         turn = new TurnInPlace(l.maxAngularSpeed() * TURN_FRACTION, l.maxAngularAcceleration() * TURN_FRACTION,
                 TURN_GAIN);
         try {
@@ -734,7 +609,7 @@ final class ControlLoop {
         }
     }
 
-    void pause() {
+    public void pause() {
         if (mission.state() != MissionState.RUNNING) {
             return;
         }
@@ -743,7 +618,7 @@ final class ControlLoop {
         setMission(MissionState.PAUSED, mission.progress(), "paused");
     }
 
-    void resume() {
+    public void resume() {
         if (mode != Mode.PAUSED) {
             return;
         }
@@ -758,7 +633,7 @@ final class ControlLoop {
         }
     }
 
-    void abort(String reason) {
+    public void abort(String reason) {
         double t = now();
         brake();
         if (mission.state() == MissionState.RUNNING || mission.state() == MissionState.PAUSED) {
@@ -768,7 +643,7 @@ final class ControlLoop {
         LOG.info("stopped: {}", reason);
     }
 
-    void maintenance(boolean on, String detail) {
+    public void maintenance(boolean on, String detail) {
         brake();
         MissionState state = mission.state();
         if (on && (state == MissionState.RUNNING || state == MissionState.PAUSED)) {
@@ -778,12 +653,12 @@ final class ControlLoop {
         setMode(Mode.IDLE, now());
         mission = new MissionStatus(state, on, mission.progress(),
                 on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended");
-        owner.missionChanged(mission);
+        host.missionChanged(mission);
         LOG.info("maintenance {}", on ? "on" : "off");
     }
 
     /** Brakes and marks the mission failed with the reason; the robot stays still until a new command. */
-    void fault(String reason) {
+    public void fault(String reason) {
         if (mode == Mode.FAULT && reason.equals(mission.detail())) {
             return;
         }
@@ -791,7 +666,7 @@ final class ControlLoop {
         brake();
         setMode(Mode.FAULT, now());
         mission = new MissionStatus(MissionState.FAILED, mission.maintenance(), mission.progress(), reason);
-        owner.missionChanged(mission);
+        host.missionChanged(mission);
     }
 
     /** Releases the brake (after a stop or a fault) so that a new command can move the robot. */
@@ -804,15 +679,20 @@ final class ControlLoop {
             } catch (IOException e) {
                 LOG.warn("could not release the brake: {}", e.getMessage());
             }
-            smoother.reset();
+            resetSmoother();
         }
         if (mode == Mode.FAULT) {
             setMode(Mode.IDLE, now());
         }
     }
 
+    /** Starts the smoother from rest (with the deadman in force now). */
+    private void resetSmoother() {
+        smoother = new VelocitySmoother(limits, settings.deadman());
+    }
+
     private void brake() {
-        smoother.reset();
+        resetSmoother();
         try {
             boards.brake(true);
             braked = true;
@@ -825,8 +705,7 @@ final class ControlLoop {
     private void complete(double t) {
         setMission(MissionState.DONE, 100, "goal reached");
         setMode(Mode.IDLE, t);
-        LOG.info("goal reached at ({}, {}, {})", MotionTask.fmt(pose.x()), MotionTask.fmt(pose.y()),
-                MotionTask.fmt(pose.theta()));
+        LOG.info("goal reached at ({}, {}, {})", fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
     }
 
     private void fail(String reason) {
@@ -846,7 +725,7 @@ final class ControlLoop {
 
     private void setMission(MissionState state, double progress, String detail) {
         mission = new MissionStatus(state, mission.maintenance(), progress, detail);
-        owner.missionChanged(mission);
+        host.missionChanged(mission);
     }
 
     private void updateProgress(double progress) {
@@ -854,26 +733,27 @@ final class ControlLoop {
         boolean step = Math.floor(progress / 10) != Math.floor(mission.progress() / 10);
         mission = new MissionStatus(mission.state(), mission.maintenance(), progress, mission.detail());
         if (step) {
-            owner.missionChanged(mission);
+            host.missionChanged(mission);
         }
     }
 
     // ----------------------------------------------------------------------------------------------- snapshot
 
-    MotionTask.Snapshot snapshot(Instant now) {
-        PoseEstimate p = new PoseEstimate(now, pose, MotionTask.covariance(localizer.covariance()));
+    /** @return the loop's state now, stamped with the clock's wall time */
+    public Snapshot snapshot() {
+        Instant now = clock.now();
+        double[][] c = localizer.covariance();
+        PoseEstimate p = new PoseEstimate(now, pose, new PoseCovariance(c[0][0], c[0][1], c[0][2], c[1][1], c[1][2],
+                c[2][2]));
         VelocityCommand v = new VelocityCommand(now, new Twist2D(velocity[0], velocity[1]));
-        List<Obstacle> obstacles = new ArrayList<>(echoes.size());
-        for (double[] e : echoes) {
-            obstacles.add(new Obstacle(e[1], e[2], ECHO_RADIUS));
-        }
         boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
-        return new MotionTask.Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
-                new Obstacles(now, obstacles), moving, timing.summary());
+        return new Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
+                new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode);
     }
 
-    private static String f3(double v) {
+    /** @return {@code v} with three decimals, for the log */
+    public static String fmt(double v) {
         return String.format(Locale.ROOT, "%.3f", v);
     }
 

@@ -1,4 +1,4 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.util.HashMap;
 import java.util.List;
@@ -19,10 +19,10 @@ import sabot.model.robot.RobotDescription;
  * longitudinal acceleration, and with sightings of the map's ceiling landmarks (absolute fixes), in an EKF. Used by
  * the control loop's thread only (not thread-safe).
  */
-final class Localizer {
+public final class Localizer {
 
     private final RobotDescription robot;
-    private final LocalizerTask.Config config;
+    private final LocalizerSettings config;
     private EncoderOdometry odometry;
     private PoseEkf ekf;
     private double lastOdometryTime = Double.NaN;
@@ -33,13 +33,13 @@ final class Localizer {
     private long landmarkFixes;
     private long landmarkOutliers;
 
-    Localizer(RobotDescription robot, LocalizerTask.Config config, List<MapLandmark> landmarks) {
+    public Localizer(RobotDescription robot, LocalizerSettings config, List<MapLandmark> landmarks) {
         this.robot = robot;
         this.config = config;
         for (MapLandmark m : landmarks) {
             this.landmarks.put(m.id(), new Landmark(Integer.toString(m.id()), m.x(), m.y()));
         }
-        reset(new Pose2D(config.startX(), config.startY(), config.startTheta()), Double.NaN);
+        reset(config.start(), Double.NaN);
     }
 
     /** Resets the estimate to {@code pose} with the configured initial uncertainty; the next counts start odometry. */

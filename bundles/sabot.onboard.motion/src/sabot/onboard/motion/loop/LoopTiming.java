@@ -1,4 +1,4 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.util.Locale;
 
@@ -10,7 +10,7 @@ import org.slf4j.LoggerFactory;
  * the period's work took, and how many optional reads were skipped for lack of bus time. Histograms in microseconds
  * ({@link MicrosHistogram}). Written by the loop's thread; summaries may be read from any thread (slightly stale).
  */
-final class LoopTiming {
+public final class LoopTiming {
 
     private final long periodNanos;
     private final MicrosHistogram jitter = new MicrosHistogram();
@@ -28,7 +28,7 @@ final class LoopTiming {
     private volatile Summary summary = new Summary(0, 0, 0, 0, 0, 0, 0, 0);
 
     /** Percentiles in microseconds. */
-    record Summary(long periods, double jitterP50, double jitterP99, double jitterMax, double busyP50, double busyP99,
+    public record Summary(long periods, double jitterP50, double jitterP99, double jitterMax, double busyP50, double busyP99,
             long overruns, long skippedOptionalReads) {
         @Override
         public String toString() {
@@ -44,7 +44,7 @@ final class LoopTiming {
         this.periodNanos = periodNanos;
     }
 
-    long periodNanos() {
+    public long periodNanos() {
         return periodNanos;
     }
 
@@ -96,7 +96,7 @@ final class LoopTiming {
         skipped++;
     }
 
-    Summary summary() {
+    public Summary summary() {
         return summary;
     }
 

@@ -1,4 +1,4 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.util.Locale;
 
@@ -6,7 +6,7 @@ import java.util.Locale;
  * Durations in 1 µs bins up to 100 ms (longer ones count in the last bin), so that percentiles over hours of control
  * periods cost no memory growth. Written by one thread; a reader on another thread may see a slightly stale state.
  */
-final class MicrosHistogram {
+public final class MicrosHistogram {
 
     private static final int BINS = 100_000;
 
@@ -46,7 +46,7 @@ final class MicrosHistogram {
     }
 
     /** @return e.g. {@code p50 1.2 ms p99 3.4 ms max 5.0 ms (n 1234)} */
-    String describe() {
+    public String describe() {
         return String.format(Locale.ROOT, "p50 %.1f ms p99 %.1f ms max %.1f ms (n %d)", percentile(0.5) / 1000,
                 percentile(0.99) / 1000, max() / 1000, count);
     }

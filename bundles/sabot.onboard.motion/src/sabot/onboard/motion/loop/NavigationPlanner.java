@@ -1,4 +1,4 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.util.Collection;
 import java.util.List;
@@ -21,7 +21,7 @@ import sabot.planner.costmap.MovingObstacleModel;
  * points as lethal cells, inflation by the robot's radius) and runs the configured planner. Thread-safe: requests are
  * serialised (the planner holds its work arrays).
  */
-final class NavigationPlanner implements AutoCloseable {
+public final class NavigationPlanner implements AutoCloseable {
 
     /** Occupancy (0..100) from which a map cell is a known obstacle (ROS map_server: occupied_thresh 0.65). */
     private static final int OCCUPIED_THRESHOLD = 65;
@@ -31,7 +31,7 @@ final class NavigationPlanner implements AutoCloseable {
     private final double robotRadius;
     private volatile OccupancyGrid map;
 
-    NavigationPlanner(OccupancyGrid map, String algorithm, int threads, double robotRadius, double inflationRadius) {
+    public NavigationPlanner(OccupancyGrid map, String algorithm, int threads, double robotRadius, double inflationRadius) {
         this.map = map;
         this.planner = Planners.byName(algorithm, CostModel.standard(), threads).orElseThrow(
                 () -> new IllegalArgumentException("unknown planner '" + algorithm + "', one of " + Planners.NAMES));
@@ -41,17 +41,17 @@ final class NavigationPlanner implements AutoCloseable {
     }
 
     /** @return the static map (a copy is not made: callers must not change it) */
-    OccupancyGrid map() {
+    public OccupancyGrid map() {
         return map;
     }
 
     /** Replaces the static map. */
-    void replaceMap(OccupancyGrid newMap) {
+    public void replaceMap(OccupancyGrid newMap) {
         this.map = newMap;
     }
 
     /** @return the planner's name, e.g. lpn */
-    String algorithm() {
+    public String algorithm() {
         return planner.name();
     }
 
@@ -59,7 +59,7 @@ final class NavigationPlanner implements AutoCloseable {
      * @param obstacles sonar points in the map frame, m
      * @return a path or the reason there is none
      */
-    synchronized PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles) {
+    public synchronized PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles) {
         OccupancyGrid grid = map;
         OccupancyGrid withObstacles = OccupancyGrid.of(grid.geometry(), grid.toArray());
         for (Point2D p : obstacles) {
@@ -99,7 +99,7 @@ final class NavigationPlanner implements AutoCloseable {
      * @return true when an occupied cell of the static map lies within {@code radius} (m, plus one cell) of {@code p}:
      *         a sonar echo that may come from a wall the planner already knows
      */
-    boolean isNearStaticObstacle(Point2D p, double radius) {
+    public boolean isNearStaticObstacle(Point2D p, double radius) {
         OccupancyGrid grid = map;
         GridGeometry g = grid.geometry();
         Optional<Cell> cell = g.cellAt(p);

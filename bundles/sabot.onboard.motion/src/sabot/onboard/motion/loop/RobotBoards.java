@@ -1,4 +1,4 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -6,6 +6,8 @@ import java.util.List;
 
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
+import sabot.modbus.LandmarkSighting;
+import sabot.modbus.WheelCounts;
 
 /**
  * What the control loop needs of the robot's RS-485 bus, in SI units: one method per bus transaction, so the loop can
@@ -13,10 +15,6 @@ import sabot.model.geometry.Point2D;
  * bus serialises transactions itself, callers other than the loop (gains) take a few milliseconds of bus time.
  */
 public interface RobotBoards {
-
-    /** Encoder counts of both wheels (wrap modulo 2^32). */
-    record WheelCounts(int left, int right) {
-    }
 
     /** The inertial sample the estimator uses: yaw rate (rad/s) and longitudinal specific force (m/s²). */
     record ImuSample(double yawRate, double forwardAcceleration) {
@@ -27,7 +25,7 @@ public interface RobotBoards {
         private static final long serialVersionUID = 1L;
 
         /** @param what which motor and why, for a person (e.g. "left motor: following error") */
-        MotorFaultException(String what, Throwable cause) {
+        public MotorFaultException(String what, Throwable cause) {
             super(what, cause);
         }
     }
@@ -44,18 +42,6 @@ public interface RobotBoards {
 
     /** @return the inertial board's latest sample, one transaction */
     ImuSample readImu() throws IOException;
-
-    /**
-     * The ceiling-landmark board's latest measurement.
-     *
-     * @param sequence   changes with every new measurement
-     * @param landmarkId the marker seen (0: none in view)
-     * @param range      m, horizontal
-     * @param bearing    rad, robot frame, counter-clockwise from the heading
-     * @param age        s since the measurement was taken
-     */
-    record LandmarkSighting(int sequence, int landmarkId, double range, double bearing, double age) {
-    }
 
     /** @return the landmark board's latest measurement, one transaction */
     LandmarkSighting readLandmark() throws IOException;

@@ -1,5 +1,6 @@
-package sabot.onboard.motion.internal;
+package sabot.onboard.motion.loop;
 
+import java.util.ArrayList;
 import java.util.List;
 
 import sabot.controlml.payload.TrajectoryPoint;
@@ -12,8 +13,24 @@ import sabot.model.path.TrajectorySample;
  */
 final class SampledTrajectory implements Trajectory {
 
+    /** Sampling step of cm.trajectory answers, s. */
+    static final double REPORT_STEP = 0.1;
+
     private final List<TrajectoryPoint> points;
     private final double length;
+
+    /** @return {@code t} as reported in cm.trajectory: a point every {@link #REPORT_STEP} s (4096 at most) */
+    static List<TrajectoryPoint> points(Trajectory t) {
+        List<TrajectoryPoint> points = new ArrayList<>();
+        int n = (int) Math.min(4095, Math.ceil(t.duration() / REPORT_STEP));
+        double step = n == 0 ? 0 : t.duration() / n;
+        for (int i = 0; i <= n; i++) {
+            TrajectorySample s = t.sample(i * step);
+            points.add(new TrajectoryPoint(i * step, s.x(), s.y(), s.theta(), s.linearVelocity(),
+                    s.angularVelocity()));
+        }
+        return points;
+    }
 
     SampledTrajectory(List<TrajectoryPoint> points) {
         this.points = List.copyOf(points);
