@@ -6,6 +6,7 @@ import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 
+import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
 import sabot.modbus.Board;
@@ -14,7 +15,7 @@ import sabot.modbus.InsMotion;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.Motor;
-import sabot.modbus.MotorGains;
+import sabot.modbus.SactGains;
 import sabot.modbus.SactConfig;
 import sabot.modbus.SonarReading;
 import sabot.modbus.StepCapture;
@@ -140,10 +141,10 @@ final class ModbusBoards implements RobotBoards {
 
     @Override
     public PidGains readGains() throws IOException {
-        List<sabot.controlml.payload.MotorGains> motors = new ArrayList<>();
+        List<MotorGains> motors = new ArrayList<>();
         for (int i = 0; i < MOTORS.length; i++) {
-            MotorGains g = bus.sact().readGains(MOTORS[i]);
-            motors.add(new sabot.controlml.payload.MotorGains(i, g.kp(), g.ki(), g.kd()));
+            SactGains g = bus.sact().readGains(MOTORS[i]);
+            motors.add(new MotorGains(i, g.kp(), g.ki(), g.kd()));
         }
         return new PidGains(motors);
     }
@@ -151,14 +152,14 @@ final class ModbusBoards implements RobotBoards {
     @Override
     public PidGains writeGains(PidGains gains) throws IOException {
         // every value is checked before the first write, so a bad one changes nothing
-        MotorGains[] next = new MotorGains[MOTORS.length];
-        for (sabot.controlml.payload.MotorGains m : gains.motors()) {
+        SactGains[] next = new SactGains[MOTORS.length];
+        for (MotorGains m : gains.motors()) {
             if (m.motor() < 0 || m.motor() >= MOTORS.length) {
                 throw new IllegalArgumentException("motor " + m.motor() + ": this robot has motors 0 (left) and 1 "
                         + "(right)");
             }
-            MotorGains current = bus.sact().readGains(MOTORS[m.motor()]);
-            next[m.motor()] = new MotorGains(gain("kp", m.motor(), m.kp()), gain("ki", m.motor(), m.ki()),
+            SactGains current = bus.sact().readGains(MOTORS[m.motor()]);
+            next[m.motor()] = new SactGains(gain("kp", m.motor(), m.kp()), gain("ki", m.motor(), m.ki()),
                     gain("kd", m.motor(), m.kd()), current.integralLimit());
         }
         for (int i = 0; i < MOTORS.length; i++) {

@@ -43,8 +43,6 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
-import sabot.pidstep.StepFigures;
-import sabot.pidstep.StepSample;
 import sabot.pidstep.controlml.StepTest;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
@@ -134,8 +132,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
-    /** One step test at a time: two would release and apply the brakes under each other. */
-    private final Object stepTestLock = new Object();
 
     @Reference
     private RobotBoards boards;
@@ -173,6 +169,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private ExecutorService plannerThread;
     private ExecutorService notifier;
     private ControlLoop loop;
+    private MotorTuning tuning;
     /** What other threads read: the loop's state at the end of its last period or command. */
     private volatile ControlLoop.Snapshot snapshot;
     private volatile RobotSession session;
@@ -203,6 +200,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         this.robot = RobotDescriptions.defaults();
         this.physicalLimits = MotionLimits.of(robot);
         this.limits = physicalLimits;
+        this.tuning = new MotorTuning(boards);
         boards.setBoardDeadman(Duration.ofMillis(Math.round(c.boardDeadman() * 1000)));
         boards.acknowledgeFaults();
         boards.brake(false);
@@ -596,11 +594,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
     @Override
     public PidGains gains() throws CommandRefused {
-        try {
-            return boards.readGains();
-        } catch (IOException e) {
-            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
-        }
+        return tuning.gains();
     }
 
     /**
@@ -611,40 +605,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
      */
     @Override
     public StepTest stepTest(int motor, double step) throws CommandRefused {
-        synchronized (stepTestLock) {
-            MissionStatus now = mission();
-            if (!now.maintenance()) {
-                throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the step test moves a wheel on its own: "
-                        + "switch the robot to maintenance first (cm.mission maintenance=true); the mission is "
-                        + now.state().code());
-            }
-            RobotBoards.StepRecording r;
-            try {
-                r = boards.stepTest(motor, step);
-            } catch (IllegalArgumentException e) {
-                throw new CommandRefused(ControlMlCondition.INVALID_VALUE, e.getMessage());
-            } catch (IOException e) {
-                throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
-            }
-            List<StepSample> samples = new ArrayList<>(r.measured().length);
-            for (int i = 0; i < r.measured().length; i++) {
-                samples.add(new StepSample(i * r.samplePeriod(), r.step(), r.measured()[i]));
-            }
-            LOG.info("step test of motor {}: {} m, {} samples, {}", motor, r.step(), samples.size(), StepFigures.of(
-                    samples));
-            return new StepTest(motor, r.step(), samples);
-        }
+        return tuning.stepTest(motor, step, mission());
     }
 
     @Override
     public PidGains setGains(PidGains gains) throws CommandRefused {
-        try {
-            return boards.writeGains(gains);
-        } catch (IllegalArgumentException e) {
-            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, e.getMessage());
-        } catch (IOException e) {
-            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, "motor board: " + e.getMessage());
-        }
+        return tuning.setGains(gains);
     }
 
     @Override

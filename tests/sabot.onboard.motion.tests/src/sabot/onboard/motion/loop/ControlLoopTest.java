@@ -123,7 +123,8 @@ class ControlLoopTest {
     @Test
     void missionIsDoneOnlyAtTheGoalAndAtRest() {
         rig.run(0.1);
-        rig.navigateTo(4, 5, 0);
+        // facing the other way than the trajectory arrives: the robot turns in place at the goal
+        rig.navigateTo(4, 5, Math.PI / 2);
         ControlLoop.Snapshot s = rig.tick();
         assertEquals(MissionState.RUNNING, s.mission().state());
         for (int i = 0; i < 30 * 50 && s.mission().state() == MissionState.RUNNING; i++) {
@@ -132,7 +133,9 @@ class ControlLoopTest {
         assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
         Pose2D at = s.pose().pose();
         assertTrue(Math.hypot(at.x() - 4, at.y() - 5) <= 0.05, "at the goal: " + at);
-        assertTrue(Math.abs(s.velocity().twist().linear()) < 0.05, "at rest: " + s.velocity().twist());
+        assertTrue(Math.abs(Pose2D.normalizeAngle(at.theta() - Math.PI / 2)) <= 0.1, "facing the goal's way: " + at);
+        assertTrue(Math.abs(s.velocity().twist().linear()) < 0.05 && Math.abs(s.velocity().twist().angular()) < 0.1,
+                "at rest: " + s.velocity().twist());
         assertTrue(rig.boards.braked(), "braked at the goal");
         assertEquals(MissionState.DONE, rig.missions.get(rig.missions.size() - 1).state());
     }
