@@ -99,7 +99,8 @@ public final class ControlLoop {
     private final EchoMemory echoes;
     private final SensorRounds sensors;
 
-    private LoopSettings settings;
+    /** Replaced on the loop's thread, read by planning on the planner's too. */
+    private volatile LoopSettings settings;
     /** Written on the loop's thread, read by planning on the planner's. */
     private volatile MotionLimits limits;
     private VelocitySmoother smoother;

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
 
+import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.List;
 import java.util.Map;
@@ -17,6 +18,8 @@ import org.junit.jupiter.params.provider.CsvSource;
 import org.osgi.framework.Bundle;
 import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
+import org.osgi.service.component.runtime.ServiceComponentRuntime;
+import org.osgi.service.component.runtime.dto.ComponentDescriptionDTO;
 import org.osgi.service.metatype.AttributeDefinition;
 import org.osgi.service.metatype.MetaTypeInformation;
 import org.osgi.service.metatype.MetaTypeService;
@@ -36,6 +39,7 @@ class MotionTaskMetatypeTest {
 
     private static final List<String> TASKS = List.of("bus", "localizer", "motion", "planner", "teleop", "tracker");
     private static final Map<String, Map<String, AttributeDefinition>> settings = new TreeMap<>();
+    private static final List<String> components = new ArrayList<>();
 
     @BeforeAll
     static void readDescriptions() throws InterruptedException {
@@ -47,6 +51,18 @@ class MotionTaskMetatypeTest {
         try {
             MetaTypeService metaType = t.waitForService(10_000);
             assertNotNull(metaType, "MetaTypeService not available");
+            ServiceTracker<ServiceComponentRuntime, ServiceComponentRuntime> scr = new ServiceTracker<>(context,
+                    ServiceComponentRuntime.class, null);
+            scr.open();
+            try {
+                ServiceComponentRuntime runtime = scr.waitForService(10_000);
+                assertNotNull(runtime, "ServiceComponentRuntime not available");
+                for (ComponentDescriptionDTO d : runtime.getComponentDescriptionDTOs(bundle)) {
+                    components.add(d.name);
+                }
+            } finally {
+                scr.close();
+            }
             MetaTypeInformation info = metaType.getMetaTypeInformation(bundle);
             for (String task : TASKS) {
                 ObjectClassDefinition ocd = info.getObjectClassDefinition("sabot.task." + task, null);
@@ -66,6 +82,13 @@ class MotionTaskMetatypeTest {
         assertEquals(TASKS, List.copyOf(settings.keySet()));
         assertEquals(13, settings.get("localizer").size());
         assertEquals(11, settings.get("tracker").size());
+    }
+
+    /** cm.tasks names each task's bundle by the bundle that registered its service: this one, for every motion task. */
+    @Test
+    void everyMotionTaskIsAComponentOfThisBundle() {
+        assertEquals(TASKS.stream().map(t -> "sabot.task." + t).toList(), components.stream().filter(
+                c -> c.startsWith("sabot.task.")).sorted().toList());
     }
 
     @Test
