@@ -362,8 +362,9 @@ public final class ControlLoop {
     }
 
     private Twist2D follow(double t) {
-        // A goal applied at the start of a period (MotionTask.tick) starts its trajectory at now(), a little after the
-        // period's clock t was read: that period samples the trajectory's start, not a time before it.
+        // A goal applied at the start of a period (the host applies queued commands first) starts its trajectory at
+        // now(), a little after the period's clock t was read: that period samples the trajectory's start, not a time
+        // before it.
         double tau = Math.max(0, t - trajectoryStart);
         if (tau >= trajectory.duration()) {
             setMode(Mode.SETTLE, t);

@@ -48,12 +48,12 @@ public final class LoopTiming {
         return periodNanos;
     }
 
-    /** @return when the next period is due (System.nanoTime); meaningful once a period has started */
+    /** @return when the next period is due (the loop clock's nanoTime); meaningful once a period has started */
     long nextStartNanos() {
         return expected;
     }
 
-    /** @return when the last period's work ended (System.nanoTime); meaningful once a period has ended */
+    /** @return when the last period's work ended (the loop clock's nanoTime); meaningful once a period has ended */
     long lastEndNanos() {
         return lastEnd;
     }
@@ -61,9 +61,9 @@ public final class LoopTiming {
     /**
      * A period started.
      *
-     * @param now       System.nanoTime at its start
-     * @param scheduled when the executor had it due (System.nanoTime): its own schedule, read inside the period, so
-     *                  that the measurement carries no offset of its own
+     * @param now       the loop clock's nanoTime at its start
+     * @param scheduled when the executor had it due (the loop clock's nanoTime): its own schedule, read inside the
+     *                  period, so that the measurement carries no offset of its own
      */
     void started(long now, long scheduled) {
         long late = Math.abs(now - scheduled);
