@@ -50,7 +50,7 @@ public interface SactClient extends Board {
     void brake(boolean on) throws IOException;
 
     /** @return one motor's PID gains */
-    MotorGains readGains(Motor motor) throws IOException;
+    SactGains readGains(Motor motor) throws IOException;
 
     /**
      * Writes one motor's PID gains. Every gain is checked against the register map's bounds first; if one is out of
@@ -58,7 +58,7 @@ public interface SactClient extends Board {
      *
      * @throws IllegalArgumentException a gain outside its bounds, naming it
      */
-    void writeGains(Motor motor, MotorGains gains) throws IOException;
+    void writeGains(Motor motor, SactGains gains) throws IOException;
 
     /**
      * Writes the board's wheel surface limits (file 3 records 4–5); a limit that tightens also clamps what is

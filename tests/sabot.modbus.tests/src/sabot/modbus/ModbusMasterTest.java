@@ -154,19 +154,19 @@ class ModbusMasterTest {
     void gainsAreWrittenAndReadBackAndABadGainChangesNothing(Via via) throws Exception {
         try (SimProcess sim = SimProcess.start(dir); ModbusBus bus = ModbusBuses.open(settings(sim, via))) {
             SactClient sact = bus.sact();
-            MotorGains defaults = sact.readGains(Motor.RIGHT);
-            assertEquals(new MotorGains((int) MAP.field("sact", "motor_right", "kp").defaultValue(),
+            SactGains defaults = sact.readGains(Motor.RIGHT);
+            assertEquals(new SactGains((int) MAP.field("sact", "motor_right", "kp").defaultValue(),
                     (int) MAP.field("sact", "motor_right", "ki").defaultValue(),
                     (int) MAP.field("sact", "motor_right", "kd").defaultValue(),
                     (int) MAP.field("sact", "motor_right", "integral_limit").defaultValue()), defaults);
-            MotorGains tuned = new MotorGains(200, 10, 1700, 300);
+            SactGains tuned = new SactGains(200, 10, 1700, 300);
             sact.writeGains(Motor.LEFT, tuned);
             assertEquals(tuned, sact.readGains(Motor.LEFT));
             assertEquals(defaults, sact.readGains(Motor.RIGHT), "the other motor is untouched");
 
             long sent = bus.statistics().sact().framesSent();
             IllegalArgumentException e = assertThrows(IllegalArgumentException.class,
-                    () -> sact.writeGains(Motor.LEFT, new MotorGains(100, 5, 1000, 492)));
+                    () -> sact.writeGains(Motor.LEFT, new SactGains(100, 5, 1000, 492)));
             assertEquals("LEFT integral_limit: 492 is outside sact/motor_left/integral_limit's bounds [0, 491]",
                     e.getMessage());
             assertEquals(sent, bus.statistics().sact().framesSent(), "nothing sent");

@@ -6,7 +6,7 @@ import java.util.List;
 
 import sabot.modbus.BoardException;
 import sabot.modbus.Motor;
-import sabot.modbus.MotorGains;
+import sabot.modbus.SactGains;
 import sabot.modbus.SactClient;
 import sabot.modbus.SactConfig;
 import sabot.modbus.StepCapture;
@@ -154,14 +154,14 @@ final class SactDriver extends BoardDriver implements SactClient {
     }
 
     @Override
-    public MotorGains readGains(Motor motor) throws IOException {
+    public SactGains readGains(Motor motor) throws IOException {
         short[] r = bus.read(counters, new Span(motor(motor, "kp").file(), gainSpan.record(), gainSpan.count()))[0];
-        return new MotorGains((int) gainSpan.raw(motor(motor, "kp"), r), (int) gainSpan.raw(motor(motor, "ki"), r),
+        return new SactGains((int) gainSpan.raw(motor(motor, "kp"), r), (int) gainSpan.raw(motor(motor, "ki"), r),
                 (int) gainSpan.raw(motor(motor, "kd"), r), (int) gainSpan.raw(motor(motor, "integral_limit"), r));
     }
 
     @Override
-    public void writeGains(Motor motor, MotorGains g) throws IOException {
+    public void writeGains(Motor motor, SactGains g) throws IOException {
         List<Field> fields = List.of(motor(motor, "kp"), motor(motor, "ki"), motor(motor, "kd"),
                 motor(motor, "integral_limit"));
         long[] values = { g.kp(), g.ki(), g.kd(), g.integralLimit() };

@@ -6,7 +6,6 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
-import java.util.Arrays;
 import java.util.Hashtable;
 import java.util.Map;
 import java.util.Set;
@@ -21,13 +20,11 @@ import org.osgi.service.component.runtime.ServiceComponentRuntime;
 import org.osgi.service.metatype.MetaTypeService;
 import org.osgi.util.tracker.ServiceTracker;
 
-import sabot.modbus.Parity;
-import sabot.planner.Planners;
-
 /**
  * The Metatype descriptions generated at build time from the tasks' {@code @ObjectClassDefinition} annotations, read
  * through the real Metatype service as the onboard application reads them: every task has one, and the file check
- * refuses values outside their ranges and options, naming the key.
+ * refuses values outside their ranges and options, naming the key. The motion tasks' descriptions are tested with their
+ * bundle (sabot.onboard.motion.tests), which this runtime does not contain.
  */
 class TaskMetatypeRangesTest {
 
@@ -43,27 +40,15 @@ class TaskMetatypeRangesTest {
 
     @Test
     void everyTaskHasItsGeneratedDescription() {
-        assertEquals(Set.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "remotefs", "teleop",
-                "tracker"), catalog.keySet());
+        assertEquals(Set.of("controlml", "heartbeat", "remotefs"), catalog.keySet());
         catalog.forEach((task, settings) -> assertTrue(!settings.isEmpty(), task + " declares no setting"));
-        assertEquals(13, catalog.get("localizer").size());
-        assertEquals(11, catalog.get("tracker").size());
-    }
-
-    @Test
-    void optionsAreTheCodesNames() {
-        assertEquals(Planners.NAMES, catalog.get("planner").get("algorithm").options());
-        assertEquals(Arrays.stream(Parity.values()).map(Enum::name).sorted().toList(),
-                catalog.get("bus").get("parity").options().stream().sorted().toList());
     }
 
     @Test
     void mandatorySettingsAreThoseWithoutDefault() {
-        assertTrue(catalog.get("planner").get("map").mandatory());
         assertTrue(catalog.get("remotefs").get("root").mandatory());
         assertTrue(catalog.get("controlml").get("jid").mandatory());
         assertTrue(!catalog.get("controlml").get("operators").mandatory());
-        assertTrue(!catalog.get("planner").get("algorithm").mandatory());
     }
 
     @Test
@@ -71,14 +56,9 @@ class TaskMetatypeRangesTest {
         OnboardConfigFile c = OnboardConfigFile.parse(FILE, """
                 tasks = heartbeat
                 heartbeat.period = 3600
-                motion.rate = 5
                 controlml.positionRate = 100
                 remotefs.maxTransfers = 1024
                 remotefs.maxChunk = 32768
-                localizer.startTheta = -3.1416
-                bus.parity = NONE
-                planner.algorithm = lpn-focused
-                tracker.controller = pseudoinverse
                 """);
         Map<String, Hashtable<String, Object>> enabled = TaskSettings.resolve(c, catalog);
         assertEquals(3600, enabled.get("heartbeat").get("period"));
@@ -88,23 +68,12 @@ class TaskMetatypeRangesTest {
     @CsvSource(delimiter = '|', value = {
         "heartbeat.period = 0            | '0' is below the minimum 1",
         "heartbeat.warnLoad = 1.5        | '1.5' is above the maximum 1",
-        "motion.rate = 201               | '201' is above the maximum 200",
-        "motion.realtimePriority = 100   | '100' is above the maximum 99",
         "controlml.positionRate = 101    | '101' is above the maximum 100",
         "controlml.reconnectMin = 0      | '0' is below the minimum 0.001",
         "controlml.port = 65536          | '65536' is above the maximum 65535",
         "remotefs.maxTransfers = 1025    | '1025' is above the maximum 1024",
         "remotefs.maxChunk = 32769       | '32769' is above the maximum 32768",
-        "remotefs.maxFileSize = -1       | '-1' is below the minimum 0",
-        "bus.tcpPort = 0                 | '0' is below the minimum 1",
-        "bus.interFrameDelay = 1000.5    | '1000.5' is above the maximum 1000",
-        "localizer.startTheta = 3.2      | '3.2' is above the maximum 3.1416",
-        "planner.threads = 3             | '3' is above the maximum 2",
-        "teleop.timeout = 0.01           | '0.01' is below the minimum 0.05",
-        "tracker.speedHeadroom = 1.01    | '1.01' is above the maximum 1",
-        "bus.parity = MARK               | 'MARK' is not one of EVEN, NONE, ODD",
-        "planner.algorithm = astar       | 'astar' is not one of lpn, lpn-bounded, lpn-focused",
-        "tracker.controller = pid        | 'pid' is not one of dfl, pseudoinverse" })
+        "remotefs.maxFileSize = -1       | '-1' is below the minimum 0" })
     void valueOutsideItsRangeOrOptionsIsRefused(String line, String problem) throws Exception {
         OnboardConfigFile c = OnboardConfigFile.parse(FILE, "tasks = heartbeat\n" + line + "\n");
         ConfigError e = assertThrows(ConfigError.class, () -> TaskSettings.resolve(c, catalog));

@@ -1,0 +1,107 @@
+package sabot.onboard.motion.internal;
+
+import java.io.IOException;
+import java.nio.file.Path;
+import java.util.List;
+
+import org.osgi.service.component.annotations.Activate;
+import org.osgi.service.component.annotations.Component;
+import org.osgi.service.component.annotations.ConfigurationPolicy;
+import org.osgi.service.component.annotations.Deactivate;
+import org.osgi.service.metatype.annotations.AttributeDefinition;
+import org.osgi.service.metatype.annotations.Designate;
+import org.osgi.service.metatype.annotations.ObjectClassDefinition;
+import org.osgi.service.metatype.annotations.Option;
+
+import sabot.model.map.MapLandmark;
+import sabot.model.map.MapServerFormat;
+import sabot.onboard.motion.loop.NavigationPlanner;
+import sabot.onboard.task.OnboardTask;
+
+/**
+ * Task {@code planner}: the map (ROS map_server YAML + image) and the path planner (LPN by default; any name of
+ * {@code sabot.planner.Planners}). Swapping the algorithm is a configuration change. Settings:
+ * {@link Config}.
+ */
+@Designate(ocd = PlannerTask.Config.class, factory = false)
+@Component(name = "sabot.task.planner", configurationPolicy = ConfigurationPolicy.REQUIRE,
+        service = { OnboardTask.class, PlannerTask.class })
+public final class PlannerTask implements OnboardTask {
+
+    /** The task's settings: its Metatype description, generated from these annotations. */
+    @ObjectClassDefinition(id = "sabot.task.planner", name = "Planner task",
+            description = "Map and path planner (LPN navigation function by default).")
+    public @interface Config {
+        @AttributeDefinition(name = "Map", description = "The map: a ROS map_server YAML file.")
+        String map();
+
+        /** The names are {@code Planners.NAMES}' (a test checks they agree). */
+        @AttributeDefinition(name = "Algorithm", description = "Path planner.", options = {
+                @Option(label = "LPN", value = "lpn"), @Option(label = "LPN bounded", value = "lpn-bounded"),
+                @Option(label = "LPN focused", value = "lpn-focused"),
+                @Option(label = "LPN incremental", value = "lpn-incremental"),
+                @Option(label = "Reference (A*)", value = "reference"), @Option(label = "Dijkstra", value = "dijkstra") })
+        String algorithm() default "lpn";
+
+        /** No helper thread competes with the control loop for the robot's CPU. */
+        @AttributeDefinition(name = "Threads", description = "Threads of the navigation function: accepted for old "
+                + "configurations; every planner computes on the calling thread.", min = "1", max = "2")
+        int threads() default 1;
+
+        @AttributeDefinition(name = "Robot radius", description = "Radius of the robot footprint, m: cells closer to "
+                + "an obstacle are impassable.", min = "0.01", max = "5")
+        double robotRadius() default 0.25;
+
+        @AttributeDefinition(name = "Inflation radius", description = "Distance over which obstacle cost decays, m.",
+                min = "0.01", max = "10")
+        double inflationRadius() default 0.55;
+
+        @AttributeDefinition(name = "Blocked timeout", description = "Seconds the robot waits for a way around a "
+                + "blocked path before the mission fails.", min = "0.5", max = "600")
+        double blockedTimeout() default 10;
+    }
+
+    private NavigationPlanner planner;
+    private Config config;
+    private List<MapLandmark> landmarks;
+
+    @Activate
+    void activate(Config c) throws IOException {
+        this.config = c;
+        MapServerFormat.LoadedMap loaded = MapServerFormat.load(Path.of(c.map()));
+        landmarks = MapServerFormat.readLandmarks(Path.of(c.map()));
+        planner = new NavigationPlanner(loaded.grid(), c.algorithm(), c.threads(), c.robotRadius(),
+                c.inflationRadius());
+    }
+
+    @Deactivate
+    void deactivate() {
+        planner.close();
+    }
+
+    /** @return the planner over the configured map */
+    NavigationPlanner planner() {
+        return planner;
+    }
+
+    /** @return the ceiling landmarks the map names (its {@code sabot_landmarks} file), possibly none */
+    List<MapLandmark> landmarks() {
+        return landmarks;
+    }
+
+    /** @return the configured settings */
+    Config config() {
+        return config;
+    }
+
+    @Override
+    public String name() {
+        return "planner";
+    }
+
+    @Override
+    public String status() {
+        return planner.algorithm() + " on " + config.map() + " (" + planner.map().width() + " x "
+                + planner.map().height() + " cells of " + planner.map().resolution() + " m)";
+    }
+}

@@ -1,0 +1,765 @@
+package sabot.onboard.motion.loop;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.List;
+import java.util.Locale;
+import java.util.Optional;
+
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.control.ControlCommand;
+import sabot.control.DifferentialDrive;
+import sabot.control.GoalChecker;
+import sabot.control.MotionLimits;
+import sabot.control.ProgressChecker;
+import sabot.control.TrackingController;
+import sabot.control.TurnInPlace;
+import sabot.control.VelocitySmoother;
+import sabot.control.WheelSpeeds;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PoseCovariance;
+import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.TrajectoryPayload;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+import sabot.model.path.Trajectory;
+import sabot.model.path.TrajectorySample;
+import sabot.model.robot.RobotDescription;
+import sabot.planner.PlanResult;
+
+/**
+ * The robot's control loop: its state and one period of it ({@link #tick}), in plain Java. Whoever runs it (the
+ * {@code motion} task on the robot, a test, the motion simulation) gives it a {@link LoopHost} (plan requests, mission
+ * events, queued commands), a {@link LoopClock}, the {@link RobotBoards}, the estimator, the planner and the control
+ * laws, and one {@link LoopSettings} snapshot per configuration change. Every method runs on the loop's thread, except
+ * {@link #planPath}, which only reads immutable inputs and the planner (serialised by itself).
+ * <p>
+ * One deadman: while a joystick drives, the robot brakes when no twist has been received for
+ * {@link LoopSettings#deadman()} seconds (judged on the twist's receive time, as ros2_control's
+ * {@code cmd_vel_timeout}). The velocity smoother is given the same timeout; it is fed a target every period, so its
+ * own timeout would act only if the loop stopped feeding it. The motor board's own deadman (the motion task's
+ * {@code boardDeadman}) stops the wheels if the loop stops writing altogether.
+ */
+public final class ControlLoop {
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
+    private static final Logger STATUS = LoggerFactory.getLogger("sabot.status");
+
+    /** Heading error (rad) above which the robot turns in place before it follows a new trajectory. */
+    static final double ALIGN_THRESHOLD = 0.35;
+    /** Heading error (rad) at which the turn in place ends. */
+    static final double ALIGNED = 0.08;
+    /** Yaw rate (rad/s) below which a turn in place counts as ended (the tracker takes the rest). */
+    static final double ALIGNED_RATE = 0.5;
+    /** Fraction of the yaw rate and acceleration limits a turn in place uses (the rest absorbs a late period). */
+    static final double TURN_FRACTION = 0.8;
+    /** Gain of the turn's proportional zone near the target, 1/s (the braking curve above it). */
+    static final double TURN_GAIN = 5.0;
+    /** Seconds between two attempts to plan around a blocked path. */
+    static final double REPLAN_RETRY = 1.0;
+    /** The stabilizer hands over to the turn in place inside this fraction of the position tolerance. */
+    static final double SETTLE_POSITION_FRACTION = 0.5;
+    /** The turn in place aims inside this fraction of the heading tolerance. */
+    static final double SETTLE_HEADING_FRACTION = 0.5;
+    /** A slave's answer comes this much later than its wire time at most, in the loop's budget (turnaround). */
+    static final double WIRE_TIME_FACTOR = 1.2;
+    /** Time kept free at the end of a period, s: the next start's wake-up jitter. */
+    static final double PERIOD_MARGIN = 0.001;
+    /** What the loop is doing. */
+    public enum Mode {
+        IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT
+    }
+
+    /** A planned path turned into a trajectory, or why not ({@code refusal}, for the operator). */
+    public record Plan(Trajectory trajectory, double length, String refusal) {
+    }
+
+    /** What other threads read: the loop's state at the end of a period or a command. Immutable. */
+    public record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
+            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing, Mode mode) {
+    }
+
+    private final LoopHost host;
+    private final LoopClock clock;
+    private final RobotBoards boards;
+    private final DifferentialDrive drive;
+    private final Localizer localizer;
+    private final NavigationPlanner planner;
+    private final LoopControllers controllers;
+    private final long t0;
+    private final LoopTiming timing;
+    private final EchoMemory echoes;
+    private final SensorRounds sensors;
+
+    /** Replaced on the loop's thread, read by planning on the planner's too. */
+    private volatile LoopSettings settings;
+    /** Written on the loop's thread, read by planning on the planner's. */
+    private volatile MotionLimits limits;
+    private VelocitySmoother smoother;
+    private TrackingController tracker;
+    private TrackingController stabilizer;
+    private TurnInPlace turn;
+    private GoalChecker goalChecker;
+    private ProgressChecker progressChecker;
+
+    private Mode mode = Mode.IDLE;
+    private Mode pausedFrom;
+    private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "idle");
+    private Goal goal;
+    private Trajectory trajectory;
+    private TrajectoryPayload trajectoryPayload = new TrajectoryPayload(Instant.EPOCH, List.of());
+    private double trajectoryStart;
+    private double modeSince;
+    private double lastReplan = Double.NEGATIVE_INFINITY;
+    private boolean replanPending;
+    private Twist2D teleopTwist = Twist2D.ZERO;
+    private double teleopTime = Double.NEGATIVE_INFINITY;
+    /** When the operator sent the newest twist not yet written to the wheels (null once written). */
+    private Instant teleopSent;
+    private final MicrosHistogram teleopLatency = new MicrosHistogram();
+    private boolean braked;
+    private boolean settlingReported;
+    private boolean readyReported;
+    /** Set once the settle phase reached the goal's position; the turn in place follows. */
+    private boolean positionSettled;
+    private double lastStatus = Double.NEGATIVE_INFINITY;
+    private Pose2D pose;
+    private double[] velocity = { 0, 0 };
+
+    /**
+     * @param host        plan requests, mission events, queued commands
+     * @param clock       the loop's time; its origin is the loop's start
+     * @param boards      the robot's bus
+     * @param robot       the drive's geometry
+     * @param localizer   the pose estimate, at the configured start
+     * @param planner     plans on the static map plus the remembered echoes
+     * @param controllers the tracking controller and point stabilizer
+     * @param settings    the configuration's snapshot
+     * @param limits      the motion limits in force (written to the motor board)
+     */
+    public ControlLoop(LoopHost host, LoopClock clock, RobotBoards boards, RobotDescription robot, Localizer localizer,
+            NavigationPlanner planner, LoopControllers controllers, LoopSettings settings, MotionLimits limits) {
+        this.host = host;
+        this.clock = clock;
+        this.t0 = clock.nanoTime();
+        this.boards = boards;
+        this.drive = DifferentialDrive.of(robot);
+        this.localizer = localizer;
+        this.planner = planner;
+        this.controllers = controllers;
+        this.settings = settings;
+        this.timing = new LoopTiming(settings.periodNanos());
+        this.echoes = new EchoMemory(planner);
+        this.sensors = new SensorRounds(boards, localizer, echoes, this::now);
+        this.pose = settings.localizer().start();
+        limitsChanged(limits);
+    }
+
+    private double now() {
+        return (clock.nanoTime() - t0) * 1e-9;
+    }
+
+    public LoopTiming timing() {
+        return timing;
+    }
+
+    /** @return joystick twist sent → wheel set-point written, as measured so far */
+    public MicrosHistogram teleopLatency() {
+        return teleopLatency;
+    }
+
+    /** A new configuration's snapshot; takes effect from the next period (the rate is fixed at the start). */
+    public void settingsChanged(LoopSettings s) {
+        this.settings = s;
+    }
+
+    // --------------------------------------------------------------------------------------------- one period
+
+    /**
+     * One period of the loop.
+     *
+     * @param start     the clock's nanoTime when the period's run began
+     * @param scheduled when the schedule had it due (the clock's nanoTime)
+     */
+    public Snapshot tick(long start, long scheduled) {
+        timing.started(start, scheduled);
+        double t = (start - t0) * 1e-9;
+        // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
+        // that read's wire time to its latency
+        boolean wroteTwist = mode == Mode.TELEOP && teleopSent != null && writeTwist(t);
+        boolean sensorPeriod = sensors.isSensorPeriod(mode == Mode.TELEOP);
+        if (!sensorPeriod) {
+            sensors.readEncoders();
+        }
+        pose = localizer.pose(t);
+        velocity = localizer.velocity();
+        if (mode != Mode.FAULT) {
+            String unsafe = safetyCheck(t);
+            if (unsafe != null) {
+                fault(unsafe);
+            }
+        }
+        if (!readyReported && !localizer.isSettling(t)) {
+            readyReported = true;
+            LOG.info("ready to move ({})", settings.localizer().useImu() ? "inertial biases settled after "
+                    + settings.localizer().imuSettleTime() + " s at rest" : "odometry only");
+        }
+        if (mode == Mode.TELEOP && !wroteTwist) {
+            // a twist that arrived during this period's encoder read goes out with this period's wheel write, not at
+            // the start of the next period
+            host.applyPendingCommands();
+        }
+        Twist2D command = command(t);
+        Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
+        if (!applied.isFinite()) {
+            applied = Twist2D.ZERO;
+        }
+        if (tracker != null) {
+            tracker.commandApplied(applied);
+        }
+        if (mode != Mode.FAULT && !wroteTwist) {
+            WheelSpeeds w = drive.toWheelSpeeds(applied);
+            try {
+                boards.writeWheelSpeeds(w.left(), w.right());
+                if (mode == Mode.TELEOP && teleopSent != null) {
+                    teleopWritten();
+                }
+            } catch (RobotBoards.MotorFaultException e) {
+                fault(e.getMessage());
+            } catch (IOException e) {
+                LOG.warn("wheel speed write failed: {}", e.getMessage());
+            }
+        }
+        if (sensorPeriod) {
+            optionalReads(t);
+        }
+        timing.ended(clock.nanoTime());
+        if (settings.statusPeriod() > 0 && t - lastStatus >= settings.statusPeriod()) {
+            lastStatus = t;
+            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}", fmt(pose.x()), fmt(pose.y()),
+                    fmt(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
+                    Math.round(mission.progress()), mission.detail().isBlank() ? "" : "(" + mission.detail() + ") ",
+                    mode.name().toLowerCase(Locale.ROOT));
+        }
+        return snapshot();
+    }
+
+    /** @return why the robot must stop now, or null */
+    private String safetyCheck(double t) {
+        String board = boards.faultedBoard();
+        if (board != null) {
+            return "the " + board + " board does not answer";
+        }
+        if (localizer.isStale(t)) {
+            // odometry goes stale before the bus calls the motor board faulted (its encoders are read every other
+            // period): name the board when it is the reason
+            double timeout = settings.localizer().odometryTimeout();
+            return boards.motorBoardSilentFor(timeout / 2) ? "the sact board does not answer (no odometry for "
+                    + timeout + " s)" : "no odometry for " + timeout + " s";
+        }
+        double sigma = localizer.positionSigma();
+        if (sigma > settings.localizer().maxPositionSigma()) {
+            return String.format(Locale.ROOT, "position uncertainty %.2f m above the limit %.2f m", sigma,
+                    settings.localizer().maxPositionSigma());
+        }
+        return null;
+    }
+
+    /**
+     * Reads the inertial board, one sonar sensor or the landmark board when the rest of the period leaves the time for
+     * it (in the periods without an encoder read). Not while a joystick drives: the spare bus time is kept for
+     * writing its twists as they arrive (odometry alone estimates the pose meanwhile, and the sonar guards missions,
+     * not teleop).
+     */
+    private void optionalReads(double t) {
+        if (mode == Mode.TELEOP) {
+            return;
+        }
+        // the period's last transaction has just ended: the whole inter-frame silence comes first
+        if (!fitsBeforeNextPeriod(boards.interFrameDelay(), boards.optionalReadWireTime())) {
+            timing.skippedOptionalRead();
+            return;
+        }
+        try {
+            sensors.readSpareSlot(t, pose);
+        } catch (IOException e) {
+            LOG.debug("optional read failed: {}", e.getMessage());
+        }
+        echoes.prune(t, settings.obstacleMemory());
+    }
+
+    /** @return how many landmark sightings the estimate used, for the log */
+    public String landmarkSummary() {
+        if (!localizer.usesLandmarks()) {
+            return "no landmarks on the map";
+        }
+        long[] n = localizer.landmarkCounts();
+        return "landmark fixes " + n[0] + " (" + n[1] + " rejected by the gate)";
+    }
+
+    // -------------------------------------------------------------------------------------------------- modes
+
+    private Twist2D command(double t) {
+        if (localizer.isSettling(t) && mode != Mode.IDLE && mode != Mode.FAULT) {
+            if (!settlingReported) {
+                settlingReported = true;
+                LOG.info("holding still for {} s after the start while the inertial biases settle",
+                        settings.localizer().imuSettleTime());
+            }
+            if (mode == Mode.FOLLOW) {
+                trajectoryStart = t; // the trajectory starts when the robot may move
+            }
+            return Twist2D.ZERO;
+        }
+        switch (mode) {
+            case TELEOP -> {
+                // a joystick twist older than the deadman stops the robot; without the teleop task, at once
+                double timeout = settings.joystick() ? settings.deadman() : 0;
+                if (t - teleopTime > timeout) {
+                    LOG.warn("joystick silent for more than {} s: stopping (deadman)", timeout);
+                    brake();
+                    setMode(Mode.IDLE, t);
+                    return Twist2D.ZERO;
+                }
+                return teleopTwist;
+            }
+            case ALIGN -> {
+                double target = trajectory.startPose().theta();
+                double error = Pose2D.normalizeAngle(target - pose.theta());
+                if (Math.abs(error) < ALIGNED && Math.abs(velocity[1]) < ALIGNED_RATE) {
+                    startFollowing(t);
+                    return follow(t);
+                }
+                return new Twist2D(0, turn.rate(error));
+            }
+            case FOLLOW -> {
+                return follow(t);
+            }
+            case SETTLE -> {
+                return settle(t);
+            }
+            case BLOCKED -> {
+                if (!replanPending && t - lastReplan >= REPLAN_RETRY) {
+                    replan(t);
+                }
+                if (t - modeSince > settings.blockedTimeout()) {
+                    fail("path blocked for " + settings.blockedTimeout() + " s");
+                }
+                return Twist2D.ZERO;
+            }
+            default -> {
+                return Twist2D.ZERO;
+            }
+        }
+    }
+
+    private Twist2D follow(double t) {
+        // A goal applied at the start of a period (the host applies queued commands first) starts its trajectory at
+        // now(), a little after the period's clock t was read: that period samples the trajectory's start, not a time
+        // before it.
+        double tau = Math.max(0, t - trajectoryStart);
+        if (tau >= trajectory.duration()) {
+            setMode(Mode.SETTLE, t);
+            positionSettled = false;
+            stabilizer.reset();
+            return settle(t);
+        }
+        if (echoes.blocks(trajectory, tau, settings.blockedLookahead(), settings.robotRadius()
+                + settings.blockedClearance())) {
+            LOG.info("obstacle on the path ahead: stopping to replan");
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+            return Twist2D.ZERO;
+        }
+        if (!progressChecker.isMakingProgress(t, pose)) {
+            LOG.info("no progress for {} s: replanning", settings.progressTime());
+            progressChecker.reset();
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+            return Twist2D.ZERO;
+        }
+        updateProgress(Math.min(99, 100 * tau / trajectory.duration()));
+        TrajectorySample ref = trajectory.sample(tau);
+        ControlCommand c = tracker.update(t, pose, shift(ref, t));
+        return c.twist();
+    }
+
+    /**
+     * Brings the robot onto the goal: the DFL point stabilizer while the position is outside its tolerance, then a turn
+     * in place onto the goal's heading (as Nav2's rotation shim does; a unicycle's point stabilizer converges slowly
+     * in heading once the position error is small).
+     */
+    private Twist2D settle(double t) {
+        Pose2D target = goal == null ? trajectory.endPose() : goal.pose();
+        double distance = Math.hypot(target.x() - pose.x(), target.y() - pose.y());
+        double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
+        double positionTolerance = goal == null ? settings.goalTolerance() : goal.positionTolerance();
+        double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
+        // at rest first: the checker latches the position once within tolerance, and a robot passing through the
+        // tolerance at speed must not have it latched (it would then be done wherever it comes to rest)
+        if (Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1 && goalChecker.isGoalReached(pose, target)) {
+            brake();
+            complete(t);
+            return Twist2D.ZERO;
+        }
+        if (t - modeSince > settings.settleTimeout()) {
+            fail(String.format(Locale.ROOT, "did not settle on the goal within %.0f s (%.2f m, %.2f rad away)",
+                    settings.settleTimeout(), distance, headingError));
+            return Twist2D.ZERO;
+        }
+        if (distance > positionTolerance * SETTLE_POSITION_FRACTION && !positionSettled) {
+            ControlCommand c = stabilizer.update(t, pose, TrajectorySample.stationary(t, target));
+            return c.twist();
+        }
+        positionSettled = true;
+        if (Math.abs(headingError) <= headingTolerance * SETTLE_HEADING_FRACTION) {
+            return Twist2D.ZERO;
+        }
+        return new Twist2D(0, turn.rate(headingError));
+    }
+
+    /** The controllers run on the loop clock: a reference sample at trajectory time tau is re-stamped at t. */
+    private static TrajectorySample shift(TrajectorySample s, double t) {
+        return new TrajectorySample(t, s.x(), s.y(), s.theta(), s.linearVelocity(), s.angularVelocity(), s.xDot(),
+                s.yDot(), s.xDdot(), s.yDdot());
+    }
+
+    private void replan(double t) {
+        lastReplan = t;
+        if (goal == null) {
+            fail("the imposed trajectory is blocked");
+            return;
+        }
+        replanPending = true;
+        host.planRequested(new LoopHost.PlanRequest(pose, goal, echoes.points()));
+    }
+
+    /** The plan asked for with {@code request} (ignored when the mission has moved on meanwhile). */
+    public void replanned(LoopHost.PlanRequest request, Plan plan) {
+        replanPending = false;
+        if (mode != Mode.BLOCKED || request.goal() != goal) {
+            return;
+        }
+        if (plan.refusal() != null) {
+            LOG.info("no path yet: {}", plan.refusal());
+            return;
+        }
+        LOG.info("replanned around the obstacle: {} m", fmt(plan.length()));
+        setTrajectory(plan, now());
+    }
+
+    // ----------------------------------------------------------------------------------------------- commands
+
+    /**
+     * Plans from {@code from} to the goal around {@code obstacles}; thread-safe (the planner serialises requests).
+     */
+    public Plan planPath(Pose2D from, Goal goal, List<Point2D> obstacles) {
+        PlanResult result = planner.plan(from.position(), goal.pose().position(), obstacles);
+        if (result instanceof PlanResult.Unreachable u) {
+            return new Plan(null, 0, "unreachable goal: " + u.detail());
+        }
+        LoopSettings s = settings;
+        return TrajectoryFitter.fit(((PlanResult.Found) result).path().waypoints(), from.position(),
+                goal.pose().position(), limits.withHeadroom(s.speedHeadroom(), s.accelerationHeadroom()));
+    }
+
+    public void startMission(Goal g, Plan plan) {
+        double t = now();
+        clearFault();
+        this.goal = g;
+        goalChecker = new GoalChecker(g.positionTolerance(), Math.min(Math.PI, g.headingTolerance()), true);
+        setMission(MissionState.RUNNING, 0, "to (" + fmt(g.pose().x()) + ", " + fmt(g.pose().y()) + ")");
+        if (plan.trajectory() == null) {
+            trajectory = null;
+            trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
+            stabilizer.reset();
+            positionSettled = false;
+            setMode(Mode.SETTLE, t);
+            return;
+        }
+        setTrajectory(plan, t);
+    }
+
+    public void followImposed(TrajectoryPayload imposed) {
+        double t = now();
+        clearFault();
+        this.goal = null;
+        Trajectory path = new SampledTrajectory(imposed.points());
+        goalChecker = new GoalChecker(settings.goalTolerance(), Math.PI, true);
+        setMission(MissionState.RUNNING, 0, "imposed trajectory");
+        setTrajectory(new Plan(path, path.length(), null), t);
+    }
+
+    private void setTrajectory(Plan plan, double t) {
+        trajectory = plan.trajectory();
+        trajectoryPayload = new TrajectoryPayload(clock.now(), SampledTrajectory.points(trajectory));
+        progressChecker = new ProgressChecker(settings.progressRadius(), settings.progressTime());
+        double error = Pose2D.normalizeAngle(trajectory.startPose().theta() - pose.theta());
+        if (Math.abs(error) > ALIGN_THRESHOLD) {
+            setMode(Mode.ALIGN, t);
+        } else {
+            startFollowing(t);
+        }
+    }
+
+    private void startFollowing(double t) {
+        trajectoryStart = t;
+        tracker.reset();
+        progressChecker.reset();
+        setMode(Mode.FOLLOW, t);
+    }
+
+    /**
+     * A joystick twist.
+     *
+     * @param receivedNanos when it was received (the clock's nanoTime): the deadman is judged on it
+     * @param sent          when the operator sent it (wall clock), for the latency
+     */
+    public void teleop(Twist2D twist, long receivedNanos, Instant sent) {
+        double t = (receivedNanos - t0) * 1e-9;
+        teleopSent = sent;
+        clearFault();
+        if (mode != Mode.TELEOP && mode != Mode.IDLE) {
+            return;
+        }
+        teleopTwist = twist;
+        teleopTime = t;
+        if (mode != Mode.TELEOP) {
+            setMode(Mode.TELEOP, now());
+        }
+    }
+
+    /**
+     * Writes the newest joystick twist at once when the bus is free long enough before the next period (a twist would
+     * otherwise wait up to a period for its write); the period's own work is never delayed by it.
+     */
+    public void teleopWrite() {
+        if (mode != Mode.TELEOP || teleopSent == null) {
+            return;
+        }
+        // the silence after the period's last answer has partly or wholly passed while the twist was on its way
+        double sinceWork = (clock.nanoTime() - timing.lastEndNanos()) * 1e-9;
+        if (fitsBeforeNextPeriod(Math.max(0, boards.interFrameDelay() - sinceWork), boards.wheelWriteWireTime())) {
+            writeTwist(now());
+        }
+    }
+
+    /**
+     * Whether a transaction ends before the next period is due: the bus's silence still to keep before the request,
+     * the wire time with {@link #WIRE_TIME_FACTOR} for the slave's turnaround, and {@link #PERIOD_MARGIN}. Measured
+     * against the next period's scheduled start, not this one's actual start, so that a period that began late drops
+     * its optional work and the schedule catches up.
+     *
+     * @param silence  seconds of inter-frame silence still due before the request may be sent
+     * @param wireTime the transaction's computed wire time, seconds
+     */
+    private boolean fitsBeforeNextPeriod(double silence, double wireTime) {
+        double left = (timing.nextStartNanos() - clock.nanoTime()) * 1e-9;
+        return left >= silence + wireTime * WIRE_TIME_FACTOR + PERIOD_MARGIN;
+    }
+
+    /** The newest joystick twist has reached the board (through the smoother): its latency is recorded. */
+    private void teleopWritten() {
+        teleopLatency.add(Duration.between(teleopSent, clock.now()).toNanos());
+        teleopSent = null;
+    }
+
+    /** Writes the joystick's twist through the smoother; records its latency. @return true when written */
+    private boolean writeTwist(double t) {
+        Twist2D applied = smoother.smooth(t, teleopTwist);
+        WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
+        try {
+            boards.writeWheelSpeeds(w.left(), w.right());
+            teleopWritten();
+            return true;
+        } catch (RobotBoards.MotorFaultException e) {
+            teleopSent = null;
+            fault(e.getMessage());
+            return false;
+        } catch (IOException e) {
+            LOG.debug("joystick write failed: {}", e.getMessage());
+            return false;
+        }
+    }
+
+    public void relocalise(Pose2D p) {
+        localizer.reset(p, now());
+        LOG.info("re-localised at {}", p);
+    }
+
+    public void limitsChanged(MotionLimits l) {
+        this.limits = l;
+        smoother = new VelocitySmoother(l, settings.deadman());
+        tracker = controllers.tracker(l);
+        stabilizer = controllers.stabilizer(l);
+        turn = new TurnInPlace(l.maxAngularSpeed() * TURN_FRACTION, l.maxAngularAcceleration() * TURN_FRACTION,
+                TURN_GAIN);
+        try {
+            // the fastest wheel under these limits: full speed while turning at the full yaw rate
+            double wheel = Math.min(l.maxWheelRimSpeed(), l.maxLinearSpeed() + l.maxAngularSpeed() * l.trackWidth() / 2);
+            boards.writeLimits(wheel, l.maxLinearAcceleration());
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("board limits not written: {}", e.getMessage());
+        }
+    }
+
+    public void pause() {
+        if (mission.state() != MissionState.RUNNING) {
+            return;
+        }
+        pausedFrom = mode;
+        setMode(Mode.PAUSED, now());
+        setMission(MissionState.PAUSED, mission.progress(), "paused");
+    }
+
+    public void resume() {
+        if (mode != Mode.PAUSED) {
+            return;
+        }
+        double t = now();
+        setMission(MissionState.RUNNING, mission.progress(), "resumed");
+        if (pausedFrom == Mode.FOLLOW || pausedFrom == Mode.ALIGN || pausedFrom == Mode.BLOCKED) {
+            // the trajectory's clock went on while paused: plan again from where the robot stands
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+        } else {
+            setMode(pausedFrom, t);
+        }
+    }
+
+    public void abort(String reason) {
+        double t = now();
+        brake();
+        if (mission.state() == MissionState.RUNNING || mission.state() == MissionState.PAUSED) {
+            setMission(MissionState.ABORTED, mission.progress(), reason);
+        }
+        setMode(Mode.IDLE, t);
+        LOG.info("stopped: {}", reason);
+    }
+
+    public void maintenance(boolean on, String detail) {
+        brake();
+        MissionState state = mission.state();
+        if (on && (state == MissionState.RUNNING || state == MissionState.PAUSED)) {
+            state = MissionState.ABORTED;
+            LOG.info("mission aborted for maintenance");
+        }
+        setMode(Mode.IDLE, now());
+        mission = new MissionStatus(state, on, mission.progress(),
+                on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended");
+        host.missionChanged(mission);
+        LOG.info("maintenance {}", on ? "on" : "off");
+    }
+
+    /** Brakes and marks the mission failed with the reason; the robot stays still until a new command. */
+    public void fault(String reason) {
+        if (mode == Mode.FAULT && reason.equals(mission.detail())) {
+            return;
+        }
+        LOG.warn("fault: {} - braking", reason);
+        brake();
+        setMode(Mode.FAULT, now());
+        mission = new MissionStatus(MissionState.FAILED, mission.maintenance(), mission.progress(), reason);
+        host.missionChanged(mission);
+    }
+
+    /** Releases the brake (after a stop or a fault) so that a new command can move the robot. */
+    private void clearFault() {
+        if (braked) {
+            try {
+                boards.acknowledgeFaults();
+                boards.brake(false);
+                braked = false;
+            } catch (IOException e) {
+                LOG.warn("could not release the brake: {}", e.getMessage());
+            }
+            resetSmoother();
+        }
+        if (mode == Mode.FAULT) {
+            setMode(Mode.IDLE, now());
+        }
+    }
+
+    /** Starts the smoother from rest (with the deadman in force now). */
+    private void resetSmoother() {
+        smoother = new VelocitySmoother(limits, settings.deadman());
+    }
+
+    private void brake() {
+        resetSmoother();
+        try {
+            boards.brake(true);
+            braked = true;
+        } catch (IOException e) {
+            LOG.warn("brake command failed ({}); the motor board's own deadman stops the wheels", e.getMessage());
+            braked = true;
+        }
+    }
+
+    private void complete(double t) {
+        setMission(MissionState.DONE, 100, "goal reached");
+        setMode(Mode.IDLE, t);
+        LOG.info("goal reached at ({}, {}, {})", fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
+    }
+
+    private void fail(String reason) {
+        brake();
+        setMission(MissionState.FAILED, mission.progress(), reason);
+        setMode(Mode.IDLE, now());
+        LOG.warn("mission failed: {}", reason);
+    }
+
+    private void setMode(Mode m, double t) {
+        if (m != mode) {
+            LOG.debug("mode {} -> {}", mode, m);
+        }
+        mode = m;
+        modeSince = t;
+    }
+
+    private void setMission(MissionState state, double progress, String detail) {
+        mission = new MissionStatus(state, mission.maintenance(), progress, detail);
+        host.missionChanged(mission);
+    }
+
+    private void updateProgress(double progress) {
+        // listeners hear about whole-percent steps only; the snapshot carries the exact figure
+        boolean step = Math.floor(progress / 10) != Math.floor(mission.progress() / 10);
+        mission = new MissionStatus(mission.state(), mission.maintenance(), progress, mission.detail());
+        if (step) {
+            host.missionChanged(mission);
+        }
+    }
+
+    // ----------------------------------------------------------------------------------------------- snapshot
+
+    /** @return the loop's state now, stamped with the clock's wall time */
+    public Snapshot snapshot() {
+        Instant now = clock.now();
+        double[][] c = localizer.covariance();
+        PoseEstimate p = new PoseEstimate(now, pose, new PoseCovariance(c[0][0], c[0][1], c[0][2], c[1][1], c[1][2],
+                c[2][2]));
+        VelocityCommand v = new VelocityCommand(now, new Twist2D(velocity[0], velocity[1]));
+        boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
+                || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
+        return new Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
+                new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode);
+    }
+
+    /** @return {@code v} with three decimals, for the log */
+    public static String fmt(double v) {
+        return String.format(Locale.ROOT, "%.3f", v);
+    }
+
+    private static String f2(double v) {
+        return String.format(Locale.ROOT, "%.2f", v);
+    }
+}

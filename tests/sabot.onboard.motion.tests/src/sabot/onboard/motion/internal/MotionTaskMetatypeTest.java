@@ -1,0 +1,120 @@
+package sabot.onboard.motion.internal;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
+
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+import java.util.Map;
+import java.util.TreeMap;
+
+import org.eclipse.equinox.metatype.EquinoxAttributeDefinition;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.CsvSource;
+import org.osgi.framework.Bundle;
+import org.osgi.framework.BundleContext;
+import org.osgi.framework.FrameworkUtil;
+import org.osgi.service.component.runtime.ServiceComponentRuntime;
+import org.osgi.service.component.runtime.dto.ComponentDescriptionDTO;
+import org.osgi.service.metatype.AttributeDefinition;
+import org.osgi.service.metatype.MetaTypeInformation;
+import org.osgi.service.metatype.MetaTypeService;
+import org.osgi.service.metatype.ObjectClassDefinition;
+import org.osgi.util.tracker.ServiceTracker;
+
+import sabot.modbus.Parity;
+import sabot.planner.Planners;
+
+/**
+ * The motion tasks' Metatype descriptions, generated at build time from their {@code @ObjectClassDefinition}
+ * annotations into this bundle, read through the real Metatype service (the onboard application checks the
+ * configuration file against them): every task has one, its options are the code's names, and its bounds are those
+ * the code relies on.
+ */
+class MotionTaskMetatypeTest {
+
+    private static final List<String> TASKS = List.of("bus", "localizer", "motion", "planner", "teleop", "tracker");
+    private static final Map<String, Map<String, AttributeDefinition>> settings = new TreeMap<>();
+    private static final List<String> components = new ArrayList<>();
+
+    @BeforeAll
+    static void readDescriptions() throws InterruptedException {
+        Bundle bundle = FrameworkUtil.getBundle(MotionTask.class);
+        BundleContext context = bundle.getBundleContext();
+        ServiceTracker<MetaTypeService, MetaTypeService> t = new ServiceTracker<>(context, MetaTypeService.class,
+                null);
+        t.open();
+        try {
+            MetaTypeService metaType = t.waitForService(10_000);
+            assertNotNull(metaType, "MetaTypeService not available");
+            ServiceTracker<ServiceComponentRuntime, ServiceComponentRuntime> scr = new ServiceTracker<>(context,
+                    ServiceComponentRuntime.class, null);
+            scr.open();
+            try {
+                ServiceComponentRuntime runtime = scr.waitForService(10_000);
+                assertNotNull(runtime, "ServiceComponentRuntime not available");
+                for (ComponentDescriptionDTO d : runtime.getComponentDescriptionDTOs(bundle)) {
+                    components.add(d.name);
+                }
+            } finally {
+                scr.close();
+            }
+            MetaTypeInformation info = metaType.getMetaTypeInformation(bundle);
+            for (String task : TASKS) {
+                ObjectClassDefinition ocd = info.getObjectClassDefinition("sabot.task." + task, null);
+                Map<String, AttributeDefinition> ads = new TreeMap<>();
+                for (AttributeDefinition ad : ocd.getAttributeDefinitions(ObjectClassDefinition.ALL)) {
+                    ads.put(ad.getID(), ad);
+                }
+                settings.put(task, ads);
+            }
+        } finally {
+            t.close();
+        }
+    }
+
+    @Test
+    void everyMotionTaskHasItsGeneratedDescription() {
+        assertEquals(TASKS, List.copyOf(settings.keySet()));
+        assertEquals(13, settings.get("localizer").size());
+        assertEquals(11, settings.get("tracker").size());
+    }
+
+    /** cm.tasks names each task's bundle by the bundle that registered its service: this one, for every motion task. */
+    @Test
+    void everyMotionTaskIsAComponentOfThisBundle() {
+        assertEquals(TASKS.stream().map(t -> "sabot.task." + t).toList(), components.stream().filter(
+                c -> c.startsWith("sabot.task.")).sorted().toList());
+    }
+
+    @Test
+    void optionsAreTheCodesNames() {
+        assertEquals(Planners.NAMES, Arrays.asList(settings.get("planner").get("algorithm").getOptionValues()));
+        assertEquals(Arrays.stream(Parity.values()).map(Enum::name).sorted().toList(),
+                Arrays.stream(settings.get("bus").get("parity").getOptionValues()).sorted().toList());
+        assertEquals(List.of(TrackerTask.DFL, TrackerTask.PSEUDOINVERSE),
+                Arrays.asList(settings.get("tracker").get("controller").getOptionValues()));
+    }
+
+    @Test
+    void theMapIsTheOnlySettingWithoutDefault() {
+        assertNull(settings.get("planner").get("map").getDefaultValue());
+        settings.forEach((task, ads) -> ads.values().stream().filter(ad -> !ad.getID().equals("map")).forEach(
+                ad -> assertNotNull(ad.getDefaultValue(), task + "." + ad.getID() + " has no default")));
+    }
+
+    @ParameterizedTest(name = "{0}.{1} in [{2}, {3}]")
+    @CsvSource({ "motion, rate, 5, 200", "motion, realtimePriority, 0, 99",
+        "bus, tcpPort, 1, 65535", "bus, interFrameDelay, 0, 1000", "localizer, startTheta, -3.1416, 3.1416",
+        "planner, threads, 1, 2", "teleop, timeout, 0.05, 10", "tracker, speedHeadroom, 0.1, 1" })
+    void boundsAreThoseTheCodeReliesOn(String task, String id, String min, String max) {
+        EquinoxAttributeDefinition ad = (EquinoxAttributeDefinition) settings.get(task).get(id);
+        assertNotNull(ad, task + "." + id);
+        assertEquals(Double.parseDouble(min), Double.parseDouble(ad.getMin()), task + "." + id + " minimum");
+        assertEquals(Double.parseDouble(max), Double.parseDouble(ad.getMax()), task + "." + id + " maximum");
+    }
+}
