@@ -7,7 +7,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Arrays;
+import java.util.Map;
 import java.util.Random;
+import java.util.TreeMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
@@ -26,6 +28,7 @@ import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.TaskInfo;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.testsupport.robot.SimProcess;
@@ -33,7 +36,7 @@ import sabot.testsupport.robot.SimProcess;
 /**
  * Proofs 4 and 7: the XMPP side of a running robot. The server stopped mid-drive stops the robot, which reconnects
  * when the server is back and stays still until a new command; the remote FS works through the running product while
- * a second workbench watches the robot's telemetry.
+ * a second workbench watches the robot's telemetry. Each running task is reported with the task bundle that provides it.
  */
 class ConnectionTest extends RigTest {
 
@@ -67,6 +70,22 @@ class ConnectionTest extends RigTest {
 
             assertTrue(cm.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(6.0, 1.0, 0), 0.15, 0.3)).isSuccess());
             awaitSpeed(rig.sim, 0.1, 20);
+        }
+    }
+
+    @Test
+    void everyTaskIsReportedWithTheTaskBundleThatProvidesIt(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            Map<String, String> bundles = new TreeMap<>();
+            for (TaskInfo t : rig.operator.get(rig.robot, Resources.TASKS).orElseThrow().tasks()) {
+                assertEquals("active", t.state(), t.toString());
+                assertTrue(t.version().matches("\\d+\\.\\d+\\.\\d+\\.\\S+"), t.toString());
+                bundles.put(t.name(), t.bundle());
+            }
+            String motion = "sabot.onboard.motion";
+            assertEquals(Map.of("bus", motion, "localizer", motion, "planner", motion, "tracker", motion, "teleop",
+                    motion, "motion", motion, "controlml", "sabot.onboard.controlml", "remotefs",
+                    "sabot.onboard.remotefs"), bundles);
         }
     }
 
