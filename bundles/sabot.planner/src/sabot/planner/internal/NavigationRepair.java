@@ -40,10 +40,8 @@ final class NavigationRepair {
     private static final float SUPPORT_TOLERANCE = 1 + 1e-6f;
 
     private final float[] density;
-    /** Binary min-heap of cells keyed by N: checks during {@link #withdraw}, seeds after {@link #seed}. */
-    private float[] keys = new float[256];
-    private int[] cells = new int[256];
-    private int size;
+    /** Cells keyed by N: checks during {@link #withdraw}, seeds after {@link #seed}. */
+    private final CellHeap heap = new CellHeap(256);
     /** The cells the last {@link #withdraw} withdrew, {@link #withdrawnCount} of them. */
     private int[] withdrawn = new int[256];
     private int withdrawnCount;
@@ -85,7 +83,7 @@ final class NavigationRepair {
     int withdraw(PlanningGrid grid, CellRegion changed, int[] potential, int[] initialPotential) {
         byte[] costs = grid.costs();
         int stride = grid.stride();
-        size = 0;
+        heap.clear();
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
                 int cell = grid.index(column, row);
@@ -115,8 +113,8 @@ final class NavigationRepair {
             }
         }
         int count = 0;
-        while (size > 0) {
-            int cell = popSeed();
+        while (!heap.isEmpty()) {
+            int cell = heap.pop();
             int bits = potential[cell];
             if (bits >= 0 || bits == LpnNavigationFunction.IMPASSABLE) {
                 continue; // already withdrawn, never reached, or impassable
@@ -166,7 +164,7 @@ final class NavigationRepair {
             float seed = recompute(cell, potential, costs, stride);
             if (seed != Float.POSITIVE_INFINITY) {
                 lowestBucket = Math.min(lowestBucket, (int) (seed * inverseBucketWidth));
-                push(cell, seed);
+                heap.push(cell, seed);
             }
         }
         return lowestBucket;
@@ -183,17 +181,17 @@ final class NavigationRepair {
 
     /** @return whether seeds wait for the propagation */
     boolean hasSeeds() {
-        return size > 0;
+        return !heap.isEmpty();
     }
 
     /** @return the lowest waiting seed's value (only when {@link #hasSeeds}) */
     float lowestSeed() {
-        return keys[0];
+        return heap.lowestKey();
     }
 
     /** Forgets waiting seeds and checks: a new computation starts. */
     void clear() {
-        size = 0;
+        heap.clear();
     }
 
     /** N of a cell recomputed from its final neighbours, with the same update as the propagation. */
@@ -229,54 +227,11 @@ final class NavigationRepair {
         if (bits >= 0 || bits == LpnNavigationFunction.IMPASSABLE) {
             return;
         }
-        push(cell, LpnNavigationFunction.decode(bits));
+        heap.push(cell, LpnNavigationFunction.decode(bits));
     }
 
-    private void push(int cell, float key) {
-        if (size == keys.length) {
-            keys = Arrays.copyOf(keys, size * 2);
-            cells = Arrays.copyOf(cells, size * 2);
-        }
-        int i = size++;
-        while (i > 0) {
-            int parent = (i - 1) >>> 1;
-            if (keys[parent] <= key) {
-                break;
-            }
-            keys[i] = keys[parent];
-            cells[i] = cells[parent];
-            i = parent;
-        }
-        keys[i] = key;
-        cells[i] = cell;
-    }
-
-    /** @return the lowest cell of the heap, removed */
+    /** @return the lowest waiting seed's cell, removed (only when {@link #hasSeeds}) */
     int popSeed() {
-        int top = cells[0];
-        int last = --size;
-        if (last > 0) {
-            float key = keys[last];
-            int cell = cells[last];
-            int i = 0;
-            while (true) {
-                int child = 2 * i + 1;
-                if (child >= last) {
-                    break;
-                }
-                if (child + 1 < last && keys[child + 1] < keys[child]) {
-                    child++;
-                }
-                if (keys[child] >= key) {
-                    break;
-                }
-                keys[i] = keys[child];
-                cells[i] = cells[child];
-                i = child;
-            }
-            keys[i] = key;
-            cells[i] = cell;
-        }
-        return top;
+        return heap.pop();
     }
 }

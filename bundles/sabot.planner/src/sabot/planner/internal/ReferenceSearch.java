@@ -32,9 +32,7 @@ public final class ReferenceSearch {
     private int[] touched = new int[0];
     private int touchedCount;
     private int closedCount;
-    private float[] heapKeys = new float[1024];
-    private int[] heapCells = new int[1024];
-    private int heapSize;
+    private final CellHeap heap = new CellHeap(1024);
 
     /** @param useHeuristic true for A*, false for Dijkstra */
     public ReferenceSearch(CostModel costModel, boolean useHeuristic) {
@@ -72,12 +70,11 @@ public final class ReferenceSearch {
                 touch(goal);
                 cost[goal] = 0;
                 towardsGoal[goal] = -1;
-                heapPush(heuristic(goal, stride, startColumn, startRow), goal);
+                heap.push(goal, heuristic(goal, stride, startColumn, startRow));
             }
         }
-        while (heapSize > 0) {
-            int cell = heapCells[0];
-            heapPop();
+        while (!heap.isEmpty()) {
+            int cell = heap.pop();
             if (closed[cell] != 0) {
                 continue;
             }
@@ -112,7 +109,7 @@ public final class ReferenceSearch {
                     }
                     cost[next] = candidateBits;
                     towardsGoal[next] = (byte) (k ^ 1);
-                    heapPush(candidate + heuristic(next, stride, startColumn, startRow), next);
+                    heap.push(next, candidate + heuristic(next, stride, startColumn, startRow));
                 }
             }
         }
@@ -163,56 +160,10 @@ public final class ReferenceSearch {
         grid = planningGrid;
         touchedCount = 0;
         closedCount = 0;
-        heapSize = 0;
+        heap.clear();
     }
 
     private void touch(int cell) {
         touched[touchedCount++] = cell;
-    }
-
-    private void heapPush(float key, int cell) {
-        if (heapSize == heapKeys.length) {
-            heapKeys = Arrays.copyOf(heapKeys, heapSize * 2);
-            heapCells = Arrays.copyOf(heapCells, heapSize * 2);
-        }
-        int i = heapSize++;
-        while (i > 0) {
-            int parent = (i - 1) >>> 1;
-            if (heapKeys[parent] <= key) {
-                break;
-            }
-            heapKeys[i] = heapKeys[parent];
-            heapCells[i] = heapCells[parent];
-            i = parent;
-        }
-        heapKeys[i] = key;
-        heapCells[i] = cell;
-    }
-
-    private void heapPop() {
-        int last = --heapSize;
-        if (last == 0) {
-            return;
-        }
-        float key = heapKeys[last];
-        int cell = heapCells[last];
-        int i = 0;
-        while (true) {
-            int child = 2 * i + 1;
-            if (child >= last) {
-                break;
-            }
-            if (child + 1 < last && heapKeys[child + 1] < heapKeys[child]) {
-                child++;
-            }
-            if (heapKeys[child] >= key) {
-                break;
-            }
-            heapKeys[i] = heapKeys[child];
-            heapCells[i] = heapCells[child];
-            i = child;
-        }
-        heapKeys[i] = key;
-        heapCells[i] = cell;
     }
 }
