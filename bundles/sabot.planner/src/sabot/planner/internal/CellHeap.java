@@ -3,9 +3,10 @@ package sabot.planner.internal;
 import java.util.Arrays;
 
 /**
- * A binary min-heap of cells (padded indices) keyed by a float: the queue of the reference search
- * ({@link ReferenceSearch}) and of a repair's checks and seeds ({@link NavigationRepair}). Two flat arrays, no
- * boxing; cells of equal key leave in an order fixed by the sequence of operations, so that results are repeatable.
+ * A binary min-heap of cells (padded indices) keyed by a float: the queue of a repair's checks and seeds
+ * ({@link NavigationRepair}). Two flat arrays, no boxing; cells of equal key leave in an order fixed by the sequence
+ * of operations, so that results are repeatable. (The reference search keeps the same heap in its own fields: its
+ * loop pushes and pops for every cell, and there the fields of another object cost a load more per operation.)
  */
 final class CellHeap {
 

@@ -32,7 +32,9 @@ public final class ReferenceSearch {
     private int[] touched = new int[0];
     private int touchedCount;
     private int closedCount;
-    private final CellHeap heap = new CellHeap(1024);
+    private float[] heapKeys = new float[1024];
+    private int[] heapCells = new int[1024];
+    private int heapSize;
 
     /** @param useHeuristic true for A*, false for Dijkstra */
     public ReferenceSearch(CostModel costModel, boolean useHeuristic) {
@@ -70,11 +72,12 @@ public final class ReferenceSearch {
                 touch(goal);
                 cost[goal] = 0;
                 towardsGoal[goal] = -1;
-                heap.push(goal, heuristic(goal, stride, startColumn, startRow));
+                heapPush(heuristic(goal, stride, startColumn, startRow), goal);
             }
         }
-        while (!heap.isEmpty()) {
-            int cell = heap.pop();
+        while (heapSize > 0) {
+            int cell = heapCells[0];
+            heapPop();
             if (closed[cell] != 0) {
                 continue;
             }
@@ -109,7 +112,7 @@ public final class ReferenceSearch {
                     }
                     cost[next] = candidateBits;
                     towardsGoal[next] = (byte) (k ^ 1);
-                    heap.push(next, candidate + heuristic(next, stride, startColumn, startRow));
+                    heapPush(candidate + heuristic(next, stride, startColumn, startRow), next);
                 }
             }
         }
@@ -160,10 +163,56 @@ public final class ReferenceSearch {
         grid = planningGrid;
         touchedCount = 0;
         closedCount = 0;
-        heap.clear();
+        heapSize = 0;
     }
 
     private void touch(int cell) {
         touched[touchedCount++] = cell;
+    }
+
+    private void heapPush(float key, int cell) {
+        if (heapSize == heapKeys.length) {
+            heapKeys = Arrays.copyOf(heapKeys, heapSize * 2);
+            heapCells = Arrays.copyOf(heapCells, heapSize * 2);
+        }
+        int i = heapSize++;
+        while (i > 0) {
+            int parent = (i - 1) >>> 1;
+            if (heapKeys[parent] <= key) {
+                break;
+            }
+            heapKeys[i] = heapKeys[parent];
+            heapCells[i] = heapCells[parent];
+            i = parent;
+        }
+        heapKeys[i] = key;
+        heapCells[i] = cell;
+    }
+
+    private void heapPop() {
+        int last = --heapSize;
+        if (last == 0) {
+            return;
+        }
+        float key = heapKeys[last];
+        int cell = heapCells[last];
+        int i = 0;
+        while (true) {
+            int child = 2 * i + 1;
+            if (child >= last) {
+                break;
+            }
+            if (child + 1 < last && heapKeys[child + 1] < heapKeys[child]) {
+                child++;
+            }
+            if (heapKeys[child] >= key) {
+                break;
+            }
+            heapKeys[i] = heapKeys[child];
+            heapCells[i] = heapCells[child];
+            i = child;
+        }
+        heapKeys[i] = key;
+        heapCells[i] = cell;
     }
 }
