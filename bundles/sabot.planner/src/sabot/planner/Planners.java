@@ -27,8 +27,9 @@ public final class Planners {
     }
 
     /**
-     * @param threads 1 or 2; both compute on the calling thread (the two-thread propagation, whose helper thread
-     *                spun, was removed in issue 17; 2 is accepted so that existing configurations keep working)
+     * @param threads 1 or 2; both compute on the calling thread (a helper thread would have to meet the propagation
+     *                at every bucket hand-over, and stalls whenever another process holds the CPU); 2 is accepted so
+     *                that configurations asking for it keep working
      * @return the LPN navigation-function planner over the whole reachable grid
      */
     public static Planner lpn(CostModel costModel, int threads) {
@@ -49,7 +50,7 @@ public final class Planners {
      *         distance, as A*'s heuristic) stays within a bound of the start's value, raised and recomputed when the
      *         start is not reached within it: the path of {@link #lpn} (to the order effects of bucketed expansion),
      *         computed over far fewer cells when the path is not much longer than the straight line (random
-     *         1000 x 1000: 344 k of 736 k cells), a little slower than {@link #lpnBounded} when it is (a maze); as
+     *         1000 x 1000: 338 k of 736 k cells), a little slower than {@link #lpnBounded} when it is (a maze); as
      *         complete (an enclosed goal or start is reported as such)
      */
     public static Planner lpnFocused(CostModel costModel) {

@@ -13,19 +13,9 @@ import sabot.planner.CostModel;
  *   N(p) = min over neighbours q of  N(q) + |p - q| * c,   c = (h(p) + h(q)) / 2       (8 neighbours, CostModel)
  * </pre>
  *
- * refined by interpolation so that values are not tied to the eight grid directions: in the triangle (p, a, d) formed
- * with an axis neighbour a and the adjacent diagonal neighbour d, the wave may cross the edge [a, d] at any point;
- * the least of {@code (1 - t) N(a) + t N(d) + c sqrt(1 + t^2)} over t in [0, 1] is, with
- * {@code delta = max(0, N(a) - N(d))},
- *
- * <pre>
- *   N(a) + sqrt(c^2 - delta^2)     when delta &lt; c / sqrt(2)       (crossing inside the edge)
- *   N(d) + c sqrt(2)               otherwise                         (straight from d)
- * </pre>
- *
- * (J. N. Tsitsiklis, "Efficient algorithms for globally optimal trajectories", IEEE TAC 40(9), 1995; the same
- * interpolation idea as navfn's quadratic update, on eight neighbours). Of the two triangles through an axis
- * neighbour a, the one whose corner d is lower gives the lower value, so an update evaluates one square root.
+ * refined by interpolation so that values are not tied to the eight grid directions: the wave may cross between an
+ * axis neighbour a and the adjacent diagonal neighbour d at any point ({@link InterpolatedUpdate}, after Tsitsiklis;
+ * the same idea as navfn's quadratic update, on eight neighbours).
  *
  * <p>Expanding a final cell a updates its four axis neighbours p through both triangles (p, a, d). There is no
  * separate diagonal update: the straight diagonal step from d is the t = 1 end of a triangle, evaluated when a is
@@ -45,6 +35,13 @@ import sabot.planner.CostModel;
  * like the values, so they compare as ints) with the sign bit set once the value is final. Impassable cells are
  * stored as final {@code +infinity}, so one load and one sign test reject both final and impassable neighbours.
  * The loops allocate nothing once the buckets have grown to the map's wavefront size.
+ *
+ * <p>Three ways to compute N, for three questions: {@link #compute} over the whole reachable grid (a field for every
+ * start, and the base a repair needs); {@link #computeFocused} only as far as a plan from one start needs it, bounded
+ * by the straight line or, on grids where paths are many times longer (a maze), by landmarks
+ * ({@link LandmarkBound}); and {@link #repair} of a whole-grid field after costs rose ({@link NavigationRepair}).
+ * All three share one propagation loop ({@link #expandRange}), tuned for C2: it stays one compiled method with the
+ * per-cell work inlined, without branches on the data where the outcome is a coin toss.
  */
 public final class LpnNavigationFunction implements AutoCloseable {
 
@@ -52,17 +49,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
     public static final int UNREACHED = 0x7F800000;
     /** Bits of an impassable cell: +infinity, final. */
     public static final int IMPASSABLE = 0xFF800000;
-    /**
-     * Bits of a cell whose value a {@link #repair} withdrew: the largest finite float, so that it compares like an
-     * unreached cell but is not recorded again as newly reached.
-     */
-    private static final int RETRACTED = 0x7F7FFFFF;
     static final int FINAL = 0x80000000;
 
     static final int VALUE = 0x7FFFFFFF;
 
-    private static final float SQRT2 = (float) Math.sqrt(2);
-    private static final float INV_SQRT2 = (float) (1 / Math.sqrt(2));
+    private static final float SQRT2 = InterpolatedUpdate.SQRT2;
+    private static final float INV_SQRT2 = InterpolatedUpdate.INV_SQRT2;
     /** Bucket width as a fraction of the least increment, a margin for float rounding. */
     private static final float BUCKET_MARGIN = 0.99f;
 
@@ -83,36 +75,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * unfocused one.
      */
     private static final int FOCUS_GIVE_UP_FRACTION = 32;
-    /**
-     * Landmarks of the lower bound that replaces the straight line on grids where paths are much longer than it (see
-     * {@link #computeFocused}): four, chosen farthest first; on the benchmark maze two already bound the start's
-     * cost within 0.01 %, on random-1000 four within 0.02 %.
-     */
-    static final int LANDMARKS = 4;
-    /**
-     * A focused computation whose bound needed at least this excess over the straight line (a path more than twice
-     * its length: a maze) asks for landmarks, built at the start of a later focused computation on the same grid.
-     */
-    static final float LANDMARK_EXCESS = 1f;
-    /**
-     * First excess of the bound over the landmarks' lower bound of the start's cost: 0.1 % (on the benchmark maze
-     * the landmarks bound the start's cost within 0.001 %; a 0.5 % excess expanded 253 k cells, 0.1 % 231-237 k, none
-     * 223 k).
-     */
-    static final float LANDMARK_FIRST_EXCESS = 0.001f;
-    /**
-     * The landmarks' bound is scaled down by this fraction: the interpolated values satisfy the triangle inequality
-     * it rests on only nearly (float rounding and the interpolation's dependence on the direction of propagation:
-     * within 0.004 % of the path's cost on the benchmark grids); the focus's margin of four diagonal steps covers
-     * the rest. A bound that is too high in places costs at most a slightly dearer path, never a missed one.
-     */
-    private static final float LANDMARK_SLACK = 0.001f;
-    /** Plans a set of landmarks must serve to pay for its building (five computations over the whole grid). */
-    private static final int LANDMARK_PAYBACK_PLANS = 8;
-    /** Most poorly bounded plans awaited before landmarks are built again after a set that did not pay back. */
-    private static final int LANDMARK_MAX_PATIENCE = 64;
-    /** A grid is cut into about 2^10 memory bands for the bucket ordering: a row or so on grids of 1000 x 1000. */
-    private static final int MEMORY_BANDS_LOG2 = 10;
     /** Reached cells are recorded for the reset up to this fraction of the grid (see {@link #touched}). */
     private static final int TOUCHED_FRACTION = 8;
 
@@ -155,10 +117,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private int[] touched = new int[0];
     /** Goals of the last complete computation (whole reachable grid), or null: what {@link #repair} builds on. */
     private int[] completeGoals;
-    private float[] checkKeys = new float[256];
-    private int[] checkCells = new int[256];
-    private int checkSize;
-    private int[] invalid = new int[256];
     private int touchedCount;
     private int finalizedCount;
     /**
@@ -176,46 +134,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private float focusExcess;
     private int focusRow;
     private int focusColumn;
-    /**
-     * Landmarks (A. V. Goldberg, C. Harrelson, "Computing the shortest path: A* search meets graph theory", SODA 2005,
-     * "ALT"): N from each of {@link #LANDMARKS} cells over the whole grid by padded index (+infinity where unreached),
-     * or null. By the triangle inequality the cost between p and the start is at least |N_l(p) - N_l(start)| for every
-     * landmark l: a lower bound that follows the corridors, where the straight line cuts through walls. Valid while no
-     * cost falls (a rise only makes paths dearer); dropped when one does or the grid is replaced.
-     */
-    private float[][] landmarkValues;
-    /** Largest finite N of each landmark: its bound never exceeds it. */
-    private final float[] landmarkReach = new float[LANDMARKS];
-    /**
-     * The two landmarks a focused computation bounds with (the two tightest at the goal, as A. V. Goldberg and R. F.
-     * Werneck's "active landmarks": reading two arrays per expanded cell instead of four) and their N at the start.
-     */
-    private float[] activeLandmark;
-    private float[] otherActiveLandmark;
-    private float activeAtStart;
-    private float otherActiveAtStart;
-    /** The larger {@link #landmarkReach} of the two: no {@link #landmarkBound} of the running computation exceeds it. */
-    private float activeReach;
-    /** Whether the running focused computation bounds with the landmarks. */
-    private boolean focusByLandmarks;
     /** Excess of the last successful landmark-bounded computation to {@link #focusGoals}. */
     private float landmarkExcess;
-    /**
-     * Poorly bounded focused plans (see {@link #LANDMARK_EXCESS}) since the landmarks were last dropped, the number
-     * that triggers a build, and the plans served by the current set.
-     */
-    private int poorlyBoundedPlans;
-    private int landmarkPatience = 1;
-    private int landmarkPlans;
+    /** The landmarks' lower bound, built on grids where the straight line bounds poorly; see {@link LandmarkBound}. */
+    private final LandmarkBound landmarks = new LandmarkBound();
+    /** Whether the running focused computation bounds with {@link #landmarks} instead of the straight line. */
+    private boolean focusByLandmarks;
+    /** The repair after costs rose: its checks, seeds and withdrawn cells; see {@link NavigationRepair}. */
+    private final NavigationRepair riseRepair;
     private int deferred;
     /** Expansions of the last computation or repair (every attempt of a focused one); cells a repair withdrew. */
     private int expandedCount;
     private int withdrawnCount;
     private int queued;
     private int currentBucket;
-    private int bandShift;
-    private int[] bandCounts = new int[2];
-    private int[] sortBuffer = new int[0];
+    /** The order of large buckets' cells, sized for the grid. */
+    private MemoryBandOrder bandOrder = new MemoryBandOrder(0);
     /** The running computation's stop (see {@link #propagate}) and the counts of its ranges ({@link #expandRange}). */
     private float stopAbove;
     private int rangeFinalized;
@@ -227,10 +161,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
-     * @param threads 1 or 2, both computed on the calling thread: the two-thread propagation was removed in issue
-     *                17 (its helper spun at every bucket hand-over, 7-11 times slower at the median whenever another
-     *                process shared the CPU; blocking instead would cost a wake-up per bucket, some 2,000 per
-     *                computation on 1000 x 1000); 2 is still accepted so that existing configurations keep working
+     * @param threads 1 or 2, both computed on the calling thread: a helper thread would have to meet the propagation
+     *                at every bucket hand-over (some 2,000 per computation on 1000 x 1000), by spinning, which stalls
+     *                whenever another process shares the CPU, or by a wake-up each, which costs more than it saves;
+     *                2 is accepted so that configurations asking for it keep working
      */
     public LpnNavigationFunction(CostModel costModel, int threads) {
         if (threads < 1 || threads > 2) {
@@ -251,6 +185,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
         this.bucketShift = Integer.numberOfTrailingZeros(Math.max(64, INITIAL_BUCKET_CAPACITY * 16 / ring));
         this.buckets = new int[ring << bucketShift];
         this.bucketSizes = new int[ring];
+        this.riseRepair = new NavigationRepair(density);
     }
 
     /** Nothing to end: computations run on the calling thread (kept so that callers may close every planner). */
@@ -288,14 +223,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (planningGrid != grid || potential.length != planningGrid.paddedSize()) {
             grid = planningGrid;
             focusGoals = null;
-            dropLandmarks();
+            landmarks.drop();
             potential = new int[planningGrid.paddedSize()];
             initialPotential = new int[planningGrid.paddedSize()];
             touched = new int[planningGrid.paddedSize() / TOUCHED_FRACTION + 16];
             touchedCount = 0;
-            int bits = 32 - Integer.numberOfLeadingZeros(planningGrid.paddedSize());
-            bandShift = Math.max(0, bits - MEMORY_BANDS_LOG2);
-            bandCounts = new int[(planningGrid.paddedSize() >>> bandShift) + 2];
+            bandOrder = new MemoryBandOrder(planningGrid.paddedSize());
             byte[] costs = planningGrid.costs();
             gridMaxDensity = minDensity;
             for (int i = 0; i < potential.length; i++) {
@@ -308,11 +241,11 @@ public final class LpnNavigationFunction implements AutoCloseable {
         for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
             int from = planningGrid.index(changed.minColumn(), row);
             int to = planningGrid.index(changed.maxColumn(), row);
-            if (landmarkValues != null || poorlyBoundedPlans > 0) {
+            if (landmarks.watchesCostFalls()) {
                 for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
                     int before = planningGrid.previousCost(column, row);
                     if (before < 0 || density[costs[from + column - changed.minColumn()] & 0xFF] < density[before]) {
-                        dropLandmarks(); // a cheaper cell can shorten paths: the bounds may exceed the new costs
+                        landmarks.drop(); // a cheaper cell can shorten paths: the bounds may exceed the new costs
                         break;
                     }
                 }
@@ -351,7 +284,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
 
     /** Clears the previous computation and queues the goal cells at 0. */
     private void start(int[] goals) {
-        checkSize = 0;
+        riseRepair.clear();
         resetTouched();
         finalizedCount = 0;
         queued = 0;
@@ -393,21 +326,19 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * When no cell was deferred the region of the goals was exhausted: the start is unreachable, as for
      * {@link #compute}.
      *
-     * <p>Where the straight line bounds poorly (a plan needed an excess of {@link #LANDMARK_EXCESS} or more: a maze,
-     * whose paths are many times the straight line, so that the focus excluded nothing), the next focused computation
-     * on the same grid first computes N from {@link #LANDMARKS} landmark cells over the whole grid, and from then on
-     * the focus uses their lower bound {@code max |N_l(p) - N_l(start)|} instead of the straight line, and U starts
-     * {@link #LANDMARK_FIRST_EXCESS} above that bound at the goal. The landmarks are kept while costs only rise
-     * (every plan of a robot whose sonar adds obstacles) and dropped when a cost falls or the grid is replaced; a set
-     * that served fewer than {@value #LANDMARK_PAYBACK_PLANS} plans doubles the number of poorly bounded plans awaited
-     * before the next, so that a map whose costs keep falling does not pay for landmarks at every other plan.
+     * <p>Where the straight line bounds poorly (plans needed an excess of {@link LandmarkBound#WANTED_EXCESS} or more:
+     * a maze, whose paths are many times the straight line, so that the focus excluded nothing), the next focused
+     * computation on the same grid first builds {@link LandmarkBound landmarks}, and from then on the focus uses their
+     * lower bound instead of the straight line, with U starting {@link LandmarkBound#FIRST_EXCESS} above that bound at
+     * the goal. The landmarks are kept while costs only rise (every plan of a robot whose sonar adds obstacles) and
+     * dropped when a cost falls or the grid is replaced.
      *
      * @param goals     padded indices of passable goal cells
      * @param startCell padded index of the start
      */
     public void computeFocused(int[] goals, int startCell) {
-        if (landmarkValues == null && poorlyBoundedPlans >= landmarkPatience) {
-            buildLandmarks(goals[0]);
+        if (landmarks.isDue()) {
+            landmarks.build(this, goals[0]);
         }
         completeGoals = null;
         expandedCount = 0;
@@ -421,28 +352,24 @@ public final class LpnNavigationFunction implements AutoCloseable {
         }
         double lowerBound = minDensity * distance;
         boolean disconnected = false;
-        focusByLandmarks = landmarkValues != null && chooseLandmarks(goals, startCell);
+        focusByLandmarks = landmarks.activate(goals, startCell);
         if (focusByLandmarks) {
-            landmarkPlans++;
-            float nearest = Float.POSITIVE_INFINITY;
-            for (int goal : goals) {
-                nearest = Math.min(nearest, landmarkBound(goal));
-            }
+            float nearest = landmarks.nearestGoalBound(goals);
             lowerBound = Math.max(lowerBound, nearest == Float.POSITIVE_INFINITY ? 0 : nearest);
             // no goal is connected to a landmark the start is connected to: none is connected to the start (costs
             // only rose since the landmarks were computed, and a rise never joins regions), so the goals' region is
             // exhausted without a bound and reported as for an unfocused computation
             disconnected = nearest == Float.POSITIVE_INFINITY;
         }
-        // four diagonal steps at the highest density: with two, the descent on one of 291 random test grids read
-        // deferred cells' values and took a path 2 % dearer than the whole grid's (four: at most 0.02 % dearer); the
-        // highest density of the grid's own cells, not the cost model's: on a grid of free and lethal cells (the
-        // benchmark maze) a diagonal step costs c_min sqrt 2, and the same four steps are a fifth of the margin
+        // four diagonal steps at the highest density: with fewer the descent can read deferred cells' values and
+        // take a dearer path than the whole grid's; the highest density of the grid's own cells, not the cost
+        // model's: on a grid of free and lethal cells (a maze) a diagonal step costs c_min sqrt 2, and the cost
+        // model's highest density would make the margin five times wider
         float margin = 4 * SQRT2 * gridMaxDensity;
         // a robot re-plans to the same goal as it moves: an excess that was too small last time is skipped
         boolean sameGoals = Arrays.equals(goals, focusGoals);
         float excess = sameGoals ? (focusByLandmarks ? landmarkExcess : focusExcess)
-                : focusByLandmarks ? LANDMARK_FIRST_EXCESS : FOCUS_FIRST_EXCESS;
+                : focusByLandmarks ? LandmarkBound.FIRST_EXCESS : FOCUS_FIRST_EXCESS;
         if (disconnected) {
             excess = Float.POSITIVE_INFINITY;
         }
@@ -458,8 +385,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
             vainAttempts++;
             // a second vain attempt that already expanded a sizeable part of the grid (a maze, where paths are many
             // times the straight distance) is followed by the unfocused propagation rather than more attempts; after
-            // the first the bound is raised in any case (the robot's lab map: 24,188 cells in all, against 32,212
-            // unfocused and 35,188 when giving up after the first)
+            // the first the bound is raised in any case, as on the robot's lab map that expands fewer cells in all
+            // than giving up after the first
             excess = vainAttempts >= 2 && finalizedCount > potential.length / FOCUS_GIVE_UP_FRACTION
                     ? Float.POSITIVE_INFINITY
                     : excess * FOCUS_GROWTH;
@@ -468,147 +395,22 @@ public final class LpnNavigationFunction implements AutoCloseable {
             if (!sameGoals) {
                 focusGoals = goals.clone();
                 focusExcess = FOCUS_FIRST_EXCESS;
-                landmarkExcess = LANDMARK_FIRST_EXCESS;
+                landmarkExcess = LandmarkBound.FIRST_EXCESS;
             }
             if (focusByLandmarks) {
                 landmarkExcess = excess;
             } else {
                 focusExcess = excess;
-                if (excess >= LANDMARK_EXCESS) {
-                    poorlyBoundedPlans++;
-                }
+                landmarks.noteStraightLineExcess(excess);
             }
         }
         focusBound = Float.POSITIVE_INFINITY;
         focusByLandmarks = false;
     }
 
-    /**
-     * Picks the two landmarks whose bounds at the goals are highest (among those the start is connected to) for the
-     * running computation.
-     *
-     * @return false when the start is connected to no landmark
-     */
-    private boolean chooseLandmarks(int[] goals, int startCell) {
-        int best = -1;
-        int second = -1;
-        float bestBound = -1f;
-        float secondBound = -1f;
-        for (int l = 0; l < LANDMARKS; l++) {
-            float atStart = landmarkValues[l][startCell];
-            if (!(atStart < Float.POSITIVE_INFINITY)) {
-                continue; // not connected, or a missing landmark (NaN)
-            }
-            float bound = Float.POSITIVE_INFINITY;
-            for (int goal : goals) {
-                bound = Math.min(bound, Math.abs(landmarkValues[l][goal] - atStart));
-            }
-            if (bound > bestBound) {
-                second = best;
-                secondBound = bestBound;
-                best = l;
-                bestBound = bound;
-            } else if (bound > secondBound) {
-                second = l;
-                secondBound = bound;
-            }
-        }
-        if (best < 0) {
-            return false;
-        }
-        second = second < 0 ? best : second;
-        activeLandmark = landmarkValues[best];
-        activeAtStart = activeLandmark[startCell];
-        otherActiveLandmark = landmarkValues[second];
-        otherActiveAtStart = otherActiveLandmark[startCell];
-        activeReach = Math.max(landmarkReach[best], landmarkReach[second]);
-        return true;
-    }
-
-    /**
-     * @return the active landmarks' lower bound of the cost between {@code cell} and the start (+infinity: not
-     *         connected to the start)
-     */
-    private float landmarkBound(int cell) {
-        float gap = Math.abs(activeLandmark[cell] - activeAtStart);
-        float otherGap = Math.abs(otherActiveLandmark[cell] - otherActiveAtStart);
-        // the larger gap as the integer maximum of the bits (both are non-negative): a float selection is a jump
-        return (1 - LANDMARK_SLACK) * Float.intBitsToFloat(
-                Math.max(Float.floatToRawIntBits(gap), Float.floatToRawIntBits(otherGap)));
-    }
-
-    /**
-     * Computes N from {@link #LANDMARKS} cells over the whole grid, each the reached cell farthest from the ones
-     * before (the first: farthest from {@code seed}), and keeps the values (see {@link #landmarkValues}). Farthest
-     * landmarks lie "behind" most starts and goals, where their bounds are tight (Goldberg and Harrelson).
-     */
-    private void buildLandmarks(int seed) {
-        int cells = potential.length;
-        float[][] values = new float[LANDMARKS][cells];
-        float[] nearest = new float[cells];
-        Arrays.fill(nearest, Float.POSITIVE_INFINITY);
-        compute(new int[] {seed}, -1);
-        int next = farthest(potential, null);
-        int built = 0;
-        for (; built < LANDMARKS && next >= 0; built++) {
-            compute(new int[] {next}, -1);
-            float[] landmark = values[built];
-            float reach = 0f;
-            for (int i = 0; i < cells; i++) {
-                float value = decode(potential[i]);
-                landmark[i] = value;
-                if (value < nearest[i]) {
-                    nearest[i] = value;
-                }
-                if (value != Float.POSITIVE_INFINITY && value > reach) {
-                    reach = value;
-                }
-            }
-            landmarkReach[built] = reach;
-            next = farthest(potential, nearest);
-        }
-        // a region too small for all landmarks (every cell already one): the missing ones are never chosen (NaN)
-        for (int l = built; l < LANDMARKS; l++) {
-            Arrays.fill(values[l], Float.NaN);
-        }
-        landmarkValues = values;
-        landmarkPlans = 0;
-        completeGoals = null;
-    }
-
-    /**
-     * @return the reached cell of {@code potential} whose value in {@code nearest} (null: its own value) is largest
-     *         and finite, or -1 when there is none above 0
-     */
-    private static int farthest(int[] potential, float[] nearest) {
-        int best = -1;
-        float bestValue = 0f;
-        for (int i = 0; i < potential.length; i++) {
-            int bits = potential[i];
-            if (bits < 0 && bits != IMPASSABLE) {
-                float value = nearest == null ? decode(bits) : nearest[i];
-                if (value > bestValue) {
-                    bestValue = value;
-                    best = i;
-                }
-            }
-        }
-        return best;
-    }
-
-    /** Forgets the landmarks after a cost fell or the grid was replaced; a set that served few plans is rebuilt later. */
-    private void dropLandmarks() {
-        if (landmarkValues != null) {
-            landmarkPatience = landmarkPlans >= LANDMARK_PAYBACK_PLANS ? 1
-                    : Math.min(2 * landmarkPatience, LANDMARK_MAX_PATIENCE);
-        }
-        landmarkValues = null;
-        poorlyBoundedPlans = 0;
-    }
-
     /** @return whether focused computations bound with landmarks (built after poorly bounded plans on this grid) */
     boolean hasLandmarks() {
-        return landmarkValues != null;
+        return landmarks.isBuilt();
     }
 
     /**
@@ -633,13 +435,10 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
-     * Repairs N after costs rose in {@code changed} (already synced into the grid), instead of recomputing it: the
-     * D*-like re-planning step (A. Stentz, "The focussed D* algorithm for real-time replanning", IJCAI 1995) on a
-     * navigation function. Cells are checked in increasing N from the changed ones outwards; a cell whose value its
-     * remaining lower neighbours no longer support is invalidated, and only then are its higher neighbours checked.
-     * The invalidated cells are re-seeded from their valid neighbours and the ordinary propagation refills them.
-     * Work is proportional to the cells whose value depended on the change (the "shadow" behind a new obstacle), not
-     * to the grid.
+     * Repairs N after costs rose in {@code changed} (already synced into the grid), instead of recomputing it (see
+     * {@link NavigationRepair}): the values the change no longer supports are withdrawn, re-seeded from their valid
+     * neighbours and refilled by the ordinary propagation. Work is proportional to the cells whose value depended on
+     * the change (the "shadow" behind a new obstacle), not to the grid.
      *
      * @return false, changing nothing, when a repair is not possible and {@link #gridChanged} plus {@link #compute}
      *         must be used: no complete computation for these goals, a change too large to have been remembered, or
@@ -654,116 +453,25 @@ public final class LpnNavigationFunction implements AutoCloseable {
         if (changed.isEmpty()) {
             return true;
         }
-        byte[] costs = grid.costs();
-        float highest = gridMaxDensity;
-        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
-            for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
-                int before = grid.previousCost(column, row);
-                float now = density[costs[grid.index(column, row)] & 0xFF];
-                if (before < 0 || now < density[before]) {
-                    return false;
-                }
-                if (now > highest && now != Float.POSITIVE_INFINITY) {
-                    highest = now;
-                }
-            }
+        float highest = riseRepair.highestDensityAfterRise(grid, changed, gridMaxDensity);
+        if (highest < 0) {
+            return false;
         }
         gridMaxDensity = highest;
-        checkSize = 0;
-        int stride = grid.stride();
-        for (int row = changed.minRow(); row <= changed.maxRow(); row++) {
-            for (int column = changed.minColumn(); column <= changed.maxColumn(); column++) {
-                int cell = grid.index(column, row);
-                if (density[costs[cell] & 0xFF] == density[grid.previousCost(column, row)]) {
-                    continue;
-                }
-                int bits = potential[cell];
-                if (density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY) {
-                    initialPotential[cell] = IMPASSABLE;
-                }
-                if (bits == IMPASSABLE) {
-                    continue;
-                }
-                if (bits == UNREACHED) {
-                    if (density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY) {
-                        potential[cell] = IMPASSABLE;
-                    }
-                    continue;
-                }
-                // the cell itself and its axis neighbours (whose updates use its density) must be checked
-                pushCheck(cell);
-                pushCheck(cell + 1);
-                pushCheck(cell - 1);
-                pushCheck(cell + stride);
-                pushCheck(cell - stride);
-            }
-        }
-        int invalidCount = 0;
-        while (checkSize > 0) {
-            int cell = popCheck();
-            int bits = potential[cell];
-            if (bits >= 0 || bits == IMPASSABLE) {
-                continue; // already invalidated, never reached, or impassable
-            }
-            float value = decode(bits);
-            boolean nowImpassable = density[costs[cell] & 0xFF] == Float.POSITIVE_INFINITY;
-            float supported = nowImpassable ? Float.POSITIVE_INFINITY : recompute(cell, costs, stride);
-            if (value == 0f || supported <= value * (1 + 1e-6f)) {
-                continue; // goal cells and cells still supported keep their value
-            }
-            potential[cell] = nowImpassable ? IMPASSABLE : RETRACTED;
-            finalizedCount--;
-            if (invalidCount == invalid.length) {
-                invalid = Arrays.copyOf(invalid, invalidCount * 2);
-            }
-            invalid[invalidCount++] = cell;
-            for (int dy = -stride; dy <= stride; dy += stride) {
-                for (int dx = -1; dx <= 1; dx++) {
-                    int next = cell + dy + dx;
-                    int nextBits = potential[next];
-                    if (nextBits < 0 && nextBits != IMPASSABLE && decode(nextBits) > value) {
-                        pushCheck(next);
-                    }
-                }
-            }
-        }
-        withdrawnCount = invalidCount;
-        if (invalidCount == 0) {
+        int withdrawn = riseRepair.withdraw(grid, changed, potential, initialPotential);
+        finalizedCount -= withdrawn;
+        withdrawnCount = withdrawn;
+        if (withdrawn == 0) {
             return true;
         }
         queued = 0;
         Arrays.fill(bucketSizes, 0);
         fillBound = 0;
-        currentBucket = Integer.MAX_VALUE;
-        for (int i = 0; i < invalidCount; i++) {
-            int cell = invalid[i];
-            if (potential[cell] == IMPASSABLE) {
-                continue;
-            }
-            float seed = recompute(cell, costs, stride);
-            if (seed != Float.POSITIVE_INFINITY) {
-                currentBucket = Math.min(currentBucket, (int) (seed * inverseBucketWidth));
-            }
-        }
+        currentBucket = riseRepair.seed(grid, potential, inverseBucketWidth);
         if (currentBucket != Integer.MAX_VALUE) {
-            // seeds wait in the heap, sorted, and enter the bucket ring as the front approaches them: their values
-            // may lie further apart than the ring reaches
-            for (int i = 0; i < invalidCount; i++) {
-                int cell = invalid[i];
-                if (potential[cell] != IMPASSABLE) {
-                    float seed = recompute(cell, costs, stride);
-                    if (seed != Float.POSITIVE_INFINITY) {
-                        pushSeed(cell, seed);
-                    }
-                }
-            }
             propagate(-1, true);
         }
-        for (int i = 0; i < invalidCount; i++) {
-            if (potential[invalid[i]] == RETRACTED) {
-                potential[invalid[i]] = UNREACHED; // cut off from the goal by the change
-            }
-        }
+        riseRepair.forgetCutOff(potential);
         return true;
     }
 
@@ -773,102 +481,18 @@ public final class LpnNavigationFunction implements AutoCloseable {
      */
     private void injectSeeds() {
         if (queued == 0) {
-            currentBucket = Math.max(currentBucket, (int) (checkKeys[0] * inverseBucketWidth));
+            currentBucket = Math.max(currentBucket, (int) (riseRepair.lowestSeed() * inverseBucketWidth));
         }
         int horizon = currentBucket + bucketMask;
-        while (checkSize > 0 && (int) (checkKeys[0] * inverseBucketWidth) < horizon) {
-            float seed = checkKeys[0];
-            int cell = popCheck();
+        while (riseRepair.hasSeeds() && (int) (riseRepair.lowestSeed() * inverseBucketWidth) < horizon) {
+            float seed = riseRepair.lowestSeed();
+            int cell = riseRepair.popSeed();
             int bits = potential[cell];
             if (bits >= 0 && Float.floatToRawIntBits(seed) < bits) {
                 potential[cell] = Float.floatToRawIntBits(seed);
                 push(cell, seed);
             }
         }
-    }
-
-    /** N of a cell recomputed from its final neighbours, with the same update as the propagation. */
-    private float recompute(int cell, byte[] costs, int stride) {
-        float own = density[costs[cell] & 0xFF];
-        float best = Float.POSITIVE_INFINITY;
-        best = Math.min(best, through(cell + 1, cell + 1 + stride, cell + 1 - stride, own, costs));
-        best = Math.min(best, through(cell - 1, cell - 1 + stride, cell - 1 - stride, own, costs));
-        best = Math.min(best, through(cell + stride, cell + stride + 1, cell + stride - 1, own, costs));
-        best = Math.min(best, through(cell - stride, cell - stride + 1, cell - stride - 1, own, costs));
-        return best;
-    }
-
-    /** The update of a cell of density {@code own} through its final axis neighbour and that neighbour's corners. */
-    private float through(int axis, int corner1, int corner2, float own, byte[] costs) {
-        int bits = potential[axis];
-        if (bits >= 0 || bits == IMPASSABLE) {
-            return Float.POSITIVE_INFINITY;
-        }
-        float value = decode(bits);
-        float c = 0.5f * (own + density[costs[axis] & 0xFF]);
-        float corner = Math.min(finalValue(potential[corner1]), finalValue(potential[corner2]));
-        return update(value, corner, c);
-    }
-
-    private static float finalValue(int bits) {
-        return bits < 0 ? decode(bits) : Float.POSITIVE_INFINITY;
-    }
-
-    /** Adds a final cell to the check heap, keyed by its value. */
-    private void pushCheck(int cell) {
-        int bits = potential[cell];
-        if (bits >= 0 || bits == IMPASSABLE) {
-            return;
-        }
-        pushSeed(cell, decode(bits));
-    }
-
-    /** Adds a cell to the heap (checks during a repair's first phase, seeds during its second). */
-    private void pushSeed(int cell, float key) {
-        if (checkSize == checkKeys.length) {
-            checkKeys = Arrays.copyOf(checkKeys, checkSize * 2);
-            checkCells = Arrays.copyOf(checkCells, checkSize * 2);
-        }
-        int i = checkSize++;
-        while (i > 0) {
-            int parent = (i - 1) >>> 1;
-            if (checkKeys[parent] <= key) {
-                break;
-            }
-            checkKeys[i] = checkKeys[parent];
-            checkCells[i] = checkCells[parent];
-            i = parent;
-        }
-        checkKeys[i] = key;
-        checkCells[i] = cell;
-    }
-
-    private int popCheck() {
-        int top = checkCells[0];
-        int last = --checkSize;
-        if (last > 0) {
-            float key = checkKeys[last];
-            int cell = checkCells[last];
-            int i = 0;
-            while (true) {
-                int child = 2 * i + 1;
-                if (child >= last) {
-                    break;
-                }
-                if (child + 1 < last && checkKeys[child + 1] < checkKeys[child]) {
-                    child++;
-                }
-                if (checkKeys[child] >= key) {
-                    break;
-                }
-                checkKeys[i] = checkKeys[child];
-                checkCells[i] = checkCells[child];
-                i = child;
-            }
-            checkKeys[i] = key;
-            checkCells[i] = cell;
-        }
-        return top;
     }
 
     private void resetTouched() {
@@ -888,23 +512,20 @@ public final class LpnNavigationFunction implements AutoCloseable {
         // below this N a cell lies inside the focus wherever it is (c_min |p - start| is at most c_min times the
         // grid's diagonal); +infinity without a focus, so that the whole-grid loop pays one predictable comparison
         final float focusFrom = focusBound - Math.max(minDensity * (float) Math.hypot(stride, potential.length / stride),
-                focusByLandmarks ? (1 - LANDMARK_SLACK) * activeReach : 0f);
+                focusByLandmarks ? landmarks.boundReach() : 0f);
         final double inverseStride = 1.0 / stride;
         rangeFinalized = 0;
         rangeDeferred = 0;
-        while ((queued > 0 || checkSize > 0) && currentBucket * bucketWidth <= stopAbove) {
-            if (checkSize > 0) {
+        while ((queued > 0 || riseRepair.hasSeeds()) && currentBucket * bucketWidth <= stopAbove) {
+            if (riseRepair.hasSeeds()) {
                 injectSeeds();
                 if (queued == 0) {
                     continue;
                 }
             }
             int slot = currentBucket & bucketMask;
-            // the front's cells in memory order rather than first in, first out (the order they were reached, which
-            // interleaves parts of the front pushed from different buckets): consecutive expansions then share cache
-            // lines, about 10-15 % faster on 1000 x 1000; small buckets are cheaper left in arrival order
-            if (bucketSizes[slot] >= bandCounts.length >> 3) {
-                sortByMemoryBand(slot);
+            if (bandOrder.isWorthSorting(bucketSizes[slot])) {
+                bandOrder.sort(buckets, slot << bucketShift, bucketSizes[slot], 1 << bucketShift);
             }
             int head = 0;
             // cells may be queued into the bucket being expanded (one lowered by the straight diagonal from a low
@@ -936,13 +557,12 @@ public final class LpnNavigationFunction implements AutoCloseable {
     }
 
     /**
-     * Expands the entries {@code [head, end)} of the current bucket's slot: the hot loop, a method of its own so that
-     * C2 compiles it from its own profile, apart from the per-bucket work of {@link #propagate} (the memory-band sort,
-     * the ring's growth, seeds), whose branches are first taken in the middle of a computation. Written in one method,
-     * the sort's test (first true on random-1000 once the front has grown) was an uncommon trap of the first
-     * computation's compiled loop, and about a third of the JVMs ran the loop recompiled after it at 24-26 ms instead
-     * of 18-20 ms; as a method of its own (too large for C2 to inline into propagate) no JVM of ten did, for a call
-     * per bucket (maze-1000's 24,563 buckets: about 3 %).
+     * Expands the entries {@code [head, end)} of the current bucket's slot: the hot loop, a method of its own (too
+     * large for C2 to inline into {@link #propagate}) so that C2 compiles it from its own profile, apart from the
+     * per-bucket work of {@link #propagate} (the memory-band sort, the ring's growth, seeds), whose branches are first
+     * taken in the middle of a computation: in one method, such a branch would be an uncommon trap of the compiled
+     * loop, and the loop recompiled after it from a profile of the computation's start runs slower. The price is a
+     * call per bucket.
      *
      * @return the cells queued
      */
@@ -952,9 +572,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         final float[] halfDensity = this.halfDensity;
         final byte[] costs = grid.costs();
         final int stride = grid.stride();
-        // the ring cannot grow while the bucket is expanded, so its array and shift are loop invariants in
-        // registers: a growth call inside the loop (compiled in once a computation had to grow) made C2 reload
-        // them at every update, 20-25 % slower on 1000 x 1000 after a run on 2000 x 2000 had grown the ring
+        // the ring cannot grow while the bucket is expanded ({@link #makeRoom} runs before), so its array and shift
+        // are loop invariants in registers: with a growth call inside the loop C2 would reload them at every update
         final int[] buckets = this.buckets;
         final int shift = bucketShift;
         final int current = currentBucket;
@@ -972,11 +591,9 @@ public final class LpnNavigationFunction implements AutoCloseable {
             if (bits < 0) {
                 continue;
             }
-            // recorded without a branch: the list overflows once a computation has reached an eighth of the grid, and
-            // C2 compiled the first computation's loop before that with the overflow as an uncommon trap, then (in
-            // about half of the JVMs, as the compilations' timing fell) the loop that followed it from a profile of the
-            // computation's start: maze-1000 25-27 ms instead of 16-18 ms. Past the end the last slot is overwritten;
-            // an overflowed list is not read (resetTouched copies the grid)
+            // recorded without a branch: the list overflows once a computation has reached an eighth of the grid, so
+            // a branch on the overflow would be an uncommon trap of the loop compiled earlier (see above). Past the
+            // end the last slot is overwritten; an overflowed list is not read (resetTouched copies the grid)
             touched[Math.min(record, lastTouched)] = cell;
             record++;
             float value = Float.intBitsToFloat(bits);
@@ -995,8 +612,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
             int westBits = potential[cell - 1];
             int northBits = potential[cell + stride];
             int southBits = potential[cell - stride];
-            float northSouthCorner = lower(northBits, southBits);
-            float eastWestCorner = lower(eastBits, westBits);
+            float northSouthCorner = InterpolatedUpdate.lower(northBits, southBits);
+            float eastWestCorner = InterpolatedUpdate.lower(eastBits, westBits);
             if (eastBits >= 0) {
                 pushed += relax(cell + 1, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs,
                         buckets, shift, current);
@@ -1035,7 +652,7 @@ public final class LpnNavigationFunction implements AutoCloseable {
     private boolean outsideFocus(int cell, float value, int stride, double inverseStride) {
         if (focusByLandmarks) {
             // the straight line is not checked as well: where landmarks are used it bounds far less
-            return value + landmarkBound(cell) > focusBound;
+            return value + landmarks.bound(cell) > focusBound;
         }
         // row = cell / stride without a division: (cell + 0.5) / stride lies strictly inside (row, row + 1)
         int row = (int) ((cell + 0.5) * inverseStride);
@@ -1043,50 +660,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
         float dy = row - focusRow;
         float reach = (focusBound - value) / minDensity;
         return reach < 0 || dx * dx + dy * dy > reach * reach;
-    }
-
-    /**
-     * Orders a bucket by memory band (a block of {@code 2^bandShift} consecutive padded cells, a few rows), stable
-     * within a band: one counting pass. All cells of the bucket are final, so any order is valid.
-     */
-    private void sortByMemoryBand(int slot) {
-        int size = bucketSizes[slot];
-        if (sortBuffer.length < size) {
-            sortBuffer = new int[1 << bucketShift];
-        }
-        int from = slot << bucketShift;
-        sortByMemoryBand(buckets, from, size, sortBuffer, bandCounts, bandShift);
-        System.arraycopy(sortBuffer, 0, buckets, from, size);
-    }
-
-    /**
-     * Counting sort of the {@code size} cells {@code items[from, from + size)} by memory band ({@code cell >>> shift}), stable within a band.
-     *
-     * @param buffer receives the sorted cells (at least {@code size} long)
-     * @param counts scratch, one more than the number of bands plus one
-     * @return {@code buffer}
-     */
-    static int[] sortByMemoryBand(int[] items, int from, int size, int[] buffer, int[] counts, int shift) {
-        // only the bands the front spans are cleared and summed: a bucket often covers a fraction of the grid
-        int low = Integer.MAX_VALUE;
-        int high = 0;
-        for (int i = from; i < from + size; i++) {
-            int band = items[i] >>> shift;
-            low = Math.min(low, band);
-            high = Math.max(high, band);
-        }
-        Arrays.fill(counts, low, high + 2, 0);
-        for (int i = from; i < from + size; i++) {
-            counts[(items[i] >>> shift) + 1]++;
-        }
-        for (int band = low + 1; band <= high + 1; band++) {
-            counts[band] += counts[band - 1];
-        }
-        for (int i = from; i < from + size; i++) {
-            int item = items[i];
-            buffer[counts[item >>> shift]++] = item;
-        }
-        return buffer;
     }
 
     /** Relaxes the axis neighbours of a final cell {@code axis} again if it lies above {@code value}; returns the cells queued. */
@@ -1119,8 +692,8 @@ public final class LpnNavigationFunction implements AutoCloseable {
         int westBits = potential[west];
         int northBits = potential[north];
         int southBits = potential[south];
-        float northSouthCorner = lower(northBits, southBits);
-        float eastWestCorner = lower(eastBits, westBits);
+        float northSouthCorner = InterpolatedUpdate.lower(northBits, southBits);
+        float eastWestCorner = InterpolatedUpdate.lower(eastBits, westBits);
         if (eastBits >= 0) {
             pushed += relax(east, eastBits, value, northSouthCorner, ownHalfDensity, halfDensity, costs, buckets,
                     bucketShift, currentBucket);
@@ -1144,21 +717,21 @@ public final class LpnNavigationFunction implements AutoCloseable {
      * Updates {@code target} (not final, stored bits {@code targetBits}), an axis neighbour of the just-finalised cell,
      * through the triangles (target, cell, corner) with the lower of its two diagonal corners next to the cell.
      * Written without branches on the data, with integer selections only (C2 compiles them to conditional moves; see
-     * {@link #updateBits} for the float ones): whether the update improves the target is close to a coin toss, and a
+     * {@link InterpolatedUpdate#updateBits} for the float ones): whether the update improves the target is close to a coin toss, and a
      * mispredicted branch costs more than the arithmetic. The lower value is stored whatever happens ({@code min} of
      * the bits: the old value when the update does not improve it), the target is written to the end of its bucket
      * and the bucket's size advanced when it improved. A target lowered again is queued again, also when it stays in
-     * its bucket: the entry popped first finalises it and the others are skipped as final (maze-1000: 819,565 entries
-     * for 784,064 cells, random-1000 833,868 for 736,265); a cell the focus deferred is checked again with its lower
-     * value (and counted in {@link #deferredCount} again if still outside). Queueing only a first reach or a change of
-     * bucket left fewer entries but cost the old value's bucket on every update, which was slower (maze-1000 8 %).
+     * its bucket: the entry popped first finalises it and the others are skipped as final (a few percent more
+     * entries than cells on the benchmark grids, cheaper than computing the old value's bucket at every update); a
+     * cell the focus deferred is checked again with its lower value (and counted in {@link #deferredCount} again if
+     * still outside).
      *
      * @return 1 when the target was queued (the caller counts it in {@link #queued}), else 0. Reached cells are recorded for the reset by {@link #propagate} (when popped, and those still
      * queued when it stops), not here.
      */
     private int relax(int target, int targetBits, float value, float corner, float ownHalfDensity,
             float[] halfDensity, byte[] costs, int[] buckets, int shift, int currentBucket) {
-        int bestBits = updateBits(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
+        int bestBits = InterpolatedUpdate.updateBits(value, corner, halfDensity[costs[target] & 0xFF] + ownHalfDensity);
         float best = Float.intBitsToFloat(bestBits);
         int queue = bestBits < targetBits ? 1 : 0;
         int bucket = (int) (best * inverseBucketWidth);
@@ -1168,46 +741,6 @@ public final class LpnNavigationFunction implements AutoCloseable {
         buckets[(slot << shift) + size] = target;
         bucketSizes[slot] = size + queue;
         return queue;
-    }
-
-    /**
-     * The lower of two stored values, decoded: the minimum of their value bits as ints (non-negative floats order like
-     * their bits), which C2 compiles to an integer conditional move. A float selection ({@code a < b ? a : b}) is
-     * compiled on x86 to a compare and a jump (there is no conditional move for floats), and whether a corner is lower
-     * is a coin toss: the three selections of each update as jumps cost maze-1000's navigation function 20 %.
-     */
-    private static float lower(int bits, int otherBits) {
-        return Float.intBitsToFloat(Math.min(bits & VALUE, otherBits & VALUE));
-    }
-
-    /**
-     * The interpolated update (see the class comment) of a cell from a final axis neighbour of value {@code value}
-     * through the lower of its two diagonal corners next to that neighbour, {@code corner}, for edge density
-     * {@code c}. A corner at or above {@code value} gives the axis step {@code value + c}, whatever its value.
-     */
-    static float update(float value, float corner, float c) {
-        return Float.intBitsToFloat(updateBits(value, corner, c));
-    }
-
-    /**
-     * {@link #update} as float bits, computed without a jump: whether a corner is lower, and whether the crossing is
-     * interior, are coin tosses, and C2 compiles a float selection to a compare and a jump on x86, so both selections
-     * are made on the bits with integer operations (see {@link #lower}).
-     */
-    static int updateBits(float value, float corner, float c) {
-        float limit = c * INV_SQRT2;
-        // delta = max(0, N(a) - N(corner)): a negative difference (sign bit set) masked to +0
-        int deltaBits = Float.floatToRawIntBits(value - corner);
-        deltaBits &= ~(deltaBits >> 31);
-        float delta = Float.intBitsToFloat(deltaBits);
-        // interior crossing (or the axis step when delta = 0), and the straight diagonal from the corner; the choice
-        // is by delta alone: below the limit the crossing is never dearer (sqrt(c^2 - delta^2) + delta <= c sqrt 2,
-        // equal at the limit), above it the square root is of a negative number (NaN) and not chosen
-        float interior = value + (float) Math.sqrt(c * c - delta * delta);
-        float straight = corner + c * SQRT2;
-        // delta < limit, both non-negative: compared as bits, the difference's sign is the mask of the interior
-        int interiorMask = (deltaBits - Float.floatToRawIntBits(limit)) >> 31;
-        return Float.floatToRawIntBits(interior) & interiorMask | Float.floatToRawIntBits(straight) & ~interiorMask;
     }
 
     private void push(int cell, float value) {

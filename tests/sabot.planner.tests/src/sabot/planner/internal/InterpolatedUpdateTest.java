@@ -35,7 +35,7 @@ class InterpolatedUpdateTest {
             // corners below, near and above the value, reaching past the limit c / sqrt 2 on both sides
             float corner = Math.max(0f, value + c * (2 * random.nextFloat() - 1.2f));
             float expected = formula(value, corner, c);
-            float actual = LpnNavigationFunction.update(value, corner, c);
+            float actual = InterpolatedUpdate.update(value, corner, c);
             float limit = c * (float) (1 / Math.sqrt(2));
             if (Math.abs(value - corner - limit) < 1e-3f * c) {
                 // at the limit the crossing and the diagonal are equal: the choice by delta may round the other way
@@ -50,12 +50,12 @@ class InterpolatedUpdateTest {
 
     @Test
     void aCornerAtOrAboveTheValueGivesTheAxisStepAndAFarLowerOneTheDiagonal() {
-        assertEquals(100f + 50f, LpnNavigationFunction.update(100f, 100f, 50f));
-        assertEquals(100f + 50f, LpnNavigationFunction.update(100f, 180f, 50f));
-        assertEquals(100f + 50f, LpnNavigationFunction.update(100f, Float.POSITIVE_INFINITY, 50f),
+        assertEquals(100f + 50f, InterpolatedUpdate.update(100f, 100f, 50f));
+        assertEquals(100f + 50f, InterpolatedUpdate.update(100f, 180f, 50f));
+        assertEquals(100f + 50f, InterpolatedUpdate.update(100f, Float.POSITIVE_INFINITY, 50f),
                 "an unreached corner");
-        assertEquals(0f + 50f * SQRT2, LpnNavigationFunction.update(100f, 0f, 50f), "straight from the corner");
-        assertEquals(Float.POSITIVE_INFINITY, LpnNavigationFunction.update(100f, 40f, Float.POSITIVE_INFINITY),
+        assertEquals(0f + 50f * SQRT2, InterpolatedUpdate.update(100f, 0f, 50f), "straight from the corner");
+        assertEquals(Float.POSITIVE_INFINITY, InterpolatedUpdate.update(100f, 40f, Float.POSITIVE_INFINITY),
                 "an impassable cell's density");
     }
 }

@@ -26,6 +26,7 @@ import sabot.planner.Planner;
 import sabot.planner.Planners;
 import sabot.planner.internal.LpnNavigationFunction;
 import sabot.planner.internal.PlanningGrid;
+import sabot.tools.grids.BenchmarkGrids;
 
 /**
  * Times ROS navfn and Sabot's planners, alternating, on the grids of {@link BenchmarkGrids}:

@@ -15,6 +15,7 @@ import sabot.planner.costmap.CostmapLayers;
 import sabot.planner.costmap.InflationParameters;
 import sabot.planner.costmap.MovingObstacle;
 import sabot.planner.costmap.MovingObstacleModel;
+import sabot.tools.grids.BenchmarkGrids;
 import sabot.tools.render.PlanImage;
 
 /**

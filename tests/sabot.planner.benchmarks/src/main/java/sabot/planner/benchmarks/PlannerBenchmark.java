@@ -23,6 +23,7 @@ import sabot.planner.Planner;
 import sabot.planner.Planners;
 import sabot.planner.internal.LpnNavigationFunction;
 import sabot.planner.internal.PlanningGrid;
+import sabot.tools.grids.BenchmarkGrids;
 
 /**
  * Planner figures on the {@link BenchmarkGrids}: the LPN navigation function alone, LPN's full plan (navigation

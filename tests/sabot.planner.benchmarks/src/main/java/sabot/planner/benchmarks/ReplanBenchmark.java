@@ -23,6 +23,7 @@ import sabot.planner.CostModel;
 import sabot.planner.PlanResult;
 import sabot.planner.Planner;
 import sabot.planner.Planners;
+import sabot.tools.grids.BenchmarkGrids;
 
 /**
  * Re-planning after a local change: a sonar obstacle appears on the path half a metre ahead of the robot. Each

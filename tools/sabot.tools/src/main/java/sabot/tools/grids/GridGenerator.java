@@ -1,4 +1,4 @@
-package sabot.planner.benchmarks;
+package sabot.tools.grids;
 
 import java.io.IOException;
 import java.nio.file.Path;
@@ -12,7 +12,10 @@ import sabot.model.map.MapServerFormat;
  * Writes a benchmark grid as a raw costmap PGM for {@code sabot plan --costmap} and prints the start and goal as
  * {@code --start C,R --goal C,R --cells} (image row 0 at the top).
  *
- * <pre>java -cp sabot-planner-bench.jar sabot.planner.benchmarks.GridGenerator random-1000 /tmp/random-1000.pgm</pre>
+ * <pre>./sabot bench planner --grid random-1000 /tmp/random-1000.pgm
+ * java -cp sabot-tools.jar sabot.tools.grids.GridGenerator random-1000 /tmp/random-1000.pgm</pre>
+ *
+ * The grids are {@link BenchmarkGrids}' (fixed seed), so a plan on the image meets the benchmarks' figures.
  */
 public final class GridGenerator {
 

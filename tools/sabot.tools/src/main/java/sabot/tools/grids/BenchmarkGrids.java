@@ -1,4 +1,4 @@
-package sabot.planner.benchmarks;
+package sabot.tools.grids;
 
 import java.util.ArrayDeque;
 import java.util.Random;
@@ -15,17 +15,17 @@ import sabot.planner.costmap.MovingObstacleModel;
 import sabot.planner.costmap.UnknownCellPolicy;
 
 /**
- * The fixed-seed grids the planner figures are measured on. Every grid has 0.05 m cells; the random grids are
+ * The fixed-seed grids the planner figures are measured on (the JMH benchmarks, {@code ./sabot bench navfn}, the
+ * pictures of docs/PLANNER.md), and that {@link GridGenerator} writes as images for {@code ./sabot plan}. Every grid has 0.05 m cells; the random grids are
  * inflated for a robot of inscribed radius 0.10 m (2 cells) with cost spreading to 0.30 m (6 cells), decay 10 per
  * metre.
  * <ul>
  * <li>{@code random-N}: N x N cells, about 20 % of them in random rectangles (2 to 2 + N/25 cells a side); start near
  * the lower-left corner, goal near the upper-right one, in the same free region;</li>
  * <li>{@code maze-N}: a perfect maze (randomised depth-first search) of 8-cell corridors between 2-cell walls, not
- * inflated: lethal walls, free corridors (the kind of maze of issue 17's held-back grids; inflated, every corridor
- * cell had a graded cost, and navfn's 100-unit threshold bands then re-update cells hundreds of times, 1.4 s instead
- * of tens of milliseconds: no test of the propagation order); long winding corridors; start and goal in opposite
- * corners;</li>
+ * inflated: lethal walls, free corridors, so that it measures the propagation along long winding corridors (inflated,
+ * every corridor cell would have a graded cost, and navfn's 100-unit threshold bands would re-update cells hundreds of
+ * times: a test of navfn's thresholds, not of the propagation order); start and goal in opposite corners;</li>
  * <li>{@code enclosed-N}: {@code random-N} with the goal at the centre inside a closed lethal ring.</li>
  * </ul>
  */
