@@ -36,8 +36,8 @@ public final class PlanCommand {
               --map            ROS map_server YAML (+ PGM); obstacles are inflated for the robot
               --costmap        raw 8-bit costmap PGM (0 free, 1..252 cost, 253 inscribed, 254 lethal, 255 unknown)
               --cells          start/goal are column,row with row 0 at the top of the image (else metres, map frame)
-              --threads        1 or 2 (default 1); both compute on one thread since the two-thread
-                               propagation was removed (issue 17), 2 is accepted for existing scripts
+              --threads        1 or 2 (default 1); both compute on the calling thread (2 is accepted so
+                               that scripts written for a two-thread planner keep working)
               --resolution     metres per cell of a --costmap image (default 1)
               --inscribed-radius, --inflation-radius (metres), --cost-scaling (1/m): inflation of a --map
                                (defaults 0.15, 0.55, 10)
