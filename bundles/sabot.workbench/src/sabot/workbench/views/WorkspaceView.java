@@ -6,11 +6,8 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Objects;
-import java.util.concurrent.CopyOnWriteArrayList;
 
-import org.eclipse.jface.action.Action;
 import org.eclipse.jface.action.IStatusLineManager;
-import org.eclipse.jface.action.MenuManager;
 import org.eclipse.jface.viewers.ISelection;
 import org.eclipse.jface.viewers.ISelectionChangedListener;
 import org.eclipse.jface.viewers.ISelectionProvider;
@@ -32,16 +29,11 @@ import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
 import org.osgi.annotation.versioning.ConsumerType;
-import org.osgi.framework.Bundle;
-import org.osgi.framework.FrameworkUtil;
-import org.osgi.util.tracker.ServiceTracker;
 
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
-import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetBinding;
-import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.internal.FleetJobs;
@@ -83,10 +75,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     private final MapViewport viewport = new MapViewport(50, 5, 5);
     private final List<ISelectionChangedListener> selectionListeners = new ArrayList<>();
-    private final List<WorkspacePaintObserver> observers = new CopyOnWriteArrayList<>();
+    private final PaintObservers observers = new PaintObservers();
     private final GoalGesture gesture = new GoalGesture(viewport);
+    private final DrawnWaiters waiters = new DrawnWaiters();
     private final WorkspacePainter painter = new WorkspacePainter(viewport);
-    private ServiceTracker<WorkspacePaintObserver, WorkspacePaintObserver> observerServices;
     private Canvas canvas;
     private MapNavigation navigation;
     private FleetBinding fleet;
@@ -96,7 +88,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private String message;
     private boolean messageIsError;
     private String mapFrom;
-    private boolean mapRequested;
+    private MapFetch mapFetch;
     private final ISelectionListener otherViews = this::otherViewSelected;
 
     @Override
@@ -135,16 +127,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             }
             canvas.redraw();
         });
-        createContextMenu();
+        WorkspaceMenu.install(this, canvas, gesture);
         getSite().getService(IContextService.class).activateContext(FLEET_CONTEXT);
         getSite().setSelectionProvider(this);
         getSite().getPage().addSelectionListener(otherViews);
         fleet = new FleetBinding(canvas.getDisplay()::asyncExec, this::fleetChanged);
-        Bundle bundle = FrameworkUtil.getBundle(WorkspaceView.class);
-        if (bundle != null && bundle.getBundleContext() != null) {
-            observerServices = new ServiceTracker<>(bundle.getBundleContext(), WorkspacePaintObserver.class, null);
-            observerServices.open();
-        }
+        mapFetch = new MapFetch(fleet, canvas, this::setMap, reason -> show(reason, true));
+        observers.open();
         canvas.addDisposeListener(e -> painter.close());
     }
 
@@ -154,9 +143,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (fleet != null) {
             fleet.dispose();
         }
-        if (observerServices != null) {
-            observerServices.close();
-        }
+        observers.close();
         super.dispose();
     }
 
@@ -209,6 +196,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         }
     }
 
+    /** @return the robot's last state, or null when it is not in the fleet */
+    RobotState robot(String jid) {
+        return fleet.robot(jid);
+    }
+
     private String name(String jid) {
         RobotState r = fleet.robot(jid);
         return r == null ? jid : r.name();
@@ -238,36 +230,6 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /** @return the last command answer shown, or null */
     public String lastMessage() {
         return message;
-    }
-
-    private void createContextMenu() {
-        MenuManager menu = new MenuManager();
-        menu.setRemoveAllWhenShown(true);
-        menu.addMenuListener(m -> {
-            Point at = canvas.toControl(canvas.getDisplay().getCursorLocation());
-            String hit = robotAt(at.x, at.y);
-            if (hit != null) {
-                select(hit, true);
-            }
-            String robot = selected;
-            boolean known = robot != null && fleet.robot(robot) != null;
-            m.add(action("&Go here", known && hit == null, () -> sendGoal(robot, gesture.goalFor(at, at, fleet
-                    .robot(robot)))));
-            m.add(action("&Stop", known, () -> stopRobot(robot)));
-            m.add(action("&Centre", known && fleet.robot(robot).pose() != null, () -> centreOn(robot)));
-        });
-        canvas.setMenu(menu.createContextMenu(canvas));
-    }
-
-    private static Action action(String text, boolean enabled, Runnable run) {
-        Action a = new Action(text) {
-            @Override
-            public void run() {
-                run.run();
-            }
-        };
-        a.setEnabled(enabled);
-        return a;
     }
 
     /** Centres the map on a robot's last pose (nothing when it has none). */
@@ -350,38 +312,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (canvas.isDisposed()) {
             return;
         }
-        if (painter.map() == null && !mapRequested) {
-            requestMap();
+        if (painter.map() == null) {
+            mapFetch.request();
         }
         canvas.redraw();
-    }
-
-    /** Fetches the map of the first robot online (robots of one lab share it), off the UI thread. */
-    private void requestMap() {
-        FleetState f = fleet.fleet();
-        RobotState source = fleet.robots().stream().filter(r -> r.availability() != Availability.OFFLINE).findFirst()
-                .orElse(null);
-        if (f == null || source == null) {
-            return;
-        }
-        mapRequested = true;
-        Display display = canvas.getDisplay();
-        f.map(source.jid()).whenComplete((m, e) -> display.asyncExec(() -> {
-            if (canvas.isDisposed()) {
-                return;
-            }
-            if (m != null) {
-                setMap(m, source.jid());
-            } else {
-                mapRequested = false; // asked again with the next change
-                show("map of " + source.name() + ": " + describe(e), true);
-            }
-        }));
-    }
-
-    private static String describe(Throwable e) {
-        FleetCommandException f = FleetCommandException.in(e);
-        return f != null ? f.text() + " (" + f.condition().element() + ")" : String.valueOf(e);
     }
 
     /** Shows a map (UI thread). */
@@ -422,7 +356,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     /** Tells {@code observer} of this view's paints from the next on (UI thread), besides the observer services. */
     public void addPaintObserver(WorkspacePaintObserver observer) {
-        observers.add(Objects.requireNonNull(observer));
+        observers.add(observer);
     }
 
     public void removePaintObserver(WorkspacePaintObserver observer) {
@@ -442,18 +376,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         boolean holds(RobotState robot);
     }
 
-    private record Waiter(DrawnCondition condition, Runnable then) {
-    }
-
-    private final List<Waiter> waiters = new ArrayList<>();
-
     /**
      * Runs {@code then} once on the UI thread right after the first paint in which a robot was drawn live on the map
      * (map shown, pose known, telemetry fresh) and satisfied {@code condition}: no polling, the paints that telemetry
      * causes decide (the demo's screenshot waits so for a running mission).
      */
     public void whenDrawn(DrawnCondition condition, Runnable then) {
-        waiters.add(new Waiter(Objects.requireNonNull(condition), Objects.requireNonNull(then)));
+        waiters.add(condition, then);
         if (canvas != null && !canvas.isDisposed()) {
             canvas.redraw();
         }
@@ -472,7 +401,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (area.width <= 0 || area.height <= 0) {
             return; // a view minimized or not laid out yet: no frame, and no paint to measure
         }
-        List<WorkspacePaintObserver> told = observers();
+        List<WorkspacePaintObserver> told = observers.now();
         for (WorkspacePaintObserver o : told) {
             o.paintStarting();
         }
@@ -497,27 +426,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 o.painted(paint);
             }
         }
-        if (!waiters.isEmpty()) {
-            for (Waiter w : List.copyOf(waiters)) {
-                if (drawn.live().stream().anyMatch(w.condition()::holds)) {
-                    waiters.remove(w);
-                    d.asyncExec(w.then()); // after this paint has reached the screen
-                }
-            }
-        }
-    }
-
-    /** @return the observers of this paint: this view's and the services' */
-    private List<WorkspacePaintObserver> observers() {
-        Object[] services = observerServices == null ? null : observerServices.getServices();
-        if (services == null) {
-            return observers;
-        }
-        List<WorkspacePaintObserver> all = new ArrayList<>(observers);
-        for (Object s : services) {
-            all.add((WorkspacePaintObserver) s);
-        }
-        return all;
+        waiters.painted(drawn.live(), d);
     }
 
     @Override
