@@ -58,13 +58,38 @@ public final class MapServerFormat {
     public static LoadedMap load(Path yamlFile) throws IOException {
         MapMetadata metadata = readMetadata(yamlFile);
         Path imageFile = resolveImage(yamlFile, metadata.image());
-        if (!imageFile.getFileName().toString().toLowerCase(Locale.ROOT).endsWith(".pgm")) {
-            throw new MapFormatException(yamlFile, "image '" + metadata.image() + "' is not a .pgm file (only PGM is supported)");
-        }
+        checkPgm(yamlFile, metadata);
         if (!Files.exists(imageFile)) {
             throw new MapFormatException(yamlFile, "image '" + metadata.image() + "' does not exist (looked at " + imageFile + ")");
         }
-        PgmImage image = PgmImage.read(imageFile);
+        return grid(metadata, PgmImage.read(imageFile));
+    }
+
+    /**
+     * A map held in memory, as a copy from elsewhere gives it (a robot's remote files): the same rules as
+     * {@link #load(Path)}, without a file system.
+     *
+     * @param yamlName where the YAML came from, named in the errors; the image's name is taken relative to it
+     * @param yaml     the YAML description, UTF-8
+     * @param image    the image the YAML names, its bytes (read them with {@link #readMetadata(Path, byte[])}'s
+     *                 {@link MapMetadata#image()})
+     * @return the grid (row 0 at the bottom) and its metadata
+     * @throws MapFormatException naming the YAML or the image and the problem
+     */
+    public static LoadedMap load(Path yamlName, byte[] yaml, byte[] image) throws MapFormatException {
+        MapMetadata metadata = readMetadata(yamlName, yaml);
+        checkPgm(yamlName, metadata);
+        return grid(metadata, PgmImage.parse(resolveImage(yamlName, metadata.image()), image));
+    }
+
+    private static void checkPgm(Path yamlFile, MapMetadata metadata) throws MapFormatException {
+        Path image = Path.of(metadata.image()).getFileName();
+        if (image == null || !image.toString().toLowerCase(Locale.ROOT).endsWith(".pgm")) {
+            throw new MapFormatException(yamlFile, "image '" + metadata.image() + "' is not a .pgm file (only PGM is supported)");
+        }
+    }
+
+    private static LoadedMap grid(MapMetadata metadata, PgmImage image) {
         byte[] lookup = pixelToValue(metadata);
         int width = image.width();
         int height = image.height();
@@ -148,7 +173,26 @@ public final class MapServerFormat {
      * @throws MapFormatException naming the file and the missing or malformed key
      */
     public static MapMetadata readMetadata(Path yamlFile) throws IOException {
-        Map<String, String> keys = parseFlatYaml(yamlFile, readText(yamlFile, "map file"));
+        return metadata(yamlFile, readText(yamlFile, "map file"));
+    }
+
+    /**
+     * @param yamlName where the YAML came from, named in the errors
+     * @param yaml     a map's YAML description, UTF-8
+     * @return its metadata
+     * @throws MapFormatException naming {@code yamlName} and the missing or malformed key
+     */
+    public static MapMetadata readMetadata(Path yamlName, byte[] yaml) throws MapFormatException {
+        try {
+            return metadata(yamlName, StandardCharsets.UTF_8.newDecoder().decode(java.nio.ByteBuffer.wrap(yaml))
+                    .toString());
+        } catch (java.nio.charset.CharacterCodingException e) {
+            throw new MapFormatException(yamlName, "not a UTF-8 text file");
+        }
+    }
+
+    private static MapMetadata metadata(Path yamlFile, String text) throws MapFormatException {
+        Map<String, String> keys = parseFlatYaml(yamlFile, text);
         for (String key : REQUIRED_KEYS) {
             if (!keys.containsKey(key)) {
                 throw new MapFormatException(yamlFile, "missing key '" + key + "'");

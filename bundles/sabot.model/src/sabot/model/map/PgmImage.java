@@ -68,6 +68,15 @@ public final class PgmImage {
         } catch (NoSuchFileException e) {
             throw new MapFormatException(file, "image file does not exist");
         }
+        return parse(file, bytes);
+    }
+
+    /**
+     * Reads a P5 or P2 image held in memory, as {@link #read(Path)}.
+     *
+     * @param file where the bytes came from, named in the errors
+     */
+    static PgmImage parse(Path file, byte[] bytes) throws MapFormatException {
         Header header = new Header(file, bytes);
         String magic = header.token("magic number");
         if (!magic.equals("P5") && !magic.equals("P2")) {

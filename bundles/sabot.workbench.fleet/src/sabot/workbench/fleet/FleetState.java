@@ -6,7 +6,10 @@ import java.util.concurrent.CompletableFuture;
 
 import org.osgi.annotation.versioning.ProviderType;
 
+import sabot.controlml.ControlMlCondition;
 import sabot.controlml.Resource;
+import sabot.controlml.Resources;
+import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
@@ -103,6 +106,53 @@ public interface FleetState {
      * @return the robot's read-back when its answer carries one, else null
      */
     <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value);
+
+    /**
+     * Reads a whole file of the robot's remote files ({@code cm.fs.read}, docs/CONTROLML.md section 4) chunk after
+     * chunk, each asked for once the previous one has been handed to {@code sink}: no thread waits between chunks, and
+     * a sink that throws stops the download.
+     *
+     * @param robot      bare JID
+     * @param path       the file's path in the robot's remote files
+     * @param chunkBytes bytes asked for per chunk; 0: the robot's default
+     * @param sink       takes the chunks in order, on the fleet's threads
+     * @return completes after the last chunk was taken; exceptionally with a {@link FleetCommandException} (the
+     *         robot's refusal; DEVICE_FAULT for a chunk out of place or an empty one before the end) or with what
+     *         the sink threw
+     */
+    default CompletableFuture<Void> download(String robot, String path, int chunkBytes, FileChunkSink sink) {
+        CompletableFuture<Void> done = new CompletableFuture<>();
+        downloadFrom(robot, path, 0, chunkBytes, sink, done);
+        return done;
+    }
+
+    private void downloadFrom(String robot, String path, long offset, int chunkBytes, FileChunkSink sink,
+            CompletableFuture<Void> done) {
+        get(robot, Resources.FS_READ, new FileQuery(path, offset, chunkBytes)).whenComplete((chunk, e) -> {
+            try {
+                if (e != null) {
+                    throw e;
+                }
+                if (chunk.offset() != offset) {
+                    throw new FleetCommandException(ControlMlCondition.DEVICE_FAULT, robot + " answered offset "
+                            + chunk.offset() + " of " + path + " for " + offset);
+                }
+                if (!chunk.last() && chunk.data().length == 0) {
+                    throw new FleetCommandException(ControlMlCondition.DEVICE_FAULT, robot + " sent an empty chunk of "
+                            + path + " at " + offset);
+                }
+                sink.accept(chunk);
+                if (chunk.last()) {
+                    done.complete(null);
+                } else {
+                    downloadFrom(robot, path, offset + chunk.data().length, chunkBytes, sink, done);
+                }
+            } catch (Throwable failure) {
+                done.completeExceptionally(failure instanceof java.util.concurrent.CompletionException c
+                        && c.getCause() != null ? c.getCause() : failure);
+            }
+        });
+    }
 
     /**
      * Fetches the robot's identity from its vCard (JID, nickname, URL, location, UUID, the QR-code inventory image).

@@ -181,6 +181,45 @@ class MapServerFormatTest {
     }
 
     @ParameterizedTest
+    @CsvSource({ "false, TRINARY", "true, TRINARY", "false, RAW", "true, RAW" })
+    void aMapHeldInMemoryLoadsAsTheSameMapFromItsFiles(boolean negate, MapMode mode) throws IOException {
+        OccupancyGrid grid = randomGrid(3, mode == MapMode.RAW);
+        MapMetadata metadata = new MapMetadata("lab.pgm", grid.resolution(), grid.geometry().origin(), negate, 0.65,
+                0.196, mode);
+        Path yaml = folder.resolve("lab.yaml");
+        MapServerFormat.save(grid, metadata, yaml);
+        byte[] yamlBytes = Files.readAllBytes(yaml);
+        assertEquals(metadata, MapServerFormat.readMetadata(Path.of("robot1", "lab.yaml"), yamlBytes));
+        MapServerFormat.LoadedMap fromBytes = MapServerFormat.load(Path.of("robot1", "lab.yaml"), yamlBytes, Files
+                .readAllBytes(folder.resolve("lab.pgm")));
+        MapServerFormat.LoadedMap fromFiles = MapServerFormat.load(yaml);
+        assertTrue(fromFiles.grid().sameAs(fromBytes.grid()), "the grids differ");
+        assertTrue(grid.sameAs(fromBytes.grid()), "grid differs after the round trip through bytes");
+        assertEquals(fromFiles.metadata(), fromBytes.metadata());
+    }
+
+    @ParameterizedTest
+    @CsvSource(delimiter = '|', value = {
+            "image: m.pgm\\nresolution: 0.05\\nnegate: 0\\noccupied_thresh: 0.65\\nfree_thresh: 0.196|P5\\n1 1\\n255\\n\u00fe|missing key 'origin'|map.yaml",
+            "image: map.png\\nresolution: 0.05\\norigin: [0, 0, 0]\\nnegate: 0\\noccupied_thresh: 0.65\\nfree_thresh: 0.196|P5\\n1 1\\n255\\n\u00fe|only PGM is supported|map.yaml",
+            "image: m.pgm\\nresolution: 0.05\\norigin: [0, 0, 0]\\nnegate: 0\\noccupied_thresh: 0.65\\nfree_thresh: 0.196|P5\\n2 2\\n255\\n\u00fe|truncated PGM: expected 4 pixel bytes, found 1|m.pgm" })
+    void aBadMapHeldInMemoryIsAClearErrorNamingWhereItCameFrom(String yaml, String image, String expected,
+            String named) {
+        Path from = Path.of("robot1", "map.yaml");
+        MapFormatException e = assertThrows(MapFormatException.class, () -> MapServerFormat.load(from, yaml.replace(
+                "\\n", "\n").getBytes(StandardCharsets.UTF_8), image.replace("\\n", "\n").getBytes(
+                        StandardCharsets.ISO_8859_1)));
+        assertTrue(e.getMessage().contains(expected) && e.getMessage().contains(named), e.getMessage());
+    }
+
+    @Test
+    void aYamlHeldInMemoryThatIsNotUtf8IsAClearError() {
+        MapFormatException e = assertThrows(MapFormatException.class, () -> MapServerFormat.readMetadata(Path.of(
+                "map.yaml"), new byte[] { 'i', ':', (byte) 0xff, (byte) 0xfe }));
+        assertTrue(e.getMessage().contains("not a UTF-8 text file"), e.getMessage());
+    }
+
+    @ParameterizedTest
     @CsvSource({ "0, 0, 1.0", "0, 5, 1.0", "5, -1, 1.0", "5, 5, 0", "5, 5, -0.5", "5, 5, NaN" })
     void emptyGridsAndBadResolutionsAreRejected(int width, int height, double resolution) {
         IllegalArgumentException e = assertThrows(IllegalArgumentException.class,

@@ -63,6 +63,7 @@ import sabot.workbench.fleet.PoseLag;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.map.MapViewport;
 import sabot.workbench.views.FleetView;
+import sabot.workbench.views.FrameStatistics;
 import sabot.workbench.views.WorkspaceView;
 import sabot.testsupport.robot.OnboardProcess;
 import sabot.testsupport.robot.SimProcess;
@@ -201,6 +202,7 @@ class LiveFleetUiTest {
     @Order(2)
     void clickToGoalDrivesTheRobotThereShowingPathAndProgress() throws Exception {
         WorkspaceView workspace = workspace();
+        FrameStatistics frames = FrameStatistics.of(workspace);
         MapViewport v = workspace.viewport();
         workspace.home();
         flush();
@@ -250,7 +252,8 @@ class LiveFleetUiTest {
                 ".*go to \\((5\\.9|6\\.0)\\d, 4\\.[34]\\d, 1\\.57 rad\\): done")) /* one pixel is 2-3 cm */, messages
                 .toString());
 
-        printFrameTimes(workspace.frameTimesNanos());
+        printFrameTimes(frames.wallNanos());
+        frames.close();
 
         // the mission column is filtered too
         fleetView().setFilter("DONE");

@@ -14,7 +14,7 @@ class TrailRunsTest {
     @Test
     void aTrailThatNeverReturnsIsOneRun() {
         int[] xy = { 0, 0, 10, 0, 20, 0, 30, 5 };
-        List<int[]> runs = WorkspaceView.trailRuns(xy, 4);
+        List<int[]> runs = TrailRuns.runs(xy, 4);
         assertEquals(1, runs.size());
         assertArrayEquals(xy, runs.get(0));
     }
@@ -30,7 +30,7 @@ class TrailRunsTest {
         xy[2 * lap.length + 1] = 20;
         xy[2 * lap.length + 2] = 60;
         xy[2 * lap.length + 3] = 20;
-        List<int[]> runs = WorkspaceView.trailRuns(xy, 4);
+        List<int[]> runs = TrailRuns.runs(xy, 4);
         int segments = runs.stream().mapToInt(r -> r.length / 2 - 1).sum();
         // first lap: 3 segments + the closing one back to (0, 0); then (0, 20) -> (40, 20) -> (60, 20)
         assertEquals(6, segments, () -> runs.stream().map(java.util.Arrays::toString).toList().toString());
@@ -41,7 +41,7 @@ class TrailRunsTest {
 
     @Test
     void theCellSetHoldsEachCellOnceWhateverItsCoordinates() {
-        WorkspaceView.CellSet set = new WorkspaceView.CellSet(5000);
+        TrailRuns.CellSet set = new TrailRuns.CellSet(5000);
         java.util.Set<Long> reference = new java.util.HashSet<>();
         java.util.Random random = new java.util.Random(17);
         int[] extremes = { Integer.MIN_VALUE, -1, 0, 1, Integer.MAX_VALUE };

@@ -112,10 +112,12 @@ class WorkspacePaintUiTest {
      */
     private static int[] repaintAndFindXAxis(WorkspaceView workspace) {
         Canvas canvas = workspace.canvas();
-        int frames0 = workspace.frameCount();
-        canvas.redraw();
-        FleetViewUpdatesUiTest.waitFor(() -> workspace.frameCount() > frames0, 5, () -> "no paint");
-        ImageData data = screen(canvas);
+        ImageData data;
+        try (FrameStatistics frames = FrameStatistics.of(workspace)) {
+            canvas.redraw();
+            FleetViewUpdatesUiTest.waitFor(() -> frames.count() > 0, 5, () -> "no paint");
+            data = screen(canvas);
+        }
         RGB axis = canvas.getDisplay().getSystemColor(org.eclipse.swt.SWT.COLOR_DARK_RED).getRGB();
         int[] best = { -1, -1 };
         int bestLength = 0;
@@ -167,6 +169,7 @@ class WorkspacePaintUiTest {
         // the X server's CPU over the measured frames: the display's own work on what the paints sent
         long xPid = xServerPid();
         long xTicks0 = 0;
+        FrameStatistics frames = FrameStatistics.of(workspace);
         for (int f = -10; f < FRAMES; f++) { // 10 frames to warm up the JIT and the X server's caches
             at = Instant.now();
             for (int i = 0; i < ROBOTS; i++) {
@@ -179,17 +182,18 @@ class WorkspacePaintUiTest {
                 d.getCursorLocation(); // the warm-up's requests done before the X server's CPU is read
                 xTicks0 = cpuTicks(xPid);
             }
-            int frames0 = workspace.frameCount();
+            int frames0 = frames.count();
             canvas.redraw();
-            FleetViewUpdatesUiTest.waitFor(() -> workspace.frameCount() > frames0, 5, () -> "no paint");
+            FleetViewUpdatesUiTest.waitFor(() -> frames.count() > frames0, 5, () -> "no paint");
             d.getCursorLocation(); // a round trip: the X server answers once it has done what came before
             long t1 = System.nanoTime();
             if (f >= 0) {
-                cpu[f] = workspace.frameCpuTimesNanos()[workspace.frameCpuTimesNanos().length - 1];
-                wall[f] = workspace.frameTimesNanos()[workspace.frameTimesNanos().length - 1];
-                total[f] = wall[f] + t1 - workspace.lastPaintEndNanos();
+                cpu[f] = frames.cpuNanos()[frames.cpuNanos().length - 1];
+                wall[f] = frames.wallNanos()[frames.wallNanos().length - 1];
+                total[f] = wall[f] + t1 - frames.lastEndNanos();
             }
         }
+        frames.close();
         double xCpuMsPerFrame = (cpuTicks(xPid) - xTicks0) * 1000 / CLOCK_TICKS_PER_S / FRAMES;
         System.out.printf(Locale.ROOT, "[figure] Workspace paint, %d robots on a mission, %dx%d, no load, %d frames: "
                 + "UI-thread CPU %s; X server (pid %d) CPU %.2f ms a frame (mean); paint wall %s; paint and the X "

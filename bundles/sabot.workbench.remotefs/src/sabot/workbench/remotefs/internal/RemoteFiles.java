@@ -103,27 +103,17 @@ final class RemoteFiles {
         Path partial = local.resolveSibling("." + local.getFileName() + ".part");
         boolean done = false;
         try (OutputStream out = Files.newOutputStream(partial)) {
-            long offset = 0;
-            while (true) {
+            check(progress);
+            long[] received = { 0 };
+            // the fleet's chunked read (each chunk's SHA-256 checked by the codec); the sink runs on the fleet's
+            // threads, this job waits, each chunk bounded by the fleet's request timeout
+            awaitDownload(fleet.download(robot, remotePath, CHUNK, chunk -> {
                 check(progress);
-                FileChunk chunk = await(fleet.get(robot, Resources.FS_READ, new FileQuery(remotePath, offset,
-                        CHUNK)));
-                if (chunk.offset() != offset) {
-                    throw new RemoteFsException("the robot answered offset " + chunk.offset() + " for " + offset);
-                }
-                // the codec already checked the chunk's SHA-256 against its data
-                byte[] data = chunk.data();
-                out.write(data);
-                offset += data.length;
+                out.write(chunk.data());
+                received[0] += chunk.data().length;
                 progress.worked(1);
-                progress.subTask(offset + " of " + size + " bytes");
-                if (chunk.last()) {
-                    break;
-                }
-                if (data.length == 0) {
-                    throw new RemoteFsException("the robot sent an empty chunk before the end at " + offset);
-                }
-            }
+                progress.subTask(received[0] + " of " + size + " bytes");
+            }));
             done = true;
         } finally {
             if (!done) {
@@ -150,6 +140,25 @@ final class RemoteFiles {
     private static void check(IProgressMonitor monitor) {
         if (monitor.isCanceled()) {
             throw new OperationCanceledException();
+        }
+    }
+
+    /** Waits for a whole download: a cancellation or an I/O error of the sink comes back as itself. */
+    private static void awaitDownload(CompletableFuture<Void> download) throws RemoteFsException, IOException {
+        try {
+            download.get();
+        } catch (ExecutionException e) {
+            if (e.getCause() instanceof OperationCanceledException c) {
+                throw c;
+            }
+            if (e.getCause() instanceof IOException io) {
+                throw io;
+            }
+            throw new RemoteFsException(RobotView.reason(e));
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            download.cancel(false);
+            throw new OperationCanceledException("interrupted");
         }
     }
 

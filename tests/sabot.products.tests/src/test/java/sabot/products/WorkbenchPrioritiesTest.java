@@ -109,6 +109,11 @@ class WorkbenchPrioritiesTest {
                                     }
                                 } catch (NoSuchFileException ended) {
                                     // a thread that ended after the listing (the JVM adds and removes compiler threads)
+                                } catch (java.io.IOException e) {
+                                    // ended while its files were read ("No such process"); any other failure counts
+                                    if (Files.exists(t)) {
+                                        throw e;
+                                    }
                                 }
                             }
                         }

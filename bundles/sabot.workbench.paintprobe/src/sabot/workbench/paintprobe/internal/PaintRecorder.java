@@ -1,4 +1,4 @@
-package sabot.workbench.internal;
+package sabot.workbench.paintprobe.internal;
 
 import java.io.BufferedWriter;
 import java.io.IOException;
@@ -17,30 +17,19 @@ import java.util.concurrent.TimeUnit;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
+import sabot.workbench.views.WorkspacePaintObserver;
 
 /**
- * Measurement hook of {@code ./sabot bench workbench} (off unless the system property {@value #PROPERTY} names a
- * file): records each Workspace paint's duration and, for every robot pose a paint shows for the first time, the
- * latency from the pose's time stamp (the robot's clock: on one host the same clock) to the end of that paint; also,
- * as a breakdown, the latency from the time stamp to the moment the fleet service notified its listeners.
- * <p>
- * Lines appended to the file, written by a daemon thread every 250 ms (the UI thread only fills a buffer):
- * <ul>
- * <li>{@code f,<end µs since the epoch>,<paint duration ns>,<robots drawn>,<UI thread CPU time of the paint ns>,<of
- * the duration, the frame's copy to the window ns>,<of the duration, the UI thread runnable but waiting for a CPU ns,
- * -1 where Linux's schedstat is missing>}</li>
- * <li>{@code l,<end µs since the epoch>,<time stamp to paint end ns>,<robot jid>}</li>
- * <li>{@code n,<µs since the epoch>,<time stamp to notification ns>,<robot jid>}</li>
- * </ul>
+ * The paint probe's recorder ({@link PaintProbe}): the paints' lines on the UI thread into a buffer, the fleet
+ * service's notifications from its thread, and the file from a daemon thread every 250 ms.
  */
-public final class PaintProbe implements FleetListener {
+final class PaintRecorder implements WorkspacePaintObserver, FleetListener {
 
-    /** System property naming the file the probe appends to; without it the probe does nothing. */
-    public static final String PROPERTY = "sabot.workbench.paintProbe";
-
-    private static final PaintProbe OFF = new PaintProbe(null);
+    /** Linux's scheduler statistics of the calling thread: CPU time, time runnable but waiting for a CPU (ns), ... */
+    private static final Path SCHEDSTAT = Paths.get("/proc/thread-self/schedstat");
 
     private final Path file;
+    private final Thread writer;
     private final StringBuilder pending = new StringBuilder();
     /** Pose time stamps already shown per robot (UI thread only). */
     private final Map<String, Instant> shown = new HashMap<>();
@@ -50,45 +39,35 @@ public final class PaintProbe implements FleetListener {
     private final java.lang.management.ThreadMXBean threads = java.lang.management.ManagementFactory.getThreadMXBean();
     private long cpuAtStart;
     private long queuedAtStart;
-    /** Linux's scheduler statistics of the calling thread: CPU time, time runnable but waiting for a CPU (ns), ... */
-    private static final Path SCHEDSTAT = Paths.get("/proc/thread-self/schedstat");
 
-    private PaintProbe(Path file) {
+    PaintRecorder(Path file) {
         this.file = file;
-        if (file != null) {
-            Thread writer = new Thread(this::writeLoop, "sabot-paint-probe");
-            writer.setDaemon(true);
-            writer.start();
-        }
+        writer = new Thread(this::writeLoop, "sabot-paint-probe");
+        writer.setDaemon(true);
+        writer.start();
     }
 
-    /** @return a probe writing to the file of {@value #PROPERTY}, or one that does nothing without it */
-    public static PaintProbe fromSystemProperty() {
-        String f = System.getProperty(PROPERTY);
-        return f == null || f.isBlank() ? OFF : new PaintProbe(Paths.get(f));
+    void stop() {
+        writer.interrupt();
+        if (observed != null) {
+            observed.removeListener(this);
+        }
     }
 
     /** UI thread, at the start of a paint: the paint's CPU time (apart from the wall time other processes stretch). */
+    @Override
     public void paintStarting() {
-        if (file != null) {
-            cpuAtStart = threads.getCurrentThreadCpuTime();
-            queuedAtStart = runQueueWait();
-        }
+        cpuAtStart = threads.getCurrentThreadCpuTime();
+        queuedAtStart = runQueueWait();
     }
 
-    /**
-     * UI thread, at the end of a paint.
-     *
-     * @param startNanos {@link System#nanoTime()} at the paint's start
-     * @param copyNanos  of the paint's duration, the frame image's copy to the window (what the X server is sent)
-     * @param robots     the robots the paint drew
-     * @param fleet      the fleet service (observed for the notification breakdown), or null
-     */
-    public void painted(long startNanos, long copyNanos, List<RobotState> robots, FleetState fleet) {
-        if (file == null) {
-            return;
-        }
-        long duration = System.nanoTime() - startNanos;
+    /** UI thread, at the end of a paint. */
+    @Override
+    public void painted(Paint paint) {
+        long duration = System.nanoTime() - paint.startNanos();
+        List<RobotState> robots = paint.robots();
+        FleetState fleet = paint.fleet();
+        long copyNanos = paint.copyNanos();
         long cpu = threads.getCurrentThreadCpuTime() - cpuAtStart;
         long queued = queuedAtStart < 0 ? -1 : runQueueWait() - queuedAtStart;
         Instant end = Instant.now();

@@ -1,0 +1,216 @@
+package sabot.workbench.controlml.internal;
+
+import java.io.IOException;
+import java.net.InetAddress;
+import java.time.Duration;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicInteger;
+
+import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
+import org.jivesoftware.smack.ConnectionListener;
+import org.jivesoftware.smack.ReconnectionManager;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jxmpp.jid.EntityBareJid;
+import org.jxmpp.jid.impl.JidCreate;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.controlml.ControlMlManager;
+import sabot.fleet.FleetConnections;
+import sabot.fleet.SubscriptionGate;
+import sabot.workbench.account.XmppAccount;
+import sabot.workbench.account.XmppAccountStore;
+import sabot.workbench.fleet.Availability;
+import sabot.workbench.fleet.ConnectionStatus.State;
+import sabot.workbench.fleet.RobotState;
+
+/**
+ * The workbench's one XMPP connection, on its own thread: connects with the account of the preferences, logs in,
+ * hands the session to the roster and the telemetry, and on a failure or a loss tries again after the
+ * {@link Backoff}'s wait. The connection's state goes to the {@link RobotRegistry}.
+ */
+final class FleetConnection {
+
+    /** Resource part of the workbench's full JID (several workbenches of one operator differ by a suffix). */
+    static final String RESOURCE_PREFIX = "workbench-";
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.workbench.controlml");
+
+    private final ScheduledExecutorService connector;
+    private final Backoff backoff;
+    private final Duration requestTimeout;
+    private final RobotRegistry registry;
+    private final FleetRoster roster;
+    private final FleetTelemetry telemetry;
+    private final RobotMaps maps;
+    private final AtomicInteger generation = new AtomicInteger();
+    /** True while a reconnection is queued: the several keys of one account change make one reconnection. */
+    private final AtomicBoolean reconnectQueued = new AtomicBoolean();
+    /** The live session, touched on the connection thread only (read elsewhere). */
+    private volatile FleetSession session;
+
+    FleetConnection(ScheduledExecutorService connector, Backoff backoff, Duration requestTimeout,
+            RobotRegistry registry, FleetRoster roster, FleetTelemetry telemetry, RobotMaps maps) {
+        this.connector = connector;
+        this.backoff = backoff;
+        this.requestTimeout = requestTimeout;
+        this.registry = registry;
+        this.roster = roster;
+        this.telemetry = telemetry;
+        this.maps = maps;
+    }
+
+    /** @return the session now live, or null */
+    FleetSession session() {
+        return session;
+    }
+
+    /** Connects on the connection thread. */
+    void start() {
+        connector.execute(this::connect);
+    }
+
+    /** Closes the session and stops the connection thread (waits up to 10 s for it). */
+    void stop() {
+        connector.execute(() -> {
+            closeSession();
+            registry.setStatus(State.STOPPED, registry.status().account(), "");
+        });
+        connector.shutdown();
+        try {
+            connector.awaitTermination(10, TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    /** Connects anew, at once, whatever the back-off said; several calls in a row make one reconnection. */
+    void reconnect() {
+        if (!connector.isShutdown() && reconnectQueued.compareAndSet(false, true)) {
+            connector.execute(() -> {
+                reconnectQueued.set(false);
+                backoff.reset();
+                closeSession();
+                connect();
+            });
+        }
+    }
+
+    /** Connection thread: connects with the stored account, or schedules the next attempt. */
+    private void connect() {
+        closeSession();
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        XmppAccount account = store.load();
+        String problem = account.problem();
+        char[] password;
+        try {
+            password = store.loadPassword();
+        } catch (IOException e) {
+            registry.setStatus(State.NO_ACCOUNT, account.jid(), e.getMessage());
+            return;
+        }
+        if (problem != null || password == null) {
+            // without an account there is no fleet: the robots of a former account go
+            registry.jids().forEach(registry::remove);
+            registry.setStatus(State.NO_ACCOUNT, account.jid(), problem != null ? problem : "no password stored");
+            return;
+        }
+        registry.setStatus(State.CONNECTING, account.jid(), account.server() + ":" + account.port());
+        XMPPTCPConnection c = null;
+        try {
+            EntityBareJid me = JidCreate.entityBareFrom(account.jid());
+            c = new XMPPTCPConnection(FleetConnections.builder(me.getDomain().toString(), InetAddress.getByName(
+                    account.server()), account.port(), securityFor(account.server())).setUsernameAndPassword(me
+                            .getLocalpart().toString(), new String(password)).setResource(RESOURCE_PREFIX + Long
+                                    .toHexString(System.nanoTime() & 0xffffff)).build());
+            ReconnectionManager.getInstanceFor(c).disableAutomaticReconnection(); // our own back-off, below
+            ControlMlManager manager = ControlMlManager.getInstanceFor(c);
+            manager.setRequestTimeout(requestTimeout);
+            Roster r = Roster.getInstanceFor(c);
+            // One roster request at login, ours (reloadAndWait below). Smack would send another when authenticated:
+            // the two results come back as asynchronous callbacks, and the later one, computed before a removal
+            // whose push was handled in between, brought the removed robot back for good (LiveFleetUiTest's lobby
+            // test, seen in CI and under load).
+            r.setRosterLoadedAtLogin(false);
+            FleetSession s = new FleetSession(c, manager, r, generation.incrementAndGet());
+            telemetry.listen(s); // before login: +notify goes into the first presence's entity caps
+            SubscriptionGate.onWorkbench(c);
+            roster.listen(s);
+            c.addConnectionListener(new ConnectionListener() {
+                @Override
+                public void connectionClosedOnError(Exception e) {
+                    connector.execute(() -> lost(s, e));
+                }
+            });
+            c.connect().login();
+            r.reloadAndWait(); // the robots are known before the status says online
+            session = s;
+            roster.start(s, store.loadRobots(), store.loadLobby());
+            backoff.reset();
+            registry.setStatus(State.ONLINE, account.jid(), account.server() + ":" + account.port());
+            LOG.info("connected as {} to {}:{}; following {} robot(s)", c.getUser(), account.server(), account
+                    .port(), registry.jids().size());
+            for (RobotState robot : registry.robots()) {
+                if (robot.availability() != Availability.OFFLINE) {
+                    telemetry.follow(s, robot.jid(), 0);
+                }
+            }
+            roster.scheduleReconcile(s);
+        } catch (Exception | LinkageError e) {
+            // a LinkageError (a bundle missing from the runtime) would otherwise vanish in the executor
+            if (e instanceof InterruptedException) {
+                Thread.currentThread().interrupt();
+            } else if (e instanceof LinkageError) {
+                LOG.error("cannot connect: {}", e.toString(), e);
+            }
+            if (c != null) {
+                c.instantShutdown();
+            }
+            session = null;
+            retry(account.jid(), describe(e));
+        }
+    }
+
+    private void lost(FleetSession s, Exception e) {
+        if (session != s) {
+            return; // an older connection's last words
+        }
+        closeSession();
+        retry(registry.status().account(), "connection lost: " + describe(e));
+    }
+
+    private void retry(String account, String why) {
+        Duration wait = backoff.next();
+        registry.setStatus(State.RETRYING, account, why + "; next attempt in " + wait.toMillis() / 1000.0 + " s");
+        LOG.warn("XMPP connection of {}: {}; next attempt in {} ms", account, why, wait.toMillis());
+        connector.schedule(this::connect, wait.toMillis(), TimeUnit.MILLISECONDS);
+    }
+
+    private void closeSession() {
+        FleetSession s = session;
+        session = null;
+        maps.clear();
+        if (s != null) {
+            s.connection().instantShutdown();
+        }
+        // nothing is known of the robots without a connection: they stay listed, offline
+        for (String jid : registry.jids()) {
+            registry.update(jid, r -> r.withPresence(Availability.OFFLINE, ""));
+        }
+    }
+
+    static SecurityMode securityFor(String server) {
+        // as the robot's session: plain TCP only to a server on this machine, TLS required elsewhere
+        boolean loopback = server.equals("localhost") || server.startsWith("127.") || server.equals("::1")
+                || server.equals("[::1]");
+        return loopback ? SecurityMode.disabled : SecurityMode.required;
+    }
+
+    private static String describe(Throwable e) {
+        String m = e.getMessage();
+        return e.getClass().getSimpleName() + (m == null ? "" : ": " + m);
+    }
+}

@@ -1,0 +1,172 @@
+package sabot.workbench.controlml.internal;
+
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.function.Supplier;
+
+import org.jivesoftware.smack.SmackException;
+import org.jivesoftware.smack.XMPPException;
+import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.packet.StanzaError;
+import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jivesoftware.smackx.vcardtemp.packet.VCard;
+import org.jxmpp.jid.Jid;
+import org.jxmpp.jid.impl.JidCreate;
+import org.jxmpp.stringprep.XmppStringprepException;
+
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlError;
+import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
+import sabot.controlml.Resource;
+import sabot.controlml.payload.NoQuery;
+import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceVCards;
+import sabot.identity.IdentityResult;
+import sabot.workbench.fleet.FleetCommandException;
+import sabot.workbench.fleet.RobotIdentity;
+
+/**
+ * The operator's requests to robots, on a small pool of threads (each waits for its robot's answer): sent to the
+ * robot's available full JID through the current session, every failure a {@link FleetCommandException} with the
+ * robot's condition and text, or why the robot could not be asked.
+ */
+final class FleetRequests {
+
+    private final ExecutorService pool;
+    private final Supplier<FleetSession> session;
+    private final RobotRegistry registry;
+
+    /** A request through the robot's ControlML manager. */
+    @FunctionalInterface
+    interface Call<T> {
+        Outcome<T> on(ControlMlManager manager, Jid robot);
+    }
+
+    FleetRequests(ExecutorService pool, Supplier<FleetSession> session, RobotRegistry registry) {
+        this.pool = pool;
+        this.session = session;
+        this.registry = registry;
+    }
+
+    <T> CompletableFuture<T> get(String robot, Resource<T, NoQuery> resource) {
+        return request(robot, (m, jid) -> m.get(jid, resource));
+    }
+
+    <T, Q> CompletableFuture<T> get(String robot, Resource<T, Q> resource, Q query) {
+        return request(robot, (m, jid) -> m.get(jid, resource, query));
+    }
+
+    <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value) {
+        return request(robot, (m, jid) -> m.set(jid, resource, value));
+    }
+
+    /** The robot's vCard, parsed with {@code sabot.identity}'s device profile. */
+    CompletableFuture<RobotIdentity> identity(String robot) {
+        return onPool(() -> fetchIdentity(robot));
+    }
+
+    /** Runs a request on the pool. */
+    private <T> CompletableFuture<T> request(String robot, Call<T> call) {
+        return onPool(() -> callNow(robot, call));
+    }
+
+    /**
+     * Runs work on the pool; the future fails with a {@link FleetCommandException} (the robot's condition and text, or
+     * why it could not be asked), any other failure as UNSPECIFIED.
+     */
+    <T> CompletableFuture<T> onPool(Supplier<T> work) {
+        CompletableFuture<T> f = new CompletableFuture<>();
+        try {
+            pool.execute(() -> {
+                try {
+                    f.complete(work.get());
+                } catch (FleetCommandException e) {
+                    f.completeExceptionally(e);
+                } catch (RuntimeException e) {
+                    f.completeExceptionally(new FleetCommandException(ControlMlCondition.UNSPECIFIED, e.toString()));
+                }
+            });
+        } catch (RejectedExecutionException stopped) {
+            f.completeExceptionally(new FleetCommandException(ControlMlCondition.NOT_CONNECTED,
+                    "the ControlML plug-in has stopped"));
+        }
+        return f;
+    }
+
+    /** @return the session to ask {@code robot} through; throws why it cannot be asked (NOT_CONNECTED) */
+    private FleetSession sessionFor(String robot) {
+        FleetSession s = session.get();
+        if (s == null || !s.connection().isAuthenticated()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
+                    + registry.status().summary() + ")");
+        }
+        if (registry.robot(robot) == null) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
+                    + " is not a robot of this workbench's fleet");
+        }
+        return s;
+    }
+
+    /**
+     * Sends a request to the robot's available full JID and waits for the answer (calling thread).
+     *
+     * @throws FleetCommandException with the robot's condition and text, or why it could not be asked
+     */
+    private <T> T callNow(String robot, Call<T> call) {
+        FleetSession s = sessionFor(robot);
+        Presence p;
+        try {
+            p = s.roster().getPresence(JidCreate.entityBareFrom(robot));
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        }
+        if (!p.isAvailable()) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot + " is offline");
+        }
+        Outcome<T> o = call.on(s.manager(), p.getFrom());
+        if (o instanceof Outcome.Failure<T> failure) {
+            ControlMlError e = failure.error();
+            throw new FleetCommandException(e.cmCondition() != null ? e.cmCondition() : ControlMlCondition.UNSPECIFIED,
+                    e.text() == null ? String.valueOf(e.condition()) : e.text());
+        }
+        return o.orElseThrow();
+    }
+
+    /** Pool thread: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
+    private RobotIdentity fetchIdentity(String robot) {
+        FleetSession s = sessionFor(robot);
+        VCard card;
+        try {
+            card = VCardManager.getInstanceFor(s.connection()).loadVCard(JidCreate.entityBareFrom(robot));
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        } catch (XMPPException.XMPPErrorException e) {
+            StanzaError.Condition c = e.getStanzaError().getCondition();
+            if (c == StanzaError.Condition.item_not_found || c == StanzaError.Condition.service_unavailable) {
+                throw new FleetCommandException(ControlMlCondition.UNKNOWN_RESOURCE, robot + " has no vCard");
+            }
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": " + c);
+        } catch (SmackException.NoResponseException e) {
+            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no vCard of " + robot + " within "
+                    + s.connection().getReplyTimeout() + " ms");
+        } catch (SmackException e) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "vCard of " + robot + ": " + e);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "vCard of " + robot + ": interrupted");
+        }
+        IdentityResult<DeviceProfile> parsed = DeviceVCards.profileOf(card);
+        if (parsed instanceof IdentityResult.Err<DeviceProfile> e) {
+            ControlMlCondition c = e.problem() == IdentityResult.Problem.NO_VCARD ? ControlMlCondition.UNKNOWN_RESOURCE
+                    : ControlMlCondition.INVALID_VALUE;
+            throw new FleetCommandException(c, robot + "'s vCard: " + e.text());
+        }
+        DeviceProfile p = parsed.orElseThrow();
+        return new RobotIdentity(p.jid(), p.nickname(), p.portal() == null ? null : p.portal().toString(), p
+                .latitude(), p.longitude(), p.uid(), p.category(), p.manufacturer(), p.model(), card.getAvatar());
+    }
+}

@@ -1,0 +1,108 @@
+package sabot.workbench.controlml.internal;
+
+import java.time.Clock;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.ConcurrentSkipListMap;
+import java.util.concurrent.CopyOnWriteArraySet;
+import java.util.concurrent.ExecutorService;
+import java.util.function.UnaryOperator;
+
+import sabot.workbench.fleet.ConnectionStatus;
+import sabot.workbench.fleet.ConnectionStatus.State;
+import sabot.workbench.fleet.FleetListener;
+import sabot.workbench.fleet.RobotState;
+
+/**
+ * What the fleet knows: the robots followed (by bare JID, sorted) with their latest state, and the connection's
+ * status; every change told to the listeners in order on one notification thread. Only the roster adds and removes
+ * robots; presence and telemetry update those it holds.
+ */
+final class RobotRegistry {
+
+    private final Clock clock;
+    private final ExecutorService notifier;
+    private final Map<String, RobotState> robots = new ConcurrentSkipListMap<>();
+    private final Set<FleetListener> listeners = new CopyOnWriteArraySet<>();
+    private final Object stateLock = new Object();
+    private volatile ConnectionStatus status;
+
+    RobotRegistry(Clock clock, ExecutorService notifier) {
+        this.clock = clock;
+        this.notifier = notifier;
+        this.status = new ConnectionStatus(State.CONNECTING, "", "", clock.instant());
+    }
+
+    ConnectionStatus status() {
+        return status;
+    }
+
+    List<RobotState> robots() {
+        return List.copyOf(robots.values());
+    }
+
+    /** @return the robot's state, or null when it is not followed */
+    RobotState robot(String jid) {
+        return robots.get(jid);
+    }
+
+    /** @return the JIDs followed, a copy */
+    List<String> jids() {
+        return List.copyOf(robots.keySet());
+    }
+
+    void addListener(FleetListener listener) {
+        // queued on the notification thread: the listener sees the present state first, then every later change
+        notifier.execute(() -> {
+            if (listeners.add(listener)) {
+                listener.connectionChanged(status);
+                robots.values().forEach(listener::robotChanged);
+            }
+        });
+    }
+
+    void removeListener(FleetListener listener) {
+        listeners.remove(listener);
+    }
+
+    /** Changes a robot followed; nothing for one that is not (telemetry or presence of someone else). */
+    void update(String jid, UnaryOperator<RobotState> change) {
+        synchronized (stateLock) {
+            RobotState before = robots.get(jid);
+            if (before == null) {
+                return;
+            }
+            RobotState after = change.apply(before);
+            robots.put(jid, after);
+            notifier.execute(() -> listeners.forEach(l -> l.robotChanged(after)));
+        }
+    }
+
+    /** Follows a robot from now on, its state unknown (the roster's). */
+    void add(String jid, String name) {
+        synchronized (stateLock) {
+            if (!robots.containsKey(jid)) {
+                RobotState r = RobotState.unknown(jid, name);
+                robots.put(jid, r);
+                notifier.execute(() -> listeners.forEach(l -> l.robotChanged(r)));
+            }
+        }
+    }
+
+    void remove(String jid) {
+        synchronized (stateLock) {
+            if (robots.remove(jid) != null) {
+                notifier.execute(() -> listeners.forEach(l -> l.robotRemoved(jid)));
+            }
+        }
+    }
+
+    void setStatus(State state, String account, String detail) {
+        synchronized (stateLock) {
+            ConnectionStatus s = new ConnectionStatus(state, account, detail, clock.instant());
+            status = s;
+            notifier.execute(() -> listeners.forEach(l -> l.connectionChanged(s)));
+        }
+    }
+}
