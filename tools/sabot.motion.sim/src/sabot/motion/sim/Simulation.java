@@ -24,8 +24,9 @@ import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
 
 /**
- * Runs a scenario closed-loop: sensors &rarr; estimator &rarr; controller &rarr; velocity smoother &rarr; wheel speeds
- * &rarr; ground-truth robot, once per control period, and computes the figures.
+ * The algorithm study: runs a scenario closed-loop, sensors &rarr; estimator &rarr; controller &rarr; velocity smoother
+ * &rarr; wheel speeds &rarr; ground-truth robot, once per control period, and computes the figures. One control law on
+ * one feedback along a given trajectory; the robot's own loop on the same simulated robot is {@link OnboardLoop}.
  */
 public final class Simulation {
 
@@ -39,7 +40,10 @@ public final class Simulation {
     public static final double TRANSIENT = 5.0;
     /** UMBmark: runs per direction. */
     public static final int CALIBRATION_RUNS_PER_DIRECTION = 5;
-    /** Command timeout of the velocity smoother, s. */
+    /**
+     * Command timeout of the study's velocity smoother, s. The robot's loop ({@link OnboardLoop}) runs with its own
+     * smoother and deadman, from its settings.
+     */
     static final double SMOOTHER_TIMEOUT = 0.5;
     /** Odometry age after which the EKF estimate is stale, s. */
     static final double ODOMETRY_TIMEOUT = 0.2;
