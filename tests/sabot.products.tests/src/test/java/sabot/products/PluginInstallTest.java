@@ -64,42 +64,80 @@ class PluginInstallTest {
     }
 
     /**
-     * The update site alone is enough to install Sabot Onboard into a bare Equinox with p2 (a copy of the director
-     * product): its features list what products otherwise get through autoIncludeRequirements — the OSGi service APIs
-     * of the base runtime, and ControlML with the whole Smack client that the session and remote FS tasks need. The
-     * installed runtime then runs as the onboard application: the tasks the file enables start from their own task
-     * bundles (the runtime's heartbeat, the ControlML session's bundle, the remote FS's bundle).
+     * The update site alone is enough to build a robot's product task by task in a bare Equinox with p2 (a copy of the
+     * director product). First the onboard runtime feature: it brings what products otherwise get through
+     * autoIncludeRequirements (the OSGi service APIs, ControlML with the whole Smack client) and configuration units
+     * that start them, and it runs its own heartbeat task; a file that enables a task no installed bundle provides is
+     * refused by name. Then two task bundles, installed one by one as the site's bundle units (p2 adds the libraries
+     * they import): the same file now starts every task it enables, each from its own bundle, and the motion tasks,
+     * never installed, are still absent.
      */
     @Test
-    void onboardFeatureInstallsFromTheUpdateSiteIntoABareRuntime() throws Exception {
+    void taskBundlesInstallFromTheUpdateSiteIntoABareOnboardRuntimeAndStart() throws Exception {
         Path director = ProductProcess.product("sabot.director.product", "sabot-director");
         Path target = copy(director, dir.resolve("runtime"));
-        Path site = ProductProcess.root().resolve("product/sabot.site/target/repository");
         Path bundlesInfo = target.resolve("configuration/org.eclipse.equinox.simpleconfigurator/bundles.info");
-        List<String> needed = List.of("sabot.onboard", "sabot.onboard.controlml", "sabot.onboard.remotefs",
-                "sabot.controlml", "sabot.model", "smack-core", "smack-tcp",
+        List<String> runtime = List.of("sabot.onboard", "sabot.controlml", "sabot.model", "smack-core", "smack-tcp",
                 "smack-streammanagement", "smack-xmlparser-xpp3", "smack-java8", "smack-resolver-javax",
                 "org.osgi.service.cm", "org.apache.felix.scr");
+        List<String> tasks = List.of("sabot.onboard.controlml", "sabot.onboard.remotefs");
         String before = Files.readString(bundlesInfo);
-        assertFalse(needed.stream().allMatch(b -> before.lines().anyMatch(l -> l.startsWith(b + ","))),
-                "the bare runtime had everything before the install");
+        assertFalse(runtime.stream().allMatch(b -> installed(before, b)), "the bare runtime had everything before");
 
+        install(director, target, "sabot.onboard.runtime.feature.feature.group");
+        String afterRuntime = Files.readString(bundlesInfo);
+        for (String bundle : runtime) {
+            assertTrue(installed(afterRuntime, bundle), bundle + " not installed:\n" + afterRuntime);
+        }
+        for (String bundle : List.of("sabot.onboard.controlml", "sabot.onboard.remotefs", "sabot.onboard.motion")) {
+            assertFalse(installed(afterRuntime, bundle), bundle + " came with the runtime feature");
+        }
+        Path config = taskConfig();
+        try (ProductProcess onboard = startOnboard(target, config)) {
+            assertEquals(2, onboard.waitFor(), onboard.output());
+            assertTrue(onboard.output().contains("key 'tasks': unknown task 'controlml' (available: heartbeat)"),
+                    onboard.output());
+        }
+
+        install(director, target, tasks.toArray(String[]::new));
+        String afterTasks = Files.readString(bundlesInfo);
+        for (String bundle : tasks) {
+            assertTrue(afterTasks.lines().anyMatch(l -> l.startsWith(bundle + ",") && l.endsWith(",4,true")),
+                    bundle + " not installed as started:\n" + afterTasks);
+        }
+        assertFalse(installed(afterTasks, "sabot.onboard.motion"), "the motion tasks came with the task bundles");
+
+        // no XMPP server listens: the session keeps trying in the background, and the tasks are running
+        try (ProductProcess onboard = startOnboard(target, config)) {
+            String loaded = onboard.await(l -> l.contains("task(s) loaded") || l.contains("did not start"),
+                    "the tasks loaded");
+            assertTrue(loaded.endsWith("running as 'lab-07': 3 task(s) loaded: heartbeat, controlml, remotefs"),
+                    onboard.output());
+            onboard.terminate();
+            assertEquals(0, onboard.waitFor(), onboard.output());
+        }
+    }
+
+    private static boolean installed(String bundlesInfo, String bundle) {
+        return bundlesInfo.lines().anyMatch(l -> l.startsWith(bundle + ","));
+    }
+
+    /** Installs installable units from the built update site into {@code target} with the p2 director. */
+    private static void install(Path director, Path target, String... units) throws Exception {
+        Path site = ProductProcess.root().resolve("product/sabot.site/target/repository");
         try (ProductProcess install = ProductProcess.start(director, List.of(), List.of(
                 "-application", "org.eclipse.equinox.p2.director",
                 "-repository", site.toUri().toString(),
-                "-installIU", "sabot.onboard.feature.feature.group",
+                "-installIU", String.join(",", units),
                 "-destination", target.toString(),
                 "-profile", "DefaultProfile"))) {
             assertEquals(0, install.waitFor(), install.output());
             assertTrue(install.output().contains("Operation completed"), install.output());
         }
-        String bundles = Files.readString(bundlesInfo);
-        for (String bundle : needed) {
-            assertTrue(bundles.lines().anyMatch(l -> l.startsWith(bundle + ",")), bundle + " not installed:\n"
-                    + bundles);
-        }
+    }
 
-        // configured, the installed tasks start (no XMPP server listens: the session keeps trying in the background)
+    /** @return a configuration file enabling the heartbeat, the ControlML session and the remote FS */
+    private Path taskConfig() throws IOException {
         Path password = dir.resolve("robot.pw");
         Files.writeString(password, "secret\n");
         Files.setPosixFilePermissions(password, PosixFilePermissions.fromString("rw-------"));
@@ -108,15 +146,12 @@ class PluginInstallTest {
         Files.writeString(config, String.join("\n", "robot.name = lab-07", "tasks = heartbeat, controlml, remotefs",
                 "controlml.jid = lab-07@sabot.local", "controlml.passwordFile = " + password,
                 "controlml.server = 127.0.0.1", "controlml.port = " + unusedPort(), "remotefs.root = " + root, ""));
-        try (ProductProcess onboard = ProductProcess.start(target, List.of(), List.of("-application",
-                "sabot.onboard.application", "-config", config.toString()))) {
-            String loaded = onboard.await(l -> l.contains("task(s) loaded") || l.contains("did not start"),
-                    "the tasks loaded");
-            assertTrue(loaded.endsWith("running as 'lab-07': 3 task(s) loaded: heartbeat, controlml, remotefs"),
-                    onboard.output());
-            onboard.terminate();
-            assertEquals(0, onboard.waitFor(), onboard.output());
-        }
+        return config;
+    }
+
+    private static ProductProcess startOnboard(Path runtime, Path config) throws IOException {
+        return ProductProcess.start(runtime, List.of(), List.of("-application", "sabot.onboard.application",
+                "-config", config.toString()));
     }
 
     /** @return a loopback TCP port nobody listens on (bound and released) */
