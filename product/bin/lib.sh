@@ -61,15 +61,15 @@ sabot_jar() {
 }
 
 # The runnable jars of the commands (one place for each jar's modules).
+# the motion simulation harness and what it drives: the algorithms and the robot's own control loop (OnboardLoop)
+SABOT_MOTION_SIM_MODULES=bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,bundles/sabot.controlml,bundles/sabot.modbus,bundles/sabot.pidstep,bundles/sabot.onboard,bundles/sabot.onboard.motion,tools/sabot.motion.sim
 sabot_tools_jar() { # ./sabot plan, ./sabot simulate
-    sabot_jar tools tools/sabot.tools/target/sabot-tools.jar \
-        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools \
+    sabot_jar tools tools/sabot.tools/target/sabot-tools.jar "$SABOT_MOTION_SIM_MODULES,tools/sabot.tools" \
         docs/sabot-robot.properties
 }
 sabot_planner_bench_jar() { # ./sabot bench planner, ./sabot bench navfn
     sabot_jar "planner benchmark" tests/sabot.planner.benchmarks/target/sabot-planner-bench.jar \
-        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.planner,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tools/sabot.tools,tests/sabot.planner.benchmarks \
-        docs/sabot-robot.properties
+        "$SABOT_MOTION_SIM_MODULES,tools/sabot.tools,tests/sabot.planner.benchmarks" docs/sabot-robot.properties
 }
 sabot_load_jar() { # ./sabot load
     sabot_jar "load" tools/sabot.load/target/sabot-load.jar \

@@ -5,11 +5,8 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 
-import sabot.control.Controllers;
-import sabot.control.DflGains;
 import sabot.control.DifferentialDrive;
 import sabot.control.MotionLimits;
-import sabot.control.TrackingController;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
@@ -22,7 +19,7 @@ import sabot.onboard.motion.loop.ControlLoop;
 import sabot.onboard.motion.loop.LocalizerSettings;
 import sabot.onboard.motion.loop.Localizer;
 import sabot.onboard.motion.loop.LoopClock;
-import sabot.onboard.motion.loop.LoopControllers;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.LoopHost;
 import sabot.onboard.motion.loop.LoopSettings;
 import sabot.onboard.motion.loop.NavigationPlanner;
@@ -61,30 +58,12 @@ public final class OnboardLoop {
     }
 
     /**
-     * The settings of the robot as shipped: the defaults of the motion, localizer, planner, tracker and teleop tasks
-     * ({@code etc/onboard.conf}), the localizer at {@code start} without landmarks; no status log lines.
+     * The settings of the robot as shipped ({@link LoopDefaults}: the defaults of the motion, localizer, planner,
+     * tracker and teleop tasks), the localizer at {@code start} without landmarks; no status log lines.
      */
     public static LoopSettings settings(Pose2D start) {
-        return new LoopSettings(50, 0, 3, 3, 0.05, 0.1, true, 0.5, PLANNER_ROBOT_RADIUS, 10, 0.95, 0.8, 0.1, 8, 15,
-                new LocalizerSettings(start, 0.02, 0.02, true, true, 3, 0.2, 0.02, 0.02, 0.5));
+        return LoopDefaults.settings(start).withStatusPeriod(0);
     }
-
-    /** The planner task's defaults: robot radius and inflation radius, m. */
-    private static final double PLANNER_ROBOT_RADIUS = 0.25;
-    private static final double PLANNER_INFLATION_RADIUS = 0.55;
-
-    /** The tracker task's defaults: the DFL tracker (ω_n, ζ) and the point stabilizer's rate. */
-    private static final LoopControllers CONTROLLERS = new LoopControllers() {
-        @Override
-        public TrackingController tracker(MotionLimits l) {
-            return Controllers.dynamicFeedbackLinearization(DflGains.of(2.0, 0.9), l);
-        }
-
-        @Override
-        public TrackingController stabilizer(MotionLimits l) {
-            return Controllers.dflPointStabilization(DflGains.stabilizing(0.5), l);
-        }
-    };
 
     /**
      * One mission on the simulated robot.
@@ -156,10 +135,11 @@ public final class OnboardLoop {
         int cells = (int) Math.round(2 * MAP_HALF_SIDE / MAP_RESOLUTION);
         NavigationPlanner planner = new NavigationPlanner(OccupancyGrid.of(new GridGeometry(cells, cells,
                 MAP_RESOLUTION, new Pose2D(start.x() - MAP_HALF_SIDE, start.y() - MAP_HALF_SIDE, 0)),
-                new byte[cells * cells]), "lpn", 1, PLANNER_ROBOT_RADIUS, PLANNER_INFLATION_RADIUS);
+                new byte[cells * cells]), LoopDefaults.PLANNER_ALGORITHM, LoopDefaults.PLANNER_THREADS,
+                LoopDefaults.ROBOT_RADIUS, LoopDefaults.INFLATION_RADIUS);
         Localizer localizer = new Localizer(robot, settings.localizer(), List.of());
-        ControlLoop loop = new ControlLoop(host, clock, boards, robot, localizer, planner, CONTROLLERS, settings,
-                limits);
+        ControlLoop loop = new ControlLoop(host, clock, boards, robot, localizer, planner, LoopDefaults.controllers(),
+                settings, limits);
         host.loop = loop;
         long period = settings.periodNanos();
         double dt = period * 1e-9;

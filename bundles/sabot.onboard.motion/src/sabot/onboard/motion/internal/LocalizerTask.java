@@ -14,6 +14,7 @@ import sabot.model.map.MapLandmark;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.motion.loop.Localizer;
 import sabot.onboard.motion.loop.LocalizerSettings;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.task.OnboardTask;
 
 /**
@@ -41,46 +42,46 @@ public final class LocalizerTask implements OnboardTask {
 
         @AttributeDefinition(name = "Initial position sigma", description = "Initial standard deviation of x and y, m.",
                 min = "0.001", max = "10")
-        double initialSigmaXY() default 0.02;
+        double initialSigmaXY() default LoopDefaults.INITIAL_SIGMA_XY;
 
         @AttributeDefinition(name = "Initial heading sigma", description = "Initial standard deviation of the "
                 + "heading, rad.", min = "0.001", max = "3.1416")
-        double initialSigmaTheta() default 0.02;
+        double initialSigmaTheta() default LoopDefaults.INITIAL_SIGMA_THETA;
 
         @AttributeDefinition(name = "Use the inertial board", description = "Fuse the gyro (yaw rate) of the "
                 + "inertial board.")
-        boolean useImu() default true;
+        boolean useImu() default LoopDefaults.USE_IMU;
 
         @AttributeDefinition(name = "Use the accelerometer", description = "Also fuse the inertial board's "
                 + "longitudinal accelerometer (with useImu).")
-        boolean useAccelerometer() default true;
+        boolean useAccelerometer() default LoopDefaults.USE_ACCELEROMETER;
 
         /** A MEMS gyro's turn-on offset is up to ±5 °/s; at rest odometry says the true rate is zero. */
         @AttributeDefinition(name = "IMU settle time", description = "Seconds the robot stays still after the start "
                 + "while the estimator learns the inertial board's biases.", min = "0", max = "60")
-        double imuSettleTime() default 3;
+        double imuSettleTime() default LoopDefaults.IMU_SETTLE_TIME;
 
         @AttributeDefinition(name = "Odometry timeout", description = "Seconds without encoder readings after which "
                 + "the estimate is stale and the robot stops.", min = "0.02", max = "5")
-        double odometryTimeout() default 0.2;
+        double odometryTimeout() default LoopDefaults.ODOMETRY_TIMEOUT;
 
         @AttributeDefinition(name = "Use landmarks", description = "Fuse sightings of the ceiling landmarks the map "
                 + "names (sabot_landmarks) from the landmark board, when the robot has one.")
-        boolean useLandmarks() default true;
+        boolean useLandmarks() default LoopDefaults.USE_LANDMARKS;
 
         /** The board's 10 mm, plus the latency compensation's. */
         @AttributeDefinition(name = "Landmark range sigma", description = "Standard deviation of a landmark's range, "
                 + "m.", min = "0.001", max = "10")
-        double landmarkRangeSigma() default 0.02;
+        double landmarkRangeSigma() default LoopDefaults.LANDMARK_RANGE_SIGMA;
 
         /** The board's 0.5°, plus the compensation's. */
         @AttributeDefinition(name = "Landmark bearing sigma", description = "Standard deviation of a landmark's "
                 + "bearing, rad.", min = "0.0001", max = "3.14")
-        double landmarkBearingSigma() default 0.02;
+        double landmarkBearingSigma() default LoopDefaults.LANDMARK_BEARING_SIGMA;
 
         @AttributeDefinition(name = "Largest position sigma", description = "Positional standard deviation, m, above "
                 + "which the robot stops (safety).", min = "0.01", max = "100")
-        double maxPositionSigma() default 0.5;
+        double maxPositionSigma() default LoopDefaults.MAX_POSITION_SIGMA;
     }
 
     private Config config;

@@ -43,7 +43,6 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
-import sabot.pidstep.controlml.StepTest;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
@@ -57,6 +56,7 @@ import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.motion.loop.ControlLoop;
 import sabot.onboard.motion.loop.LoopClock;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.LoopHost;
 import sabot.onboard.motion.loop.LoopSettings;
 import sabot.onboard.motion.loop.RobotBoards;
@@ -67,6 +67,7 @@ import sabot.onboard.robot.RobotMotion;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;
+import sabot.pidstep.controlml.StepTest;
 
 /**
  * Task {@code motion}: the robot's fixed-rate control loop and the {@link RobotMotion} service. Each period, on the
@@ -90,7 +91,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
             + "loop: encoders and inertial sample in, estimate, tracker, wheel speeds out.")
     public @interface Config {
         @AttributeDefinition(name = "Rate", description = "Control loop rate, Hz.", min = "5", max = "200")
-        double rate() default 50;
+        double rate() default LoopDefaults.RATE;
 
         @AttributeDefinition(name = "Board deadman", description = "The motor board stops the wheels by itself when "
                 + "no set-point arrives for this long, s.", min = "0.05", max = "60")
@@ -98,7 +99,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
         @AttributeDefinition(name = "Status period", description = "Seconds between two status log lines (0: none).",
                 min = "0", max = "3600")
-        double statusPeriod() default 1;
+        double statusPeriod() default LoopDefaults.STATUS_PERIOD;
 
         @AttributeDefinition(name = "Stop on disconnect", description = "Brake when the XMPP connection is lost while "
                 + "moving.")
@@ -106,19 +107,19 @@ public final class MotionTask implements OnboardTask, RobotMotion {
 
         @AttributeDefinition(name = "Obstacle memory", description = "Seconds a sonar echo stays in the obstacle "
                 + "list.", min = "0.1", max = "600")
-        double obstacleMemory() default 3;
+        double obstacleMemory() default LoopDefaults.OBSTACLE_MEMORY;
 
         @AttributeDefinition(name = "Blocked lookahead", description = "Seconds of driving along the trajectory ahead "
                 + "checked against obstacles.", min = "0.1", max = "60")
-        double blockedLookahead() default 3;
+        double blockedLookahead() default LoopDefaults.BLOCKED_LOOKAHEAD;
 
         @AttributeDefinition(name = "Blocked clearance", description = "Clearance beyond the robot radius an obstacle "
                 + "must keep from the path ahead, m.", min = "0", max = "2")
-        double blockedClearance() default 0.05;
+        double blockedClearance() default LoopDefaults.BLOCKED_CLEARANCE;
 
         @AttributeDefinition(name = "Goal tolerance", description = "Position tolerance at a goal that does not carry "
                 + "its own, m.", min = "0.005", max = "5")
-        double goalTolerance() default 0.1;
+        double goalTolerance() default LoopDefaults.GOAL_TOLERANCE;
 
         @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
                 + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
@@ -233,7 +234,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         TeleopTask teleop = teleopTask;
         return new LoopSettings(m.rate(), m.statusPeriod(), m.obstacleMemory(), m.blockedLookahead(),
                 m.blockedClearance(), m.goalTolerance(), teleop != null, teleop != null ? teleop.config().timeout()
-                        : TeleopTask.DEFAULT_TIMEOUT, p.robotRadius(), p.blockedTimeout(), t.speedHeadroom(),
+                        : LoopDefaults.DEADMAN, p.robotRadius(), p.blockedTimeout(), t.speedHeadroom(),
                 t.accelerationHeadroom(), t.progressRadius(), t.progressTime(), t.settleTimeout(),
                 localizerTask.settings());
     }

@@ -15,6 +15,7 @@ import org.osgi.service.metatype.annotations.Option;
 
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.NavigationPlanner;
 import sabot.onboard.task.OnboardTask;
 
@@ -41,24 +42,24 @@ public final class PlannerTask implements OnboardTask {
                 @Option(label = "LPN focused", value = "lpn-focused"),
                 @Option(label = "LPN incremental", value = "lpn-incremental"),
                 @Option(label = "Reference (A*)", value = "reference"), @Option(label = "Dijkstra", value = "dijkstra") })
-        String algorithm() default "lpn";
+        String algorithm() default LoopDefaults.PLANNER_ALGORITHM;
 
         /** No helper thread competes with the control loop for the robot's CPU. */
         @AttributeDefinition(name = "Threads", description = "Threads of the navigation function: accepted for old "
                 + "configurations; every planner computes on the calling thread.", min = "1", max = "2")
-        int threads() default 1;
+        int threads() default LoopDefaults.PLANNER_THREADS;
 
         @AttributeDefinition(name = "Robot radius", description = "Radius of the robot footprint, m: cells closer to "
                 + "an obstacle are impassable.", min = "0.01", max = "5")
-        double robotRadius() default 0.25;
+        double robotRadius() default LoopDefaults.ROBOT_RADIUS;
 
         @AttributeDefinition(name = "Inflation radius", description = "Distance over which obstacle cost decays, m.",
                 min = "0.01", max = "10")
-        double inflationRadius() default 0.55;
+        double inflationRadius() default LoopDefaults.INFLATION_RADIUS;
 
         @AttributeDefinition(name = "Blocked timeout", description = "Seconds the robot waits for a way around a "
                 + "blocked path before the mission fails.", min = "0.5", max = "600")
-        double blockedTimeout() default 10;
+        double blockedTimeout() default LoopDefaults.BLOCKED_TIMEOUT;
     }
 
     private NavigationPlanner planner;

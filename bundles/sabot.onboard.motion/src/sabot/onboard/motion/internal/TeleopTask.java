@@ -7,6 +7,7 @@ import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.Designate;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.task.OnboardTask;
 
 /**
@@ -22,9 +23,6 @@ import sabot.onboard.task.OnboardTask;
         service = { OnboardTask.class, TeleopTask.class })
 public final class TeleopTask implements OnboardTask {
 
-    /** Default of {@code teleop.timeout}, s; the smoother's timeout while the teleop task does not run. */
-    static final double DEFAULT_TIMEOUT = 0.5;
-
     /** The task's settings: its Metatype description, generated from these annotations. */
     @ObjectClassDefinition(id = "sabot.task.teleop", name = "Teleop task",
             description = "Joystick twists with a deadman timeout.")
@@ -32,7 +30,7 @@ public final class TeleopTask implements OnboardTask {
         @AttributeDefinition(name = "Deadman timeout", description = "Seconds without a joystick twist (judged on "
                 + "the time it was received) after which the robot brakes: the control loop's one deadman; the "
                 + "velocity smoother's command timeout is the same.", min = "0.05", max = "10")
-        double timeout() default DEFAULT_TIMEOUT;
+        double timeout() default LoopDefaults.DEADMAN;
 
         @AttributeDefinition(name = "Largest linear speed", description = "Largest joystick linear speed, m/s (also "
                 + "bounded by the motion limits).", min = "0.01", max = "10")

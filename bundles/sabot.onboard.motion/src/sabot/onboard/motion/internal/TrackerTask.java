@@ -14,6 +14,7 @@ import sabot.control.MotionLimits;
 import sabot.control.PseudoinverseGains;
 import sabot.control.TrackingController;
 import sabot.onboard.motion.loop.LoopControllers;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.task.OnboardTask;
 
 /**
@@ -40,46 +41,46 @@ public final class TrackerTask implements OnboardTask, LoopControllers {
 
         @AttributeDefinition(name = "Natural frequency", description = "Natural frequency of the DFL error dynamics, "
                 + "rad/s.", min = "0.1", max = "20")
-        double omegaN() default 2.0;
+        double omegaN() default LoopDefaults.OMEGA_N;
 
         @AttributeDefinition(name = "Damping", description = "Damping ratio of the DFL error dynamics.", min = "0.1",
                 max = "5")
-        double zeta() default 0.9;
+        double zeta() default LoopDefaults.ZETA;
 
         @AttributeDefinition(name = "Pseudoinverse kp", description = "Pseudoinverse gain on the position error, 1/s.",
                 min = "0.01", max = "50")
-        double kp() default 1.5;
+        double kp() default LoopDefaults.KP;
 
         @AttributeDefinition(name = "Pseudoinverse ktheta", description = "Pseudoinverse gain on the heading error, "
                 + "1/s.", min = "0.01", max = "50")
-        double kTheta() default 2.0;
+        double kTheta() default LoopDefaults.K_THETA;
 
         /** {@code DflGains.stabilizing}: the one-parameter family that meets its stability condition. */
         @AttributeDefinition(name = "Stabilizer rate", description = "Rate c (1/s) of the DFL point stabilizer: x "
                 + "eigenvalues -c, -2c; y eigenvalues -2.5c, -3.5c.", min = "0.05", max = "10")
-        double stabilizerRate() default 0.5;
+        double stabilizerRate() default LoopDefaults.STABILIZER_RATE;
 
         /** A lag while cruising is made up when the reference slows down, so little is kept back. */
         @AttributeDefinition(name = "Speed headroom", description = "Fraction of the top speeds (linear, angular) a "
                 + "trajectory is planned with.", min = "0.1", max = "1")
-        double speedHeadroom() default 0.95;
+        double speedHeadroom() default LoopDefaults.SPEED_HEADROOM;
 
         @AttributeDefinition(name = "Acceleration headroom", description = "Fraction of the accelerations (linear, "
                 + "lateral, angular) a trajectory is planned with; the rest is the feedback's authority.", min = "0.1",
                 max = "1")
-        double accelerationHeadroom() default 0.8;
+        double accelerationHeadroom() default LoopDefaults.ACCELERATION_HEADROOM;
 
         @AttributeDefinition(name = "Progress radius", description = "Distance, m, the robot must move within the "
                 + "progress time, or the mission replans, then fails.", min = "0.01", max = "10")
-        double progressRadius() default 0.1;
+        double progressRadius() default LoopDefaults.PROGRESS_RADIUS;
 
         @AttributeDefinition(name = "Progress time", description = "Seconds allowed to move the progress radius "
                 + "before replanning.", min = "0.5", max = "600")
-        double progressTime() default 8;
+        double progressTime() default LoopDefaults.PROGRESS_TIME;
 
         @AttributeDefinition(name = "Settle timeout", description = "Seconds allowed to settle on the goal after the "
                 + "trajectory ends before the mission fails.", min = "0.5", max = "600")
-        double settleTimeout() default 15;
+        double settleTimeout() default LoopDefaults.SETTLE_TIMEOUT;
     }
 
     private Config config;

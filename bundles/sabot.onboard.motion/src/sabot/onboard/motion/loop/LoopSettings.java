@@ -39,6 +39,13 @@ public record LoopSettings(double rate, double statusPeriod, double obstacleMemo
         return Math.round(1e9 / rate);
     }
 
+    /** @return the same settings with status log lines every {@code period} s (0: none) */
+    public LoopSettings withStatusPeriod(double period) {
+        return new LoopSettings(rate, period, obstacleMemory, blockedLookahead, blockedClearance, goalTolerance,
+                joystick, deadman, robotRadius, blockedTimeout, speedHeadroom, accelerationHeadroom, progressRadius,
+                progressTime, settleTimeout, localizer);
+    }
+
     /** @return the same settings with the joystick accepted (or not) and its deadman */
     public LoopSettings withJoystick(boolean accepted, double timeout) {
         return new LoopSettings(rate, statusPeriod, obstacleMemory, blockedLookahead, blockedClearance, goalTolerance,

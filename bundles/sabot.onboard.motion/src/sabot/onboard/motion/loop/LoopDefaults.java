@@ -1,0 +1,122 @@
+package sabot.onboard.motion.loop;
+
+import sabot.control.Controllers;
+import sabot.control.DflGains;
+import sabot.control.MotionLimits;
+import sabot.control.TrackingController;
+import sabot.model.geometry.Pose2D;
+
+/**
+ * The shipped defaults of the motion tasks' settings ({@code motion}, {@code teleop}, {@code planner},
+ * {@code tracker}, {@code localizer}): the one source of each value. The tasks' Metatype descriptions take their
+ * defaults from these constants (so does {@code etc/onboard.conf}'s commented list, checked against the Metatype by
+ * the onboard tests), and whoever runs the loop outside the product (the motion simulation) builds the robot as
+ * shipped from {@link #settings} and {@link #controllers}.
+ */
+public final class LoopDefaults {
+
+    // motion task
+    /** {@code motion.rate}, Hz. */
+    public static final double RATE = 50;
+    /** {@code motion.statusPeriod}, s. */
+    public static final double STATUS_PERIOD = 1;
+    /** {@code motion.obstacleMemory}, s. */
+    public static final double OBSTACLE_MEMORY = 3;
+    /** {@code motion.blockedLookahead}, s. */
+    public static final double BLOCKED_LOOKAHEAD = 3;
+    /** {@code motion.blockedClearance}, m. */
+    public static final double BLOCKED_CLEARANCE = 0.05;
+    /** {@code motion.goalTolerance}, m. */
+    public static final double GOAL_TOLERANCE = 0.1;
+
+    // teleop task
+    /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */
+    public static final double DEADMAN = 0.5;
+
+    // planner task
+    /** {@code planner.algorithm}. */
+    public static final String PLANNER_ALGORITHM = "lpn";
+    /** {@code planner.threads}. */
+    public static final int PLANNER_THREADS = 1;
+    /** {@code planner.robotRadius}, m. */
+    public static final double ROBOT_RADIUS = 0.25;
+    /** {@code planner.inflationRadius}, m. */
+    public static final double INFLATION_RADIUS = 0.55;
+    /** {@code planner.blockedTimeout}, s. */
+    public static final double BLOCKED_TIMEOUT = 10;
+
+    // tracker task
+    /** {@code tracker.omegaN}, rad/s: the DFL tracker's natural frequency. */
+    public static final double OMEGA_N = 2.0;
+    /** {@code tracker.zeta}: the DFL tracker's damping ratio. */
+    public static final double ZETA = 0.9;
+    /** {@code tracker.kp}, 1/s: the pseudoinverse tracker's position gain. */
+    public static final double KP = 1.5;
+    /** {@code tracker.kTheta}, 1/s: the pseudoinverse tracker's heading gain. */
+    public static final double K_THETA = 2.0;
+    /** {@code tracker.stabilizerRate}, 1/s: the DFL point stabilizer's rate. */
+    public static final double STABILIZER_RATE = 0.5;
+    /** {@code tracker.speedHeadroom}. */
+    public static final double SPEED_HEADROOM = 0.95;
+    /** {@code tracker.accelerationHeadroom}. */
+    public static final double ACCELERATION_HEADROOM = 0.8;
+    /** {@code tracker.progressRadius}, m. */
+    public static final double PROGRESS_RADIUS = 0.1;
+    /** {@code tracker.progressTime}, s. */
+    public static final double PROGRESS_TIME = 8;
+    /** {@code tracker.settleTimeout}, s. */
+    public static final double SETTLE_TIMEOUT = 15;
+
+    // localizer task
+    /** {@code localizer.initialSigmaXY}, m. */
+    public static final double INITIAL_SIGMA_XY = 0.02;
+    /** {@code localizer.initialSigmaTheta}, rad. */
+    public static final double INITIAL_SIGMA_THETA = 0.02;
+    /** {@code localizer.useImu}. */
+    public static final boolean USE_IMU = true;
+    /** {@code localizer.useAccelerometer}. */
+    public static final boolean USE_ACCELEROMETER = true;
+    /** {@code localizer.imuSettleTime}, s. */
+    public static final double IMU_SETTLE_TIME = 3;
+    /** {@code localizer.odometryTimeout}, s. */
+    public static final double ODOMETRY_TIMEOUT = 0.2;
+    /** {@code localizer.useLandmarks}. */
+    public static final boolean USE_LANDMARKS = true;
+    /** {@code localizer.landmarkRangeSigma}, m. */
+    public static final double LANDMARK_RANGE_SIGMA = 0.02;
+    /** {@code localizer.landmarkBearingSigma}, rad. */
+    public static final double LANDMARK_BEARING_SIGMA = 0.02;
+    /** {@code localizer.maxPositionSigma}, m. */
+    public static final double MAX_POSITION_SIGMA = 0.5;
+
+    private LoopDefaults() {
+    }
+
+    /** @return the loop's settings as shipped, the robot starting at {@code start}, the joystick accepted */
+    public static LoopSettings settings(Pose2D start) {
+        return new LoopSettings(RATE, STATUS_PERIOD, OBSTACLE_MEMORY, BLOCKED_LOOKAHEAD, BLOCKED_CLEARANCE,
+                GOAL_TOLERANCE, true, DEADMAN, ROBOT_RADIUS, BLOCKED_TIMEOUT, SPEED_HEADROOM, ACCELERATION_HEADROOM,
+                PROGRESS_RADIUS, PROGRESS_TIME, SETTLE_TIMEOUT, localizer(start));
+    }
+
+    /** @return the localizer's settings as shipped, the robot starting at {@code start} */
+    public static LocalizerSettings localizer(Pose2D start) {
+        return new LocalizerSettings(start, INITIAL_SIGMA_XY, INITIAL_SIGMA_THETA, USE_IMU, USE_ACCELEROMETER,
+                IMU_SETTLE_TIME, ODOMETRY_TIMEOUT, LANDMARK_RANGE_SIGMA, LANDMARK_BEARING_SIGMA, MAX_POSITION_SIGMA);
+    }
+
+    /** @return the tracker task's default control laws: the DFL tracker and the DFL point stabilizer */
+    public static LoopControllers controllers() {
+        return new LoopControllers() {
+            @Override
+            public TrackingController tracker(MotionLimits limits) {
+                return Controllers.dynamicFeedbackLinearization(DflGains.of(OMEGA_N, ZETA), limits);
+            }
+
+            @Override
+            public TrackingController stabilizer(MotionLimits limits) {
+                return Controllers.dflPointStabilization(DflGains.stabilizing(STABILIZER_RATE), limits);
+            }
+        };
+    }
+}
