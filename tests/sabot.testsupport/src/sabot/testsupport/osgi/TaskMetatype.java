@@ -2,6 +2,8 @@ package sabot.testsupport.osgi;
 
 import java.util.HashMap;
 import java.util.Map;
+import java.util.SortedMap;
+import java.util.TreeMap;
 
 import org.osgi.framework.Bundle;
 import org.osgi.framework.BundleContext;
@@ -24,6 +26,22 @@ public final class TaskMetatype {
      * @throws AssertionError when no MetaTypeService comes within 10 s or the bundle does not describe the PID
      */
     public static Map<String, String> defaults(Bundle bundle, String pid) throws InterruptedException {
+        Map<String, String> d = new HashMap<>();
+        attributes(bundle, pid).forEach((id, ad) -> {
+            String[] v = ad.getDefaultValue();
+            d.put(id, v == null || v.length == 0 ? null : v[0]);
+        });
+        return d;
+    }
+
+    /**
+     * @param bundle the bundle that declares the description
+     * @param pid    the configuration PID, e.g. {@code sabot.task.motion}
+     * @return each attribute's id with its definition, by id
+     * @throws AssertionError when no MetaTypeService comes within 10 s or the bundle does not describe the PID
+     */
+    public static SortedMap<String, AttributeDefinition> attributes(Bundle bundle, String pid)
+            throws InterruptedException {
         BundleContext context = bundle.getBundleContext();
         ServiceTracker<MetaTypeService, MetaTypeService> t = new ServiceTracker<>(context, MetaTypeService.class,
                 null);
@@ -38,12 +56,11 @@ public final class TaskMetatype {
             if (ocd == null) {
                 throw new AssertionError(bundle.getSymbolicName() + " has no Metatype description of " + pid);
             }
-            Map<String, String> d = new HashMap<>();
+            SortedMap<String, AttributeDefinition> ads = new TreeMap<>();
             for (AttributeDefinition ad : ocd.getAttributeDefinitions(ObjectClassDefinition.ALL)) {
-                String[] v = ad.getDefaultValue();
-                d.put(ad.getID(), v == null || v.length == 0 ? null : v[0]);
+                ads.put(ad.getID(), ad);
             }
-            return d;
+            return ads;
         } finally {
             t.close();
         }

@@ -1,6 +1,5 @@
 package sabot.motion.sim;
 
-import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
@@ -18,10 +17,10 @@ import sabot.model.robot.RobotDescription;
 import sabot.onboard.motion.loop.ControlLoop;
 import sabot.onboard.motion.loop.LocalizerSettings;
 import sabot.onboard.motion.loop.Localizer;
-import sabot.onboard.motion.loop.LoopClock;
 import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.LoopHost;
 import sabot.onboard.motion.loop.LoopSettings;
+import sabot.onboard.motion.loop.ManualClock;
 import sabot.onboard.motion.loop.NavigationPlanner;
 
 /**
@@ -130,7 +129,7 @@ public final class OnboardLoop {
         SimulatedBoards boards = new SimulatedBoards(new SimulatedRobot(robot, start, slipNoise, slipBias, seed * 31 + 1),
                 new SimulatedImu(MemsFigures.bmi088(), seed * 31 + 2));
         SimulatedRobot truth = boards.truth();
-        SteppedClock clock = new SteppedClock();
+        ManualClock clock = new ManualClock(0);
         Host host = new Host();
         int cells = (int) Math.round(2 * MAP_HALF_SIDE / MAP_RESOLUTION);
         NavigationPlanner planner = new NavigationPlanner(OccupancyGrid.of(new GridGeometry(cells, cells,
@@ -185,26 +184,6 @@ public final class OnboardLoop {
         }
         return new Run(goal, s.mission(), truth.pose(), s.pose().pose(), (Math.min(k, lastPeriod) - settlePeriods) * dt,
                 violations, nans, maxYaw, trace);
-    }
-
-    /** The loop's time in the simulation: it stands still during a period and advances by one between two. */
-    private static final class SteppedClock implements LoopClock {
-
-        private long nanos;
-
-        void advance(long by) {
-            nanos += by;
-        }
-
-        @Override
-        public long nanoTime() {
-            return nanos;
-        }
-
-        @Override
-        public Instant now() {
-            return Instant.EPOCH.plusNanos(nanos);
-        }
     }
 
     /**

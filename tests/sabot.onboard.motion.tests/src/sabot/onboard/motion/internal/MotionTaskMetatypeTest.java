@@ -16,18 +16,15 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.CsvSource;
 import org.osgi.framework.Bundle;
-import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
 import org.osgi.service.component.runtime.ServiceComponentRuntime;
 import org.osgi.service.component.runtime.dto.ComponentDescriptionDTO;
 import org.osgi.service.metatype.AttributeDefinition;
-import org.osgi.service.metatype.MetaTypeInformation;
-import org.osgi.service.metatype.MetaTypeService;
-import org.osgi.service.metatype.ObjectClassDefinition;
 import org.osgi.util.tracker.ServiceTracker;
 
 import sabot.modbus.Parity;
 import sabot.planner.Planners;
+import sabot.testsupport.osgi.TaskMetatype;
 
 /**
  * The motion tasks' Metatype descriptions, generated at build time from their {@code @ObjectClassDefinition}
@@ -44,36 +41,20 @@ class MotionTaskMetatypeTest {
     @BeforeAll
     static void readDescriptions() throws InterruptedException {
         Bundle bundle = FrameworkUtil.getBundle(MotionTask.class);
-        BundleContext context = bundle.getBundleContext();
-        ServiceTracker<MetaTypeService, MetaTypeService> t = new ServiceTracker<>(context, MetaTypeService.class,
-                null);
-        t.open();
+        ServiceTracker<ServiceComponentRuntime, ServiceComponentRuntime> scr = new ServiceTracker<>(
+                bundle.getBundleContext(), ServiceComponentRuntime.class, null);
+        scr.open();
         try {
-            MetaTypeService metaType = t.waitForService(10_000);
-            assertNotNull(metaType, "MetaTypeService not available");
-            ServiceTracker<ServiceComponentRuntime, ServiceComponentRuntime> scr = new ServiceTracker<>(context,
-                    ServiceComponentRuntime.class, null);
-            scr.open();
-            try {
-                ServiceComponentRuntime runtime = scr.waitForService(10_000);
-                assertNotNull(runtime, "ServiceComponentRuntime not available");
-                for (ComponentDescriptionDTO d : runtime.getComponentDescriptionDTOs(bundle)) {
-                    components.add(d.name);
-                }
-            } finally {
-                scr.close();
-            }
-            MetaTypeInformation info = metaType.getMetaTypeInformation(bundle);
-            for (String task : TASKS) {
-                ObjectClassDefinition ocd = info.getObjectClassDefinition("sabot.task." + task, null);
-                Map<String, AttributeDefinition> ads = new TreeMap<>();
-                for (AttributeDefinition ad : ocd.getAttributeDefinitions(ObjectClassDefinition.ALL)) {
-                    ads.put(ad.getID(), ad);
-                }
-                settings.put(task, ads);
+            ServiceComponentRuntime runtime = scr.waitForService(10_000);
+            assertNotNull(runtime, "ServiceComponentRuntime not available");
+            for (ComponentDescriptionDTO d : runtime.getComponentDescriptionDTOs(bundle)) {
+                components.add(d.name);
             }
         } finally {
-            t.close();
+            scr.close();
+        }
+        for (String task : TASKS) {
+            settings.put(task, TaskMetatype.attributes(bundle, "sabot.task." + task));
         }
     }
 

@@ -22,7 +22,7 @@ final class FakeBoards implements RobotBoards {
     record WheelWrite(double time, double left, double right) {
     }
 
-    private final FakeClock clock;
+    private final ManualClock clock;
     private final RobotDescription robot;
     final List<WheelWrite> writes = new ArrayList<>();
     /** Brake commands in order: true applied, false released. */
@@ -41,7 +41,7 @@ final class FakeBoards implements RobotBoards {
     private double rightAngle;
     private double integratedTo;
 
-    FakeBoards(FakeClock clock, RobotDescription robot) {
+    FakeBoards(ManualClock clock, RobotDescription robot) {
         this.clock = clock;
         this.robot = robot;
     }

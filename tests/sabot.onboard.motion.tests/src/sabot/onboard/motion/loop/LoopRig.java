@@ -17,7 +17,7 @@ import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 
 /**
- * The real {@link ControlLoop} on {@link FakeBoards} and a {@link FakeClock}, with the motion tasks' default settings
+ * The real {@link ControlLoop} on {@link FakeBoards} and a {@link ManualClock}, with the motion tasks' default settings
  * (odometry only: no inertial settling), on an empty 10 m × 10 m map: a test ticks it period by period.
  */
 final class LoopRig implements LoopHost {
@@ -31,7 +31,7 @@ final class LoopRig implements LoopHost {
             0.95, 0.8, 0.1, PROGRESS_TIME, 15, new LocalizerSettings(new Pose2D(2, 5, 0), 0.02, 0.02, false, false, 0,
                     0.2, 0.02, 0.02, 0.5));
 
-    final FakeClock clock = new FakeClock();
+    final ManualClock clock = new ManualClock(1_000_000_000L);
     final FakeBoards boards = new FakeBoards(clock, ROBOT);
     final List<MissionStatus> missions = new ArrayList<>();
     final List<PlanRequest> planRequests = new ArrayList<>();

@@ -3,8 +3,8 @@ package sabot.onboard.remotefs.internal;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
-import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
+import static sabot.testsupport.xmpp.ControlMlAsserts.assertRefused;
 
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -26,7 +26,6 @@ import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.ControlMlCondition;
-import sabot.controlml.ControlMlError;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.DirectoryListing;
@@ -63,13 +62,6 @@ class RemoteFileServiceTest {
         byte[] b = new byte[size];
         new Random(seed).nextBytes(b);
         return b;
-    }
-
-    static void assertRefused(Outcome<?> outcome, Condition condition, ControlMlCondition reason) {
-        ControlMlError e = outcome.errorOrNull();
-        assertNotNull(e, () -> "expected " + reason + ", got " + outcome);
-        assertEquals(condition, e.condition(), e::toString);
-        assertEquals(reason, e.cmCondition(), e::toString);
     }
 
     static List<String> namesIn(Path dir) throws Exception {

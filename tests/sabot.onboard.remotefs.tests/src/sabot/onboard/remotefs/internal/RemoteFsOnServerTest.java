@@ -3,8 +3,8 @@ package sabot.onboard.remotefs.internal;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
-import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
+import static sabot.testsupport.xmpp.ControlMlAsserts.assertRefused;
 
 import java.io.ByteArrayOutputStream;
 import java.nio.charset.StandardCharsets;
@@ -34,7 +34,6 @@ import org.jxmpp.jid.Jid;
 
 import sabot.controlml.AccessLevel;
 import sabot.controlml.ControlMlCondition;
-import sabot.controlml.ControlMlError;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
@@ -126,14 +125,6 @@ abstract class RemoteFsOnServerTest {
 
     List<FileEntry> list(String path, long offset, long length) {
         return workbench.get(robot, Resources.FS_LIST, new FileQuery(path, offset, length)).orElseThrow().entries();
-    }
-
-    static void assertRefused(Outcome<?> outcome, Condition condition, ControlMlCondition reason) {
-        ControlMlError e = outcome.errorOrNull();
-        assertNotNull(e, () -> "expected " + condition + "/" + reason.element() + ", got " + outcome);
-        assertEquals(condition, e.condition(), e::toString);
-        assertEquals(reason, e.cmCondition(), e::toString);
-        assertFalse(e.text().isEmpty(), "an operator learns why");
     }
 
     /** Every entry under a directory, links not followed: name → content hash, "dir" or the link's target. */

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
+import static sabot.testsupport.xmpp.ControlMlAsserts.assertRefused;
 
 import java.time.Duration;
 import java.time.LocalDate;
@@ -614,14 +615,6 @@ class ControlMlEndpointOnProsodyTest {
         S s = t.waitForService(TimeUnit.SECONDS.toMillis(TIMEOUT_S));
         assertNotNull(s, type.getSimpleName() + " not available");
         return s;
-    }
-
-    static void assertRefused(Outcome<?> outcome, Condition condition, ControlMlCondition reason) {
-        ControlMlError e = outcome.errorOrNull();
-        assertNotNull(e, () -> "expected " + condition + "/" + reason.element() + ", got " + outcome);
-        assertEquals(condition, e.condition(), e::toString);
-        assertEquals(reason, e.cmCondition(), e::toString);
-        assertFalse(e.text().isEmpty(), "an operator learns why");
     }
 
     private SmackRobotSession.PresenceCall nextPresence() throws InterruptedException {

@@ -3,9 +3,7 @@ package sabot.tools.plan;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import java.io.ByteArrayOutputStream;
 import java.io.IOException;
-import java.io.PrintStream;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -15,25 +13,16 @@ import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.CsvSource;
 
+import sabot.tools.CommandRun;
+
 /** {@code sabot plan}: the JSON last line, and one clear error line with a non-zero exit for bad input. */
 class PlanCommandTest {
 
     @TempDir
     Path folder;
 
-    private record Run(int status, String out, String err) {
-        String lastLine() {
-            String[] lines = out.strip().split("\n");
-            return lines[lines.length - 1];
-        }
-    }
-
-    private Run run(String... args) {
-        ByteArrayOutputStream out = new ByteArrayOutputStream();
-        ByteArrayOutputStream err = new ByteArrayOutputStream();
-        int status = PlanCommand.run(args, new PrintStream(out, true, StandardCharsets.UTF_8),
-                new PrintStream(err, true, StandardCharsets.UTF_8));
-        return new Run(status, out.toString(StandardCharsets.UTF_8), err.toString(StandardCharsets.UTF_8));
+    private static CommandRun run(String... args) {
+        return CommandRun.of(PlanCommand::run, args);
     }
 
     /** 20 x 10 costmap image, a wall at column 10 from the image's top down to row 7 (a gap at the bottom). */
@@ -53,7 +42,7 @@ class PlanCommandTest {
     @Test
     void plansOnACostmapImageWithCellCoordinatesAndPrintsJson() throws IOException {
         Path png = folder.resolve("out.png");
-        Run r = run("--costmap", costmapFile().toString(), "--start", "2,2", "--goal", "17,2", "--cells", "--repeat", "3",
+        CommandRun r = run("--costmap", costmapFile().toString(), "--start", "2,2", "--goal", "17,2", "--cells", "--repeat", "3",
                 "--png", png.toString());
         assertEquals(0, r.status(), r.err());
         String json = r.lastLine();
@@ -69,8 +58,8 @@ class PlanCommandTest {
     @Test
     void twoThreadsAreReportedAndGiveTheSamePath() throws IOException {
         String costs = costmapFile().toString();
-        Run one = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells");
-        Run two = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells", "--threads", "2");
+        CommandRun one = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells");
+        CommandRun two = run("--costmap", costs, "--start", "2,2", "--goal", "17,2", "--cells", "--threads", "2");
         assertEquals(0, two.status(), two.err());
         assertTrue(two.lastLine().contains("\"threads\":2") && one.lastLine().contains("\"threads\":1"), two.lastLine());
         // both compute on the calling thread: the same computation, so the same path
@@ -81,7 +70,7 @@ class PlanCommandTest {
 
     @Test
     void referencePlannerAndUnreachableGoalAreReportedInJson() throws IOException {
-        Run r = run("--costmap", costmapFile().toString(), "--start", "2,2", "--goal", "10,2", "--cells", "--planner",
+        CommandRun r = run("--costmap", costmapFile().toString(), "--start", "2,2", "--goal", "10,2", "--cells", "--planner",
                 "reference");
         assertEquals(0, r.status(), r.err());
         assertTrue(r.lastLine().contains("\"status\":\"unreachable\"") && r.lastLine().contains("\"goal_in_obstacle\""),
@@ -108,7 +97,7 @@ class PlanCommandTest {
     void badInputIsOneClearErrorLineAndNonZeroExit(String args, String expected) throws IOException {
         String costs = costmapFile().toString();
         String[] parts = args.replace("COSTS", costs).replace("MISSING", folder.resolve("nothere").toString()).split(" ");
-        Run r = run(parts);
+        CommandRun r = run(parts);
         assertEquals(2, r.status());
         assertEquals("", r.out());
         assertEquals(1, r.err().strip().lines().count(), r.err());
