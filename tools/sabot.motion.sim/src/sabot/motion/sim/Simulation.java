@@ -22,6 +22,7 @@ import sabot.model.geometry.Twist2D;
 import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 import sabot.model.robot.RobotDescription;
+import sabot.onboard.motion.loop.LoopDefaults;
 
 /**
  * The algorithm study: runs a scenario closed-loop, sensors &rarr; estimator &rarr; controller &rarr; velocity smoother
@@ -40,13 +41,10 @@ public final class Simulation {
     public static final double TRANSIENT = 5.0;
     /** UMBmark: runs per direction. */
     public static final int CALIBRATION_RUNS_PER_DIRECTION = 5;
-    /**
-     * Command timeout of the study's velocity smoother, s. The robot's loop ({@link OnboardLoop}) runs with its own
-     * smoother and deadman, from its settings.
-     */
-    static final double SMOOTHER_TIMEOUT = 0.5;
-    /** Odometry age after which the EKF estimate is stale, s. */
-    static final double ODOMETRY_TIMEOUT = 0.2;
+    /** Command timeout of the study's velocity smoother, s: the robot's deadman as shipped. */
+    static final double SMOOTHER_TIMEOUT = LoopDefaults.DEADMAN;
+    /** Odometry age after which the EKF estimate is stale, s: the localizer's as shipped. */
+    static final double ODOMETRY_TIMEOUT = LoopDefaults.ODOMETRY_TIMEOUT;
 
     private Simulation() {
     }
