@@ -83,7 +83,7 @@ sabot_controlml_bench_jar() { # ./sabot bench controlml, ./sabot bench workbench
 }
 sabot_motion_bench_jar() { # ./sabot bench control
     sabot_jar "motion benchmark" tests/sabot.motion.benchmarks/target/sabot-motion.jar \
-        bundles/sabot.jdkpkgs,bundles/sabot.model,bundles/sabot.control,bundles/sabot.localization,tools/sabot.motion.sim,tests/sabot.motion.benchmarks \
+        "$SABOT_MOTION_SIM_MODULES,tests/sabot.motion.benchmarks" \
         docs/sabot-robot.properties
 }
 

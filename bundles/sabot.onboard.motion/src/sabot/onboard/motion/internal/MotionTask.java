@@ -55,10 +55,12 @@ import sabot.model.map.OccupancyGrid;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.motion.loop.ControlLoop;
+import sabot.onboard.motion.loop.GuardSettings;
 import sabot.onboard.motion.loop.LoopClock;
 import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.LoopHost;
 import sabot.onboard.motion.loop.LoopSettings;
+import sabot.onboard.motion.loop.NavigationPlanner;
 import sabot.onboard.motion.loop.RobotBoards;
 import sabot.onboard.task.NamedThreads;
 import sabot.onboard.robot.CommandRefused;
@@ -120,6 +122,20 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         @AttributeDefinition(name = "Goal tolerance", description = "Position tolerance at a goal that does not carry "
                 + "its own, m.", min = "0.005", max = "5")
         double goalTolerance() default LoopDefaults.GOAL_TOLERANCE;
+
+        @AttributeDefinition(name = "Guard margin", description = "Distance, m, the collision guard stops the robot "
+                + "short of an obstacle it knows (map walls, sonar echoes), whatever commands it.", min = "0",
+                max = "1")
+        double guardMargin() default LoopDefaults.GUARD_MARGIN;
+
+        @AttributeDefinition(name = "Guard reaction time", description = "Seconds from a command to the wheels "
+                + "braking, counted by the collision guard as driving on at the commanded speed.", min = "0",
+                max = "1")
+        double guardReactionTime() default LoopDefaults.GUARD_REACTION_TIME;
+
+        @AttributeDefinition(name = "Reverse speed", description = "Top speed backwards, m/s: no sensor looks behind "
+                + "the robot (0: never reverse).", min = "0", max = "1")
+        double reverseSpeed() default LoopDefaults.REVERSE_SPEED;
 
         @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
                 + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
@@ -236,7 +252,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 m.blockedClearance(), m.goalTolerance(), teleop != null, teleop != null ? teleop.config().timeout()
                         : LoopDefaults.DEADMAN, p.robotRadius(), p.blockedTimeout(), t.speedHeadroom(),
                 t.accelerationHeadroom(), t.progressRadius(), t.progressTime(), t.settleTimeout(),
-                localizerTask.settings());
+                localizerTask.settings(), new GuardSettings(m.guardMargin(), m.guardReactionTime(), m.reverseSpeed()));
     }
 
     @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
@@ -535,6 +551,16 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                         + " s exceeds the motion limits (" + limits.maxLinearSpeed() + " m/s, "
                         + limits.maxAngularSpeed() + " rad/s)");
             }
+        }
+        List<Point2D> path = trajectory.points().stream().map(p -> new Point2D(p.x(), p.y())).toList();
+        NavigationPlanner planner = plannerTask.planner();
+        NavigationPlanner.Collision c = planner.firstCollision(path, obstaclePoints(snapshot.obstacles()));
+        if (c != null) {
+            TrajectoryPoint p = trajectory.points().get(c.point());
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, String.format(Locale.ROOT,
+                    "trajectory point %d (t = %.2f s, %.2f, %.2f) collides: at (%.2f, %.2f) an obstacle is %.2f m "
+                            + "from the robot's centre, inside its %.2f m radius", c.point(), p.t(), p.x(), p.y(),
+                    c.at().x(), c.at().y(), c.clearance(), planner.robotRadius()));
         }
         apply(l -> l.followImposed(trajectory));
     }

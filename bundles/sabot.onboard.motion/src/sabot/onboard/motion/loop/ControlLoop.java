@@ -98,6 +98,7 @@ public final class ControlLoop {
     private final LoopTiming timing;
     private final EchoMemory echoes;
     private final SensorRounds sensors;
+    private final LoopGuard guard;
 
     /** Replaced on the loop's thread, read by planning on the planner's too. */
     private volatile LoopSettings settings;
@@ -158,6 +159,7 @@ public final class ControlLoop {
         this.settings = settings;
         this.timing = new LoopTiming(settings.periodNanos());
         this.echoes = new EchoMemory(planner);
+        this.guard = new LoopGuard(planner, echoes);
         this.sensors = new SensorRounds(boards, localizer, echoes, this::now);
         this.pose = settings.localizer().start();
         limitsChanged(limits);
@@ -179,6 +181,12 @@ public final class ControlLoop {
     /** A new configuration's snapshot; takes effect from the next period (the rate is fixed at the start). */
     public void settingsChanged(LoopSettings s) {
         this.settings = s;
+        guard.configure(s, limits);
+    }
+
+    /** @return what the collision guard last did to a command, e.g. {@code stopped: obstacle 0.31 m ahead}; "" */
+    public String guardStatus() {
+        return guard.status();
     }
 
     // --------------------------------------------------------------------------------------------- one period
@@ -195,7 +203,7 @@ public final class ControlLoop {
         // a fresh joystick twist is written first: it needs no estimate, and waiting for the encoder read would add
         // that read's wire time to its latency
         boolean wroteTwist = mode == Mode.TELEOP && teleopSent != null && writeTwist(t);
-        boolean sensorPeriod = sensors.isSensorPeriod(mode == Mode.TELEOP);
+        boolean sensorPeriod = sensors.isSensorPeriod();
         if (!sensorPeriod) {
             sensors.readEncoders();
         }
@@ -217,7 +225,8 @@ public final class ControlLoop {
             // the start of the next period
             host.applyPendingCommands();
         }
-        Twist2D command = command(t);
+        // every command passes the collision guard, whatever produced it
+        Twist2D command = guard.limit(pose, command(t));
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
         if (!applied.isFinite()) {
             applied = Twist2D.ZERO;
@@ -244,10 +253,10 @@ public final class ControlLoop {
         timing.ended(clock.nanoTime());
         if (settings.statusPeriod() > 0 && t - lastStatus >= settings.statusPeriod()) {
             lastStatus = t;
-            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}", fmt(pose.x()), fmt(pose.y()),
-                    fmt(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
+            STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}{}", fmt(pose.x()),
+                    fmt(pose.y()), fmt(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
                     Math.round(mission.progress()), mission.detail().isBlank() ? "" : "(" + mission.detail() + ") ",
-                    mode.name().toLowerCase(Locale.ROOT));
+                    mode.name().toLowerCase(Locale.ROOT), guard.status().isEmpty() ? "" : " | " + guard.status());
         }
         return snapshot();
     }
@@ -275,14 +284,10 @@ public final class ControlLoop {
 
     /**
      * Reads the inertial board, one sonar sensor or the landmark board when the rest of the period leaves the time for
-     * it (in the periods without an encoder read). Not while a joystick drives: the spare bus time is kept for
-     * writing its twists as they arrive (odometry alone estimates the pose meanwhile, and the sonar guards missions,
-     * not teleop).
+     * it (in the periods without an encoder read), in every mode: the collision guard needs fresh echoes most when a
+     * joystick drives. A twist that arrives during such a read waits for the next period's wheel write.
      */
     private void optionalReads(double t) {
-        if (mode == Mode.TELEOP) {
-            return;
-        }
         // the period's last transaction has just ended: the whole inter-frame silence comes first
         if (!fitsBeforeNextPeriod(boards.interFrameDelay(), boards.optionalReadWireTime())) {
             timing.skippedOptionalRead();
@@ -574,7 +579,7 @@ public final class ControlLoop {
 
     /** Writes the joystick's twist through the smoother; records its latency. @return true when written */
     private boolean writeTwist(double t) {
-        Twist2D applied = smoother.smooth(t, teleopTwist);
+        Twist2D applied = smoother.smooth(t, guard.limit(pose, teleopTwist));
         WheelSpeeds w = drive.toWheelSpeeds(applied.isFinite() ? applied : Twist2D.ZERO);
         try {
             boards.writeWheelSpeeds(w.left(), w.right());
@@ -597,6 +602,7 @@ public final class ControlLoop {
 
     public void limitsChanged(MotionLimits l) {
         this.limits = l;
+        guard.configure(settings, l);
         smoother = new VelocitySmoother(l, settings.deadman());
         tracker = controllers.tracker(l);
         stabilizer = controllers.stabilizer(l);
@@ -750,8 +756,21 @@ public final class ControlLoop {
         VelocityCommand v = new VelocityCommand(now, new Twist2D(velocity[0], velocity[1]));
         boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
-        return new Snapshot(p, v, mission, Optional.ofNullable(goal), trajectoryPayload,
+        return new Snapshot(p, v, withGuardStatus(mission), Optional.ofNullable(goal), trajectoryPayload,
                 new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode);
+    }
+
+    /**
+     * @return the mission as reported: while the collision guard limits the robot, its words are the detail (a joystick
+     *         drives) or follow it (a mission runs), so that the operator reads why the robot slows or stands
+     */
+    private MissionStatus withGuardStatus(MissionStatus m) {
+        String g = guard.status();
+        if (g.isEmpty()) {
+            return m;
+        }
+        String detail = mode == Mode.TELEOP || m.detail().isBlank() ? g : m.detail() + "; " + g;
+        return new MissionStatus(m.state(), m.maintenance(), m.progress(), detail);
     }
 
     /** @return {@code v} with three decimals, for the log */

@@ -86,6 +86,18 @@ final class EchoMemory {
         return false;
     }
 
+    /** @return the distance from (x, y) to the nearest echo, m, or {@code limit} when none is nearer */
+    double nearest(double x, double y, double limit) {
+        double best = limit;
+        for (double[] e : echoes) {
+            double d = Math.hypot(e[1] - x, e[2] - y);
+            if (d < best) {
+                best = d;
+            }
+        }
+        return best;
+    }
+
     /** @return the echoes as points, for the planner */
     List<Point2D> points() {
         List<Point2D> points = new ArrayList<>(echoes.size());

@@ -28,6 +28,15 @@ public final class LoopDefaults {
     public static final double BLOCKED_CLEARANCE = 0.05;
     /** {@code motion.goalTolerance}, m. */
     public static final double GOAL_TOLERANCE = 0.1;
+    /** {@code motion.guardMargin}, m: the collision guard stops the robot this far short of an obstacle. */
+    public static final double GUARD_MARGIN = 0.05;
+    /**
+     * {@code motion.guardReactionTime}, s: from a command to the wheels braking — up to a period before the loop
+     * writes it, the write itself, and the motor board's speed loop taking it.
+     */
+    public static final double GUARD_REACTION_TIME = 0.06;
+    /** {@code motion.reverseSpeed}, m/s: the top speed backwards, where no sensor looks. */
+    public static final double REVERSE_SPEED = 0.1;
 
     // teleop task
     /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */
@@ -96,7 +105,12 @@ public final class LoopDefaults {
     public static LoopSettings settings(Pose2D start) {
         return new LoopSettings(RATE, STATUS_PERIOD, OBSTACLE_MEMORY, BLOCKED_LOOKAHEAD, BLOCKED_CLEARANCE,
                 GOAL_TOLERANCE, true, DEADMAN, ROBOT_RADIUS, BLOCKED_TIMEOUT, SPEED_HEADROOM, ACCELERATION_HEADROOM,
-                PROGRESS_RADIUS, PROGRESS_TIME, SETTLE_TIMEOUT, localizer(start));
+                PROGRESS_RADIUS, PROGRESS_TIME, SETTLE_TIMEOUT, localizer(start), guard());
+    }
+
+    /** @return the collision guard's settings as shipped */
+    public static GuardSettings guard() {
+        return new GuardSettings(GUARD_MARGIN, GUARD_REACTION_TIME, REVERSE_SPEED);
     }
 
     /** @return the localizer's settings as shipped, the robot starting at {@code start} */

@@ -22,11 +22,12 @@ package sabot.onboard.motion.loop;
  * @param progressTime         s allowed to move {@code progressRadius}
  * @param settleTimeout        s allowed to settle on the goal after the trajectory ends
  * @param localizer            the pose estimate's settings
+ * @param guard                the collision guard's settings
  */
 public record LoopSettings(double rate, double statusPeriod, double obstacleMemory, double blockedLookahead,
         double blockedClearance, double goalTolerance, boolean joystick, double deadman, double robotRadius,
         double blockedTimeout, double speedHeadroom, double accelerationHeadroom, double progressRadius,
-        double progressTime, double settleTimeout, LocalizerSettings localizer) {
+        double progressTime, double settleTimeout, LocalizerSettings localizer, GuardSettings guard) {
 
     public LoopSettings {
         if (!(rate > 0) || !(deadman > 0)) {
@@ -43,13 +44,13 @@ public record LoopSettings(double rate, double statusPeriod, double obstacleMemo
     public LoopSettings withStatusPeriod(double period) {
         return new LoopSettings(rate, period, obstacleMemory, blockedLookahead, blockedClearance, goalTolerance,
                 joystick, deadman, robotRadius, blockedTimeout, speedHeadroom, accelerationHeadroom, progressRadius,
-                progressTime, settleTimeout, localizer);
+                progressTime, settleTimeout, localizer, guard);
     }
 
     /** @return the same settings with the joystick accepted (or not) and its deadman */
     public LoopSettings withJoystick(boolean accepted, double timeout) {
         return new LoopSettings(rate, statusPeriod, obstacleMemory, blockedLookahead, blockedClearance, goalTolerance,
                 accepted, timeout, robotRadius, blockedTimeout, speedHeadroom, accelerationHeadroom, progressRadius,
-                progressTime, settleTimeout, localizer);
+                progressTime, settleTimeout, localizer, guard);
     }
 }

@@ -25,6 +25,8 @@ public final class NavigationPlanner implements AutoCloseable {
 
     /** Occupancy (0..100) from which a map cell is a known obstacle (ROS map_server: occupied_thresh 0.65). */
     private static final int OCCUPIED_THRESHOLD = 65;
+    /** Step along an imposed path at which the footprint is checked, m. */
+    static final double COLLISION_STEP = 0.02;
 
     private final Planner planner;
     private final InflationParameters inflation;
@@ -119,6 +121,86 @@ public final class NavigationPlanner implements AutoCloseable {
             }
         }
         return false;
+    }
+
+    /**
+     * @param x     map-frame x, m
+     * @param y     map-frame y, m
+     * @param limit distance beyond which obstacles do not matter, m
+     * @return the distance from (x, y) to the nearest occupied cell of the static map (to the cell's square), m, or
+     *         {@code limit} when none is nearer
+     */
+    public double clearance(double x, double y, double limit) {
+        OccupancyGrid grid = map;
+        GridGeometry g = grid.geometry();
+        double res = g.resolution();
+        double best = limit;
+        int c0 = Math.max(0, (int) Math.floor(g.toGridX(x - limit)));
+        int c1 = Math.min(g.width() - 1, (int) Math.floor(g.toGridX(x + limit)));
+        int r0 = Math.max(0, (int) Math.floor(g.toGridY(y - limit)));
+        int r1 = Math.min(g.height() - 1, (int) Math.floor(g.toGridY(y + limit)));
+        for (int r = r0; r <= r1; r++) {
+            double cellY = g.origin().y() + r * res;
+            double dy = Math.max(0, Math.max(cellY - y, y - (cellY + res)));
+            if (dy >= best) {
+                continue;
+            }
+            for (int c = c0; c <= c1; c++) {
+                if (grid.get(c, r) < OCCUPIED_THRESHOLD) {
+                    continue;
+                }
+                double cellX = g.origin().x() + c * res;
+                double d = Math.hypot(Math.max(0, Math.max(cellX - x, x - (cellX + res))), dy);
+                if (d < best) {
+                    best = d;
+                }
+            }
+        }
+        return best;
+    }
+
+    /**
+     * Where a path would put the robot's footprint over an obstacle.
+     *
+     * @param point     index of the path's point at which the colliding segment ends (the point itself when 0)
+     * @param at        the first position found in collision, map frame
+     * @param clearance distance from there to the obstacle, m (less than the robot's radius)
+     */
+    public record Collision(int point, Point2D at, double clearance) {
+    }
+
+    /**
+     * Checks a polyline (an imposed trajectory's points) every {@link #COLLISION_STEP} m along each segment: a
+     * footprint of the robot's radius there must not overlap an occupied cell of the static map nor one of the
+     * {@code obstacles} (sonar points).
+     *
+     * @return the first collision, or null when the whole path is free
+     */
+    public Collision firstCollision(List<Point2D> path, Collection<Point2D> obstacles) {
+        for (int i = 0; i < path.size(); i++) {
+            Point2D to = path.get(i);
+            Point2D from = i == 0 ? to : path.get(i - 1);
+            double length = Math.hypot(to.x() - from.x(), to.y() - from.y());
+            int steps = Math.max(1, (int) Math.ceil(length / COLLISION_STEP));
+            for (int k = i == 0 ? steps : 1; k <= steps; k++) {
+                double f = (double) k / steps;
+                double x = from.x() + f * (to.x() - from.x());
+                double y = from.y() + f * (to.y() - from.y());
+                double c = clearance(x, y, robotRadius);
+                for (Point2D o : obstacles) {
+                    c = Math.min(c, Math.hypot(o.x() - x, o.y() - y));
+                }
+                if (c < robotRadius) {
+                    return new Collision(i, new Point2D(x, y), c);
+                }
+            }
+        }
+        return null;
+    }
+
+    /** @return the robot's footprint radius, m */
+    public double robotRadius() {
+        return robotRadius;
     }
 
     @Override

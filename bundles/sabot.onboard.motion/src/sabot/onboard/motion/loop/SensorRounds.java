@@ -18,8 +18,8 @@ import sabot.modbus.WheelCounts;
  * Which board the loop reads in which period. The line carries two transactions per period with the margin the
  * schedule needs (115200 baud: encoder read 5.2 ms + wheel write 4.8 ms of wire time, each after a 1.75 ms silence), not
  * three. So the encoders are read every other period and a sensor board in the periods between (the encoder counts
- * are cumulative: read at 25 Hz they lose no distance; the estimate is predicted in between). While a joystick drives,
- * the encoders are read every period and no sensor board (its twists need the spare time).
+ * are cumulative: read at 25 Hz they lose no distance; the estimate is predicted in between). The same while a joystick
+ * drives: the collision guard needs the sonar then most.
  * <p>
  * In a spare slot: every other one goes to the gyro; one in {@link #LANDMARK_SLOTS} to the landmark board (it measures
  * at 10 Hz), the others to the sonar sensors in turn. Each reading is stamped when its answer arrived. Used by the
@@ -39,7 +39,7 @@ final class SensorRounds {
     private final EchoMemory echoes;
     /** The loop's clock, s: when an answer arrived. */
     private final DoubleSupplier now;
-    /** Periods since the start: the even ones read the encoders, the odd ones a sensor board (outside teleop). */
+    /** Periods since the start: the even ones read the encoders, the odd ones a sensor board. */
     private long periodCount;
     private int spareSlot;
     private int sonarRound;
@@ -55,12 +55,12 @@ final class SensorRounds {
     }
 
     /**
-     * Counts a period. @param joystick whether a joystick drives (then every period reads the encoders)
+     * Counts a period.
      *
      * @return whether this period reads a sensor board after the wheel write instead of the encoders before it
      */
-    boolean isSensorPeriod(boolean joystick) {
-        return !joystick && (periodCount++ & 1) == 1;
+    boolean isSensorPeriod() {
+        return (periodCount++ & 1) == 1;
     }
 
     /** A failed read is not an error by itself: the localizer's odometry timeout and the bus's fault time judge. */

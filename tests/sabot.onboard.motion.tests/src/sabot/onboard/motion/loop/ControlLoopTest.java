@@ -184,4 +184,65 @@ class ControlLoopTest {
                     "the new trajectory keeps clear of the echo: " + p);
         }
     }
+
+    // ------------------------------------------------------------------------------------------ collision guard
+
+    /** The joystick at the top speed towards a mapped wall: the robot stops short of it, within the guard's margin. */
+    @Test
+    void joystickTowardsAMappedWallStopsShortOfIt() {
+        LoopRig walled = new LoopRig(LoopRig.wallAt(4.0));
+        walled.run(0.1);
+        ControlLoop.Snapshot s = walled.drive(LoopRig.LIMITS.maxLinearSpeed(), 0, 8);
+        double front = s.pose().pose().x() + LoopRig.ROBOT_RADIUS;
+        double gap = 4.0 - front;
+        assertTrue(gap >= 0, "touched the wall: front at " + front);
+        assertTrue(gap <= LoopDefaults.GUARD_MARGIN + 0.05, "stopped " + gap + " m short: the guard over-brakes");
+        assertEquals(0, walled.boards.lastWrite().left(), 1e-9, "at rest against the wall");
+        assertTrue(walled.loop.guardStatus().startsWith("stopped: obstacle 0.0"), walled.loop.guardStatus());
+        assertEquals(walled.loop.guardStatus(), walled.loop.snapshot().mission().detail(), "the operator reads why");
+        // turning in place stays allowed there
+        walled.drive(0, 1.0, 0.5);
+        assertTrue(walled.boards.lastWrite().left() < 0 && walled.boards.lastWrite().right() > 0,
+                "turns in place: " + walled.boards.lastWrite());
+    }
+
+    /** Far from the wall the guard leaves the joystick's speed alone. */
+    @Test
+    void joystickInOpenSpaceKeepsTheCommandedSpeed() {
+        LoopRig walled = new LoopRig(LoopRig.wallAt(4.0));
+        walled.run(0.1);
+        walled.drive(0.3, 0, 1.5);
+        assertEquals(0.3, walled.boards.lastWrite().left() * R, 1e-9, "full speed 1.5 m from the wall");
+        assertEquals("", walled.loop.guardStatus());
+    }
+
+    /** An echo ahead — no wall on the map — stops the joystick as well: the sonar is read while a joystick drives. */
+    @Test
+    void joystickTowardsAnEchoStopsShortOfIt() {
+        Point2D post = new Point2D(2.9, 5.0);
+        ControlLoop.Snapshot s = rig.run(0.1);
+        for (double t = 0; t < 6; t += 0.1) {
+            // the post comes into the sonar's view only once the joystick drives; it sees it where it stands
+            Pose2D p = s.pose().pose();
+            double dx = post.x() - p.x();
+            double dy = post.y() - p.y();
+            rig.boards.echoes = t < 0.5 ? List.of() : List.of(new Point2D(dx * Math.cos(p.theta()) + dy * Math.sin(
+                    p.theta()), -dx * Math.sin(p.theta()) + dy * Math.cos(p.theta())));
+            rig.joystick(0.4, 0);
+            s = rig.run(0.1);
+        }
+        double gap = post.x() - (s.pose().pose().x() + LoopRig.ROBOT_RADIUS);
+        assertTrue(gap >= 0 && gap <= LoopDefaults.GUARD_MARGIN + 0.05, "gap to the echo " + gap + " m");
+        assertEquals(0, rig.boards.lastWrite().left(), 1e-9);
+        assertTrue(rig.loop.guardStatus().startsWith("stopped: obstacle"), rig.loop.guardStatus());
+    }
+
+    /** Backwards, where no sensor looks, the joystick is held to the creep speed even in open space. */
+    @Test
+    void reversingIsHeldToTheCreepSpeed() {
+        rig.run(0.1);
+        rig.drive(-0.3, 0, 1.0);
+        assertEquals(-LoopDefaults.REVERSE_SPEED, rig.boards.lastWrite().left() * R, 1e-9);
+        assertTrue(rig.loop.guardStatus().startsWith("reversing at 0.10 m/s"), rig.loop.guardStatus());
+    }
 }

@@ -18,7 +18,8 @@ import sabot.model.robot.RobotDescriptions;
 
 /**
  * The real {@link ControlLoop} on {@link FakeBoards} and a {@link ManualClock}, with the motion tasks' default settings
- * (odometry only: no inertial settling), on an empty 10 m × 10 m map: a test ticks it period by period.
+ * (odometry only: no inertial settling), on a 10 m × 10 m map (empty unless the test gives one), the robot at (2, 5)
+ * facing +x: a test ticks it period by period.
  */
 final class LoopRig implements LoopHost {
 
@@ -29,7 +30,7 @@ final class LoopRig implements LoopHost {
     static final double ROBOT_RADIUS = 0.25;
     static final LoopSettings SETTINGS = new LoopSettings(50, 0, 3, 3, 0.05, 0.1, true, DEADMAN, ROBOT_RADIUS, 10,
             0.95, 0.8, 0.1, PROGRESS_TIME, 15, new LocalizerSettings(new Pose2D(2, 5, 0), 0.02, 0.02, false, false, 0,
-                    0.2, 0.02, 0.02, 0.5));
+                    0.2, 0.02, 0.02, 0.5), LoopDefaults.guard());
 
     final ManualClock clock = new ManualClock(1_000_000_000L);
     final FakeBoards boards = new FakeBoards(clock, ROBOT);
@@ -39,8 +40,12 @@ final class LoopRig implements LoopHost {
     private final long period = SETTINGS.periodNanos();
 
     LoopRig() {
-        NavigationPlanner planner = new NavigationPlanner(OccupancyGrid.of(new GridGeometry(200, 200, 0.05,
-                Pose2D.ORIGIN), new byte[200 * 200]), "lpn", 1, ROBOT_RADIUS, 0.55);
+        this(emptyMap());
+    }
+
+    /** @param map the static map the loop plans on and guards against (10 m × 10 m, 5 cm cells, origin at 0, 0) */
+    LoopRig(OccupancyGrid map) {
+        NavigationPlanner planner = new NavigationPlanner(map, "lpn", 1, ROBOT_RADIUS, 0.55);
         LoopControllers controllers = new LoopControllers() {
             @Override
             public TrackingController tracker(MotionLimits l) {
@@ -56,11 +61,41 @@ final class LoopRig implements LoopHost {
         loop = new ControlLoop(this, clock, boards, ROBOT, localizer, planner, controllers, SETTINGS, LIMITS);
     }
 
+    /** @return an empty map, 10 m × 10 m with 5 cm cells */
+    static OccupancyGrid emptyMap() {
+        return OccupancyGrid.of(new GridGeometry(200, 200, 0.05, Pose2D.ORIGIN), new byte[200 * 200]);
+    }
+
+    /** @return the empty map with a wall across it whose near face is at x = {@code x} m (two cells thick) */
+    static OccupancyGrid wallAt(double x) {
+        OccupancyGrid map = emptyMap();
+        int column = (int) Math.round(x / 0.05);
+        for (int row = 0; row < 200; row++) {
+            map.set(column, row, OccupancyGrid.OCCUPIED);
+            map.set(column + 1, row, OccupancyGrid.OCCUPIED);
+        }
+        return map;
+    }
+
     /** Runs one period at the clock's time, then advances the clock by a period. */
     ControlLoop.Snapshot tick() {
         long now = clock.nanoTime();
         ControlLoop.Snapshot s = loop.tick(now, now);
         clock.advance(period);
+        return s;
+    }
+
+    /**
+     * Drives by joystick for {@code seconds}, the twist sent again every 0.1 s as a joystick does.
+     *
+     * @return the last period's snapshot
+     */
+    ControlLoop.Snapshot drive(double v, double w, double seconds) {
+        ControlLoop.Snapshot s = null;
+        for (double t = 0; t < seconds - 1e-9; t += 0.1) {
+            joystick(v, w);
+            s = run(0.1);
+        }
         return s;
     }
 

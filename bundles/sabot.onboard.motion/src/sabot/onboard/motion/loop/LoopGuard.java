@@ -1,0 +1,73 @@
+package sabot.onboard.motion.loop;
+
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import sabot.control.CollisionGuard;
+import sabot.control.MotionLimits;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+
+/**
+ * The loop's collision guard: every twist the loop is about to hand to the velocity smoother — the tracker's, the
+ * stabilizer's, the turn in place's, the joystick's — passes {@link CollisionGuard} against what the robot knows of
+ * its surroundings, the static map's occupied cells and the sonar echoes in memory. It remembers its last verdict for
+ * the robot's status and logs each change of it once. Used by the loop's thread only.
+ */
+final class LoopGuard {
+
+    private static final Logger LOG = LoggerFactory.getLogger("sabot.motion");
+
+    private final NavigationPlanner planner;
+    private final EchoMemory echoes;
+    private final CollisionGuard.ObstacleField field = this::clearance;
+    private CollisionGuard guard;
+    private CollisionGuard.Decision last = new CollisionGuard.Decision(Twist2D.ZERO, CollisionGuard.Action.FREE,
+            Double.POSITIVE_INFINITY);
+
+    LoopGuard(NavigationPlanner planner, EchoMemory echoes) {
+        this.planner = planner;
+        this.echoes = echoes;
+    }
+
+    /** Takes new settings or limits: the footprint, margin, reaction time, deceleration and speeds. */
+    void configure(LoopSettings settings, MotionLimits limits) {
+        GuardSettings g = settings.guard();
+        guard = new CollisionGuard(new CollisionGuard.Settings(settings.robotRadius(), g.margin(), g.reactionTime(),
+                limits.maxLinearAcceleration(), limits.maxLinearSpeed(), g.reverseSpeed()));
+    }
+
+    /** @return the twist the robot may drive from {@code pose} instead of {@code command} */
+    Twist2D limit(Pose2D pose, Twist2D command) {
+        CollisionGuard.Decision d = guard.limit(pose, command, field);
+        if (d.action() != last.action()) {
+            if (d.limited()) {
+                LOG.info("collision guard: {}", d.describe());
+            } else {
+                LOG.info("collision guard: free again");
+            }
+        }
+        last = d;
+        return d.twist();
+    }
+
+    /** @return what the guard last did, in the operator's words ({@code stopped: obstacle 0.31 m ahead}); "" if free */
+    String status() {
+        return last.describe();
+    }
+
+    /** @return the last verdict */
+    CollisionGuard.Decision last() {
+        return last;
+    }
+
+    /** Forgets the last verdict (the robot came to rest: nothing is being limited). */
+    void reset() {
+        last = new CollisionGuard.Decision(Twist2D.ZERO, CollisionGuard.Action.FREE, Double.POSITIVE_INFINITY);
+    }
+
+    /** Distance from (x, y) to the nearest echo or occupied cell of the static map, m. */
+    private double clearance(double x, double y, double limit) {
+        return planner.clearance(x, y, echoes.nearest(x, y, limit));
+    }
+}

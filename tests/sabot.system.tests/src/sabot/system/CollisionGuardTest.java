@@ -1,0 +1,115 @@
+package sabot.system;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Path;
+import java.time.Instant;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import sabot.controlml.Resources;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.VelocityCommand;
+import sabot.model.geometry.Twist2D;
+import sabot.testsupport.robot.SimProcess;
+
+/**
+ * The collision guard on the running robot, judged on the simulator's truth: a joystick held at the top speed towards
+ * the lab's partition (a wall of the map) and towards a crate that is on no map (only the sonar sees it) stops the
+ * robot short of each without a contact; in open space the joystick's speed is not cut.
+ */
+class CollisionGuardTest extends RigTest {
+
+    /** The joystick's rate, Hz, as the workbench's joystick sends it. */
+    static final int JOYSTICK_HZ = 10;
+    /** The robot's top speed, m/s (docs/sabot-robot.properties). */
+    static final double TOP_SPEED = 0.5;
+    /** The robot's footprint radius, m (the planner's default). */
+    static final double RADIUS = 0.25;
+    /**
+     * Largest gap at which the robot may stand when it stops for an obstacle, m: the guard's margin (0.05 m), one step
+     * of its arc check (0.02 m), the estimate's error and the last period's travel.
+     */
+    static final double GAP_BOUND = 0.15;
+
+    @Test
+    void joystickTowardsTheMappedPartitionStopsShortOfIt(@TempDir Path dir) throws Exception {
+        // the partition's west face is at x = 3.0 m; the robot starts at x = 1.5 m facing it
+        try (RobotRig rig = RobotRig.start(xmpp, dir, WEST_OF_PARTITION, new String[0], "")) {
+            SimProcess.Truth stopped = holdJoystick(rig, TOP_SPEED, 8);
+            double gap = 3.0 - (stopped.x() + RADIUS);
+            System.out.printf(Locale.ROOT, "[guard] partition: stopped %.3f m short (%s)%n", gap, stopped);
+            assertEquals(0, stopped.contacts(), "touched the partition: " + stopped);
+            assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
+            assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the partition");
+            rig.onboard.await(l -> l.contains("collision guard: stopped: obstacle"), "saying why it stopped");
+        }
+    }
+
+    @Test
+    void joystickTowardsACrateOnNoMapStopsShortOfIt(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], "")) {
+            double crateX = 3.5;
+            double crateRadius = 0.2;
+            rig.sim.command(String.format(Locale.ROOT, "obstacle add crate %.2f 1.00 %.2f", crateX, crateRadius));
+            SimProcess.Truth stopped = holdJoystick(rig, TOP_SPEED, 8, () -> {
+                MissionStatus m = rig.get(Resources.MISSION);
+                assertTrue(m.detail().startsWith("stopped: obstacle"), "the operator reads why: " + m);
+            });
+            double gap = crateX - crateRadius - (stopped.x() + RADIUS);
+            System.out.printf(Locale.ROOT, "[guard] crate: stopped %.3f m short (%s)%n", gap, stopped);
+            assertEquals(0, stopped.contacts(), "touched the crate: " + stopped);
+            assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
+            assertTrue(gap >= 0 && gap <= GAP_BOUND + 0.1, "stopped " + gap + " m short of the crate");
+        }
+    }
+
+    @Test
+    void joystickInOpenSpaceDrivesAtTheCommandedSpeed(@TempDir Path dir) throws Exception {
+        // the lower corridor: 9 m free ahead
+        try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], "")) {
+            double speed = 0.3;
+            double top = 0;
+            for (int i = 0; i < 3 * JOYSTICK_HZ; i++) {
+                twist(rig, speed);
+                top = Math.max(top, rig.sim.truth().v());
+            }
+            assertTrue(top >= 0.95 * speed, "the guard cut the speed in open space: top " + top + " m/s");
+        }
+    }
+
+    private static void twist(RobotRig rig, double speed) throws Exception {
+        assertTrue(rig.operator.set(rig.robot, Resources.VELOCITY, new VelocityCommand(Instant.now(), new Twist2D(
+                speed, 0))).isSuccess(), rig.onboard.output());
+        TimeUnit.MILLISECONDS.sleep(1000 / JOYSTICK_HZ); // the stimulus: a joystick at 10 Hz
+    }
+
+    private static SimProcess.Truth holdJoystick(RobotRig rig, double speed, double seconds) throws Exception {
+        return holdJoystick(rig, speed, seconds, () -> {
+        });
+    }
+
+    /**
+     * Holds the joystick forward for {@code seconds}, long enough to reach any obstacle in front, then waits for the
+     * robot to stand; {@code whileStopped} runs while the joystick still pushes against the obstacle.
+     *
+     * @return the truth at standstill
+     */
+    private static SimProcess.Truth holdJoystick(RobotRig rig, double speed, double seconds, Check whileStopped)
+            throws Exception {
+        for (int i = 0; i < seconds * JOYSTICK_HZ; i++) {
+            twist(rig, speed);
+        }
+        whileStopped.run();
+        return awaitStandstill(rig.sim, 3);
+    }
+
+    @FunctionalInterface
+    private interface Check {
+        void run() throws Exception;
+    }
+}
