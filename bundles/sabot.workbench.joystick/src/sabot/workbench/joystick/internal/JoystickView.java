@@ -19,6 +19,7 @@ import org.eclipse.swt.widgets.Label;
 
 import sabot.controlml.Resources;
 import sabot.controlml.payload.LimitsPayload;
+import sabot.controlml.payload.MissionStatus;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetState;
@@ -45,6 +46,8 @@ public final class JoystickView extends RobotView {
 
     private Canvas pad;
     private Label readout;
+    /** What the robot says of its motion (its mission's detail): why it slows or stands, e.g. its collision guard. */
+    private Label robotSays;
     private volatile LimitsPayload limits;
     private Job limitsRead;
     /** Knob deflection: x to the right, y up, each -1..1 (inside the unit circle). */
@@ -94,10 +97,22 @@ public final class JoystickView extends RobotView {
         readout = new Label(parent, SWT.NONE);
         readout.setLayoutData(new GridData(SWT.FILL, SWT.BOTTOM, true, false));
         readout.setText("Hold the pad (or arrows / WASD) to drive; release to stop.");
+        robotSays = new Label(parent, SWT.NONE);
+        robotSays.setLayoutData(new GridData(SWT.FILL, SWT.BOTTOM, true, false));
+    }
+
+    /** @return the robot's own words under the pad ("robot: idle — stopped: obstacle 0.06 m ahead"), for tests */
+    public String robotSays() {
+        return robotSays.getText();
     }
 
     @Override
     protected void robotChanged(RobotState state, boolean newRobot) {
+        MissionStatus m = state == null ? null : state.mission();
+        String says = m == null ? "" : "robot: " + m.state().code() + (m.detail().isBlank() ? "" : " — " + m.detail());
+        if (!says.equals(robotSays.getText())) {
+            robotSays.setText(says);
+        }
         if (newRobot) {
             releaseAll("another robot chosen");
             limits = null;

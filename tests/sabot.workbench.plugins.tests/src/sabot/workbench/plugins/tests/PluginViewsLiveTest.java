@@ -180,6 +180,13 @@ class PluginViewsLiveTest {
         assertTrue(stopTime <= 0.5, "stopped " + stopTime + " s after the release (" + atRelease + " -> "
                 + stopped[0] + ")");
         assertFalse(joystick.messageIsError(), joystick.message());
+        // under the pad, the robot's own words on its motion (its mission's state and detail, from its telemetry)
+        waitFor(() -> {
+            MissionStatus m = joystick.robotState().mission();
+            return m != null && joystick.robotSays().equals("robot: " + m.state().code() + (m.detail().isBlank() ? ""
+                    : " — " + m.detail()));
+        }, 5, () -> "under the pad: '" + joystick.robotSays() + "', the robot's mission: "
+                + joystick.robotState().mission());
     }
 
     @Test
