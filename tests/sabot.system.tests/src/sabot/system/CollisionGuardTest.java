@@ -18,9 +18,9 @@ import sabot.model.geometry.Twist2D;
 import sabot.testsupport.robot.SimProcess;
 
 /**
- * The collision guard on the running robot, judged on the simulator's truth: a joystick held at the top speed towards
- * the lab's partition (a wall of the map) and towards a crate that is on no map (only the sonar sees it) stops the
- * robot short of each without a contact; in open space the joystick's speed is not cut.
+ * The collision guard on the running robot, judged on the simulator's truth: a joystick held towards the lab's
+ * partition (a wall of the map) and towards a crate that is on no map (only the sonar sees it) stops the robot short
+ * of each without a contact; in open space the joystick's speed is not cut.
  */
 class CollisionGuardTest extends RigTest {
 
@@ -42,7 +42,8 @@ class CollisionGuardTest extends RigTest {
         try (RobotRig rig = RobotRig.start(xmpp, dir, WEST_OF_PARTITION, new String[0], "")) {
             SimProcess.Truth stopped = holdJoystick(rig, TOP_SPEED, 8);
             double gap = 3.0 - (stopped.x() + RADIUS);
-            System.out.printf(Locale.ROOT, "[guard] partition: stopped %.3f m short (%s)%n", gap, stopped);
+            System.out.printf(Locale.ROOT, "[figure] collision guard, joystick at %.1f m/s towards the partition (a "
+                    + "wall of the map): stopped %.3f m short, contacts %d%n", TOP_SPEED, gap, stopped.contacts());
             assertEquals(0, stopped.contacts(), "touched the partition: " + stopped);
             assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
             assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the partition");
@@ -50,21 +51,39 @@ class CollisionGuardTest extends RigTest {
         }
     }
 
+    /**
+     * A crate on no map, seen only by the sonar, 1 m in front of the robot, approached by joystick at 0.1, 0.3 and
+     * 0.5 m/s in turn (the crate moved ahead again between runs); prints the figures of docs/ONBOARD.md.
+     */
     @Test
-    void joystickTowardsACrateOnNoMapStopsShortOfIt(@TempDir Path dir) throws Exception {
+    void joystickTowardsACrateOnNoMapStopsShortOfItAtEverySpeed(@TempDir Path dir) throws Exception {
+        double crateRadius = 0.2;
+        double freeAhead = 1.0;
         try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], "")) {
-            double crateX = 3.5;
-            double crateRadius = 0.2;
-            rig.sim.command(String.format(Locale.ROOT, "obstacle add crate %.2f 1.00 %.2f", crateX, crateRadius));
-            SimProcess.Truth stopped = holdJoystick(rig, TOP_SPEED, 8, () -> {
-                MissionStatus m = rig.get(Resources.MISSION);
-                assertTrue(m.detail().startsWith("stopped: obstacle"), "the operator reads why: " + m);
-            });
-            double gap = crateX - crateRadius - (stopped.x() + RADIUS);
-            System.out.printf(Locale.ROOT, "[guard] crate: stopped %.3f m short (%s)%n", gap, stopped);
-            assertEquals(0, stopped.contacts(), "touched the crate: " + stopped);
+            String verb = "add";
+            for (double speed : new double[] { 0.1, 0.3, 0.5 }) {
+                SimProcess.Truth start = rig.sim.truth();
+                double crateX = start.x() + RADIUS + freeAhead + crateRadius;
+                rig.sim.command(String.format(Locale.ROOT, "obstacle %s crate %.3f 1.00 %.2f", verb, crateX,
+                        crateRadius));
+                verb = "move";
+                double[] top = { 0 };
+                SimProcess.Truth stopped = holdJoystick(rig, speed, freeAhead / speed + 3, () -> {
+                    MissionStatus m = rig.get(Resources.MISSION);
+                    assertTrue(m.detail().startsWith("stopped: obstacle"), "the operator reads why: " + m);
+                }, top);
+                double gap = crateX - crateRadius - (stopped.x() + RADIUS);
+                System.out.printf(Locale.ROOT, "[figure] collision guard, joystick at %.1f m/s towards a crate seen "
+                        + "by the sonar alone: top speed %.3f m/s, stopped %.3f m short, contacts %d%n", speed, top[0],
+                        gap, stopped.contacts());
+                assertEquals(0, stopped.contacts(), "touched the crate at " + speed + " m/s: " + stopped);
+                assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the crate at " + speed
+                        + " m/s");
+                assertTrue(top[0] >= 0.9 * Math.min(speed, 0.3), "the guard cut the approach: top " + top[0]);
+                // the echoes of this crate must leave the obstacle memory (3 s) before it moves ahead
+                awaitSimTime(rig.sim, 3.5);
+            }
             assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
-            assertTrue(gap >= 0 && gap <= GAP_BOUND + 0.1, "stopped " + gap + " m short of the crate");
         }
     }
 
@@ -90,19 +109,21 @@ class CollisionGuardTest extends RigTest {
 
     private static SimProcess.Truth holdJoystick(RobotRig rig, double speed, double seconds) throws Exception {
         return holdJoystick(rig, speed, seconds, () -> {
-        });
+        }, new double[1]);
     }
 
     /**
      * Holds the joystick forward for {@code seconds}, long enough to reach any obstacle in front, then waits for the
      * robot to stand; {@code whileStopped} runs while the joystick still pushes against the obstacle.
      *
+     * @param top receives the top true speed seen while the joystick was held
      * @return the truth at standstill
      */
-    private static SimProcess.Truth holdJoystick(RobotRig rig, double speed, double seconds, Check whileStopped)
-            throws Exception {
+    private static SimProcess.Truth holdJoystick(RobotRig rig, double speed, double seconds, Check whileStopped,
+            double[] top) throws Exception {
         for (int i = 0; i < seconds * JOYSTICK_HZ; i++) {
             twist(rig, speed);
+            top[0] = Math.max(top[0], rig.sim.truth().v());
         }
         whileStopped.run();
         return awaitStandstill(rig.sim, 3);
