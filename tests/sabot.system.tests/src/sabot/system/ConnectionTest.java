@@ -30,6 +30,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.TaskInfo;
 import sabot.model.geometry.Pose2D;
+import sabot.testsupport.net.SilentRelay;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.testsupport.robot.SimProcess;
 
@@ -70,6 +71,41 @@ class ConnectionTest extends RigTest {
 
             assertTrue(cm.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(6.0, 1.0, 0), 0.15, 0.3)).isSuccess());
             awaitSpeed(rig.sim, 0.1, 20);
+        }
+    }
+
+    /**
+     * A network that goes silent mid-mission — nothing passes, nothing is closed, as a Wi-Fi dead spot — stops the
+     * robot within two liveness intervals (1 s each), the check's quarter interval and the braking; the robot says
+     * why, reconnects once traffic passes again, and stands still until a new command.
+     */
+    @Test
+    void robotBrakesWhenTheLinkGoesSilentAndStandsStillWhenItComesBack(@TempDir Path dir) throws Exception {
+        try (SilentRelay relay = new SilentRelay(xmpp.port());
+                RobotRig rig = RobotRig.start(xmpp, relay.port(), dir, START, START, new String[0],
+                        "controlml.reconnectMin = 0.2\ncontrolml.reconnectMax = 1\n")) {
+            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3))
+                    .isSuccess(), rig.onboard.output());
+            SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
+
+            relay.silence();
+            double liveness = 1.0;
+            double bound = 2.25 * liveness + moving.v() / A_MAX + 0.3;
+            SimProcess.Truth stopped = awaitStandstill(rig.sim, bound + 5);
+            System.out.printf(java.util.Locale.ROOT, "[figure] silent link to standstill: %.2f s from %.2f m/s "
+                    + "(liveness %.1f s)%n", stopped.t() - moving.t(), moving.v(), liveness);
+            assertTrue(stopped.t() - moving.t() <= bound, "stopped " + (stopped.t() - moving.t()) + " s after the "
+                    + "link went silent, bound " + bound + " s");
+            rig.onboard.await(l -> l.contains("XMPP connection lost while moving (connection silent for"),
+                    "reporting why it stopped");
+
+            relay.resume();
+            rig.onboard.awaitCount(l -> l.contains("XMPP session online"), 2, "saying the session is back");
+            MissionStatus mission = rig.get(Resources.MISSION);
+            assertEquals(MissionState.FAILED, mission.state(), mission.toString());
+            assertTrue(mission.detail().contains("connection silent"), mission.toString());
+            SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
+            assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved without a new command: " + later);
         }
     }
 

@@ -66,12 +66,21 @@ final class RobotRig implements AutoCloseable {
      */
     static RobotRig start(PrivateXmppServer xmpp, Path dir, double[] start, double[] believed, String[] simOptions,
             String extraConfig) throws Exception {
+        return start(xmpp, xmpp.port(), dir, start, believed, simOptions, extraConfig);
+    }
+
+    /**
+     * As {@link #start(PrivateXmppServer, Path, double[], String[], String)}, the robot reaching the server through
+     * {@code robotPort} (a relay in front of it); the operator connects directly.
+     */
+    static RobotRig start(PrivateXmppServer xmpp, int robotPort, Path dir, double[] start, double[] believed,
+            String[] simOptions, String extraConfig) throws Exception {
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         Files.createDirectories(dir);
         SimProcess sim = SimProcess.start(dir, start, simOptions);
         OnboardProcess onboard = null;
         try {
-            onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, xmpp.port(),
+            onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, robotPort,
                     OPERATOR + "@" + PrivateXmppServer.DOMAIN), "robot-pw", extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");

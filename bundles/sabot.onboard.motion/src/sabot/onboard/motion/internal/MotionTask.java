@@ -172,7 +172,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         public void offline(String reason) {
             if (config.stopOnDisconnect() && snapshot.moving()) {
                 LOG.warn("XMPP connection lost while moving: braking ({})", reason);
-                commands.add(l -> l.fault("XMPP connection lost while moving"));
+                commands.add(l -> l.fault("XMPP connection lost while moving (" + reason + ")"));
             }
         }
     };

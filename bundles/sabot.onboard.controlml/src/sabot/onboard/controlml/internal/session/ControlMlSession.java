@@ -83,6 +83,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             NamedThreads.daemon("sabot-session-events"));
     private final List<SessionListener> listeners = new CopyOnWriteArrayList<>();
     private final ServiceTracker<OnboardTask, OnboardTask> tasks;
+    private final LinkWatch linkWatch;
 
     private final Object lock = new Object();
     /** Guarded by {@link #lock}: the state listeners were last told. */
@@ -149,6 +150,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                 }
             }
         });
+        linkWatch = new LinkWatch(connection, settings.liveness(), this::silent);
         tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
             @Override
             public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
@@ -184,6 +186,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     @Deactivate
     void deactivate() {
         stopping = true;
+        linkWatch.close();
         tasks.close();
         connector.shutdownNow();
         try {
@@ -266,6 +269,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                 retry = !nowOnline && !stopping;
                 if (nowOnline) {
                     online = true;
+                    linkWatch.online();
                     notify(SessionListener::online);
                 }
             }
@@ -316,7 +320,16 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         return Duration.ofNanos(Math.min(nanos, max.toNanos()));
     }
 
-    /** The connection was lost (Smack's reader or writer thread, or a ping). */
+    /**
+     * The link went silent ({@link LinkWatch}): nothing closed it, nothing passes. Taken as a loss, and the connection
+     * is dropped so that the session reconnects (with back-off, as after any loss).
+     */
+    private void silent(String reason) {
+        lost(reason);
+        connection.instantShutdown();
+    }
+
+    /** The connection was lost (Smack's reader or writer thread, or a silent link). */
     private void lost(String reason) {
         synchronized (lock) {
             if (stopping) {

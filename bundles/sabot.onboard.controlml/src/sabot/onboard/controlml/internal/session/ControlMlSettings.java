@@ -35,11 +35,12 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param reconnectMax      longest delay between two attempts
  * @param operators         who may set; empty: contacts with a mutual subscription (see {@link OperatorPolicy})
  * @param staleCommandAfter sets that waited longer at the server are refused
+ * @param liveness          silence from the server after which it is pinged; twice it, the link is taken as lost
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
  */
 public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, String resource,
         Duration reconnectMin, Duration reconnectMax, Set<EntityBareJid> operators, Duration staleCommandAfter,
-        String robotName) {
+        Duration liveness, String robotName) {
 
     /** The task's name. */
     public static final String TASK = "controlml";
@@ -51,13 +52,15 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     static final double DEFAULT_RECONNECT_MAX_S = 30;
     /** {@code StaleCommandPolicy.DEFAULT}'s age, s (a test checks they agree: a Metatype default is a constant). */
     static final double DEFAULT_STALE_COMMAND_AFTER_S = 30;
+    /** Default liveness interval, s: a silent link is noticed within 2¼ of it, so that a moving robot brakes. */
+    static final double DEFAULT_LIVENESS_S = 1;
     /** Shortest reconnection delay, s. */
     static final double MIN_RECONNECT_S = 0.001;
 
     /** Keys (setting ids) of the settings read here. */
     static final String SERVER = "server", PORT = "port", JID = "jid", PASSWORD_FILE = "passwordFile",
             RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
-            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter";
+            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness";
 
     /**
      * The {@code controlml} task's settings: its Metatype description, generated from these annotations. The session
@@ -106,6 +109,12 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         @AttributeDefinition(name = "Stale command age", description = "Seconds a set may have waited at the server "
                 + "(offline delivery) before it is refused as stale.", min = "0", max = "86400")
         double staleCommandAfter() default DEFAULT_STALE_COMMAND_AFTER_S;
+
+        @AttributeDefinition(name = "Liveness interval", description = "Seconds without anything from the server "
+                + "after which the session pings it (XEP-0199); after twice as long the link is taken as lost (a "
+                + "silent network: nothing closed, nothing passing): the robot brakes if it moves and reconnects.",
+                min = "0.1", max = "60")
+        double liveness() default DEFAULT_LIVENESS_S;
 
         @AttributeDefinition(name = "Position telemetry rate", description = "Hz at which cm.position is published "
                 + "to subscribers; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
@@ -207,6 +216,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
             }
         }
         Duration stale = seconds(p, STALE_COMMAND_AFTER, DEFAULT_STALE_COMMAND_AFTER_S, 0, problems);
+        Duration liveness = seconds(p, LIVENESS, DEFAULT_LIVENESS_S, 0.1, problems);
         String robotName = p.string(OnboardTask.ROBOT_NAME, "");
         if (robotName.isEmpty() && jid != null) {
             robotName = jid.getLocalpart().toString();
@@ -215,7 +225,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
             return null;
         }
         return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax, operators,
-                stale, robotName);
+                stale, liveness, robotName);
     }
 
     private static EntityBareJid bareJid(String text, String key, String where, List<Problem> problems) {

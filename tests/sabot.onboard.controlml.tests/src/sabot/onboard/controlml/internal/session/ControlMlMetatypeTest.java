@@ -33,14 +33,15 @@ class ControlMlMetatypeTest {
     void controlmlDeclaresExactlyItsSettingsWithTheSessionsDefaults() throws Exception {
         Map<String, String> d = defaults("sabot.task.controlml");
         assertEquals(new TreeSet<>(Set.of("server", "port", "jid", "passwordFile", "resource", "reconnectMin",
-                "reconnectMax", "operators", "staleCommandAfter", "positionRate", "velocityRate", "missionRate",
-                "obstaclesRate")), new TreeSet<>(d.keySet()));
+                "reconnectMax", "operators", "staleCommandAfter", "liveness", "positionRate", "velocityRate",
+                "missionRate", "obstaclesRate")), new TreeSet<>(d.keySet()));
         assertEquals(ControlMlSettings.DEFAULT_SERVER, d.get("server"));
         assertEquals(ControlMlSettings.DEFAULT_PORT, Integer.parseInt(d.get("port")));
         assertEquals(ControlMlSettings.DEFAULT_RESOURCE, d.get("resource"));
         assertEquals(ControlMlSettings.DEFAULT_RECONNECT_MIN_S, Double.parseDouble(d.get("reconnectMin")));
         assertEquals(ControlMlSettings.DEFAULT_RECONNECT_MAX_S, Double.parseDouble(d.get("reconnectMax")));
         assertEquals(ControlMlSettings.DEFAULT_STALE_COMMAND_AFTER_S, Double.parseDouble(d.get("staleCommandAfter")));
+        assertEquals(ControlMlSettings.DEFAULT_LIVENESS_S, Double.parseDouble(d.get("liveness")));
         // the annotation needs a constant; the controlml bundle's default policy is the other copy
         assertEquals(StaleCommandPolicy.DEFAULT.maxAge(), Duration.ofMillis(Math.round(
                 ControlMlSettings.DEFAULT_STALE_COMMAND_AFTER_S * 1000)));

@@ -46,6 +46,7 @@ import sabot.identity.IdentityResult;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;
+import sabot.testsupport.net.SilentRelay;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
@@ -63,6 +64,7 @@ class ControlMlSessionOnProsodyTest {
     private final BundleContext context = FrameworkUtil.getBundle(ControlMlSession.class).getBundleContext();
     private final BlockingQueue<String> events = new LinkedBlockingQueue<>();
     private final BlockingQueue<Presence> robotPresences = new LinkedBlockingQueue<>();
+    private final BlockingQueue<String> offlineReasons = new LinkedBlockingQueue<>();
 
     @TempDir
     Path dir;
@@ -103,9 +105,14 @@ class ControlMlSessionOnProsodyTest {
     }
 
     RobotSession startControlMl() throws Exception {
+        return startControlMl(XMPP.port(), ControlMlSettings.DEFAULT_LIVENESS_S);
+    }
+
+    RobotSession startControlMl(int port, double liveness) throws Exception {
         Hashtable<String, Object> props = new Hashtable<>();
         props.put("server", "127.0.0.1");
-        props.put("port", XMPP.port());
+        props.put("port", port);
+        props.put("liveness", liveness);
         props.put("jid", robot.toString());
         props.put("passwordFile", passwordFile("robot-pw-" + accounts, "rw-------").toString());
         props.put("reconnectMin", 0.05);
@@ -123,6 +130,7 @@ class ControlMlSessionOnProsodyTest {
 
             @Override
             public void offline(String reason) {
+                offlineReasons.add(reason);
                 events.add("offline");
             }
         });
@@ -180,6 +188,38 @@ class ControlMlSessionOnProsodyTest {
         assertNotNull(card.inventory());
         assertTrue(card.inventory().boards().get(0).applications().stream().anyMatch(i -> i.name().equals(
                 "sabot.onboard")), () -> card.inventory().boards().get(0).applications().toString());
+    }
+
+    /**
+     * A link that goes silent — nothing passes, nothing is closed (a relay that stops forwarding) — is taken as a loss
+     * within 2¼ liveness intervals, and the session is back online once traffic passes again.
+     */
+    @Test
+    void aSilentLinkIsTakenAsALossAndTheSessionComesBackWhenItPassesAgain() throws Exception {
+        double liveness = 0.4;
+        try (SilentRelay relay = new SilentRelay(XMPP.port())) {
+            RobotSession session = startControlMl(relay.port(), liveness);
+            assertNextEvent("online");
+            // an idle link stays up: the pings answer for it
+            TimeUnit.MILLISECONDS.sleep(Math.round(3 * liveness * 1000)); // the stimulus: idle time
+            assertTrue(session.isOnline());
+            assertTrue(events.isEmpty(), "an idle link was taken as lost: " + events);
+
+            long silenced = System.nanoTime();
+            relay.silence();
+            assertNextEvent("offline");
+            double noticed = (System.nanoTime() - silenced) / 1e9;
+            String reason = offlineReasons.poll();
+            assertTrue(reason != null && reason.startsWith("connection silent for"), reason);
+            System.out.printf(java.util.Locale.ROOT, "[figure] silent link noticed after %.2f s (liveness %.1f s)%n",
+                    noticed, liveness);
+            assertTrue(noticed >= 2 * liveness, "noticed before two intervals of silence: " + noticed + " s");
+            assertFalse(session.isOnline());
+
+            relay.resume();
+            assertNextEvent("online");
+            assertTrue(session.isOnline());
+        }
     }
 
     @Test
