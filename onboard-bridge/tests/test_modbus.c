@@ -279,6 +279,68 @@ static void motionWhileFaultedIsDeviceFailure(void)
     CHECK(bus_write(r, SACT, RIGHT, MB_SACT_MOTOR_VELOCITY_SETPOINT, 100) == 0, "velocity after acknowledge");
 }
 
+/* One 0x15 request: the idempotency key first, then a position step of the left motor. */
+static frame_t keyed_step(uint16_t key, int16_t counts)
+{
+    frame_t f = { .len = 0 };
+    frame_put(&f, SACT);
+    frame_put(&f, 0x15);
+    frame_put(&f, (uint8_t)(2 * (7 + 2)));
+    frame_put(&f, 6);
+    frame_put16(&f, MB_SACT_FILE_CONFIG);
+    frame_put16(&f, MB_SACT_CONFIG_COMMAND_SEQUENCE);
+    frame_put16(&f, 1);
+    frame_put16(&f, key);
+    frame_put(&f, 6);
+    frame_put16(&f, MB_SACT_FILE_MOTOR_LEFT);
+    frame_put16(&f, MB_SACT_MOTOR_POSITION_STEP);
+    frame_put16(&f, 1);
+    frame_put16(&f, (uint16_t)counts);
+    frame_seal(&f);
+    return f;
+}
+
+/* A retried step (its answer lost, the same request sent again) is answered as before and
+ * applied once; a new key applies again; key 0 means no key; the key must come first. */
+static void aRetriedKeyedWriteIsAppliedOnce(void)
+{
+    robot_t *r = fresh();
+    uint32_t before = r->sact.motor[0].commanded;
+    const uint32_t step = 10u << SACT_POS_FRAC_BITS;
+    frame_t req = keyed_step(7, 10), a1, a2;
+    transact(r, &req, &a1);
+    CHECK(answer_exception(&a1) == 0, "keyed step: %d", answer_exception(&a1));
+    uint32_t once = r->sact.motor[0].commanded;
+    CHECK(once - before == step, "first step: %u", (unsigned)(once - before));
+    transact(r, &req, &a2);                              /* the retry */
+    CHECK(a2.len == a1.len && memcmp(a1.data, a2.data, a1.len) == 0, "the retry is answered as the first");
+    CHECK(r->sact.motor[0].commanded == once, "the retry applied the step again");
+    CHECK(r->sact.duplicates == 1, "duplicates %u", (unsigned)r->sact.duplicates);
+    CHECK(bus_read(r, SACT, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_SEQUENCE) == 7, "reads the last key");
+
+    req = keyed_step(8, 10);
+    transact(r, &req, &a1);
+    CHECK(r->sact.motor[0].commanded - once == step, "a new key applies");
+    req = keyed_step(0, 10);
+    transact(r, &req, &a1);
+    transact(r, &req, &a2);
+    CHECK(r->sact.motor[0].commanded - once == 3 * step, "key 0 is no key: both applied");
+    CHECK(bus_read(r, SACT, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_SEQUENCE) == 8, "0 leaves the last key");
+
+    /* the key after another register: refused whole */
+    uint16_t late[2] = { MB_SACT_CONFIG_COMMAND_TIMEOUT_DEFAULT, 9 };
+    frame_t f = write_request(SACT, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_TIMEOUT, late, 2);
+    transact(r, &f, &a1);
+    CHECK(answer_exception(&a1) == MB_EXC_ILLEGAL_DATA_ADDRESS, "late key: %d", answer_exception(&a1));
+    CHECK(bus_read(r, SACT, MB_SACT_FILE_CONFIG, MB_SACT_CONFIG_COMMAND_SEQUENCE) == 8, "late key not taken");
+    /* a duplicate is not judged again: a fault latched since would not turn its answer into an exception */
+    req = keyed_step(8, 10);
+    r->sact.motor[0].status |= MB_SACT_MOTOR_STATUS_FAULT;
+    transact(r, &req, &a2);
+    CHECK(answer_exception(&a2) == 0, "retry after a fault: %d", answer_exception(&a2));
+    CHECK(r->sact.duplicates == 2, "taken as the retry it is: duplicates %u", (unsigned)r->sact.duplicates);
+}
+
 static void wrongCrcIsIgnored(void)
 {
     robot_t *r = fresh();
@@ -389,6 +451,7 @@ int main(void)
     RUN(malformedWritesAreIllegalValue);
     RUN(statusAcceptsOnlyZero);
     RUN(motionWhileFaultedIsDeviceFailure);
+    RUN(aRetriedKeyedWriteIsAppliedOnce);
     RUN(wrongCrcIsIgnored);
     RUN(shortFramesAreIgnored);
     RUN(otherAddressesAreIgnored);

@@ -45,6 +45,9 @@ typedef struct {
      * control interrupt never sees half a request nor tears a 32-bit value (optional). */
     void (*lock)(void *board);
     void (*unlock)(void *board);
+    /* Called once at the start of every write request (0x15), before its first check_write:
+     * a board that gives requests an idempotency key resets its per-request state (optional). */
+    void (*begin_write)(void *board);
 } mb_board_ops_t;
 
 typedef struct {

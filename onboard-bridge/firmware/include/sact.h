@@ -93,6 +93,13 @@ typedef struct {
     uint32_t last_command_us;
     bool deadman_tripped;
     sact_capture_t capture;
+    /* Idempotency of write requests (config record command_sequence): the last key applied,
+     * whether the request being handled repeats it (then nothing of it is applied), and how
+     * many registers the request has written so far (the key must come first). */
+    uint16_t last_sequence;
+    bool duplicate_request;
+    uint16_t request_writes;
+    uint32_t duplicates;            /* requests answered but not applied again */
     uint32_t irq_state;             /* saved by the Modbus lock */
     mb_slave_t modbus;
 } sact_board_t;

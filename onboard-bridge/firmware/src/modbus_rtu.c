@@ -181,6 +181,8 @@ static size_t write_file_record(mb_slave_t *s, const uint8_t *pdu, size_t pdu_le
     if (byte_count < WRITE_BYTES_MIN || byte_count > WRITE_BYTES_MAX || pdu_len != 2u + byte_count)
         return exception(s, resp, pdu[0], MB_ILLEGAL_DATA_VALUE);
 
+    if (s->ops->begin_write)
+        s->ops->begin_write(s->board);
     /* Pass 1: structure, addresses, access rights, values. Nothing changes yet. */
     for (size_t off = 2; off < pdu_len;) {
         if (pdu_len - off < SUBREQ_HEADER)

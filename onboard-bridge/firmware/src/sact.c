@@ -268,6 +268,7 @@ uint16_t sact_read_register(sact_board_t *b, uint16_t file, uint16_t record)
         case MB_SACT_CONFIG_CONTROL_PERIOD: return SACT_TS_US;
         case MB_SACT_CONFIG_FIRMWARE_VERSION: return SACT_FIRMWARE_VERSION;
         case MB_SACT_CONFIG_COMMAND_TIMEOUT: return c->command_timeout_ms;
+        case MB_SACT_CONFIG_COMMAND_SEQUENCE: return b->last_sequence;
         default: return 0;
         }
     }
@@ -327,10 +328,29 @@ static mb_exception_t check_velocity(const sact_board_t *b, unsigned m, uint16_t
     return MB_OK;
 }
 
+static void sact_begin_write(void *board)
+{
+    sact_board_t *b = board;
+    b->duplicate_request = false;
+    b->request_writes = 0;
+}
+
 static mb_exception_t sact_check_write(void *board, uint16_t file, uint16_t record, uint16_t value)
 {
-    const sact_board_t *b = board;
+    sact_board_t *b = board;
     unsigned m;
+    if (file == MB_SACT_FILE_CONFIG && record == MB_SACT_CONFIG_COMMAND_SEQUENCE) {
+        /* The key names the whole request: only as its first register. A non-zero key equal to
+         * the last one applied is a retry of a request already applied (its answer was lost):
+         * answered as before, applied never again, whatever the rest of it. */
+        if (b->request_writes++ != 0)
+            return MB_ILLEGAL_DATA_ADDRESS;
+        b->duplicate_request = value != 0 && value == b->last_sequence;
+        return MB_OK;
+    }
+    b->request_writes++;
+    if (b->duplicate_request)
+        return MB_OK;
     if (file == MB_SACT_FILE_DRIVE)
         return check_velocity(b, record == MB_SACT_DRIVE_VELOCITY_SETPOINT_RIGHT, value);
     if (file == MB_SACT_FILE_STEP_CAPTURE && record == MB_SACT_STEP_CAPTURE_STEP && value != 0) {
@@ -364,6 +384,16 @@ static void sact_apply_write(void *board, uint16_t file, uint16_t record, uint16
 {
     sact_board_t *b = board;
     unsigned m;
+    if (b->duplicate_request) {
+        if (file == MB_SACT_FILE_CONFIG && record == MB_SACT_CONFIG_COMMAND_SEQUENCE)
+            b->duplicates++;
+        return;
+    }
+    if (file == MB_SACT_FILE_CONFIG && record == MB_SACT_CONFIG_COMMAND_SEQUENCE) {
+        if (value != 0)
+            b->last_sequence = value;
+        return;
+    }
     if (file == MB_SACT_FILE_DRIVE) {
         set_velocity(b, record == MB_SACT_DRIVE_VELOCITY_SETPOINT_RIGHT, value);
         return;
@@ -458,6 +488,7 @@ static const mb_board_ops_t sact_ops = {
     .write = sact_apply_write,
     .lock = sact_lock,
     .unlock = sact_unlock,
+    .begin_write = sact_begin_write,
 };
 
 mb_exception_t sact_write_register(sact_board_t *b, uint16_t file, uint16_t record, uint16_t value)
@@ -468,6 +499,7 @@ mb_exception_t sact_write_register(sact_board_t *b, uint16_t file, uint16_t reco
     int32_t v = d->type == MB_T_I16 ? (int16_t)value : (int32_t)value;
     if (v < d->min || v > d->max)
         return MB_ILLEGAL_DATA_VALUE;
+    sact_begin_write(b);   /* one register written directly is a request of its own */
     mb_exception_t e = sact_check_write(b, file, record, value);
     if (e == MB_OK)
         sact_apply_write(b, file, record, value);

@@ -80,7 +80,8 @@ public interface SactClient extends Board {
     void acknowledgeFaults() throws IOException;
 
     /**
-     * Adds {@code counts} to one motor's commanded position (step-response tuning).
+     * Adds {@code counts} to one motor's commanded position (step-response tuning), once: the write carries an
+     * idempotency key, so a retry after a lost answer is not applied again (also for {@link #startStepCapture}).
      *
      * @param counts encoder counts, within the map's bounds (±2048)
      */

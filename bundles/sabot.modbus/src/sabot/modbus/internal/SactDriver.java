@@ -215,7 +215,26 @@ final class SactDriver extends BoardDriver implements SactClient {
     public void positionStep(Motor motor, int counts) throws IOException {
         Field f = motor(motor, "position_step");
         f.checkBounds(motor + " position step", counts);
-        bus.write(counters, new Bus.Write(f.file(), f.record(), f.encode(counts)));
+        writeOnce(new Bus.Write(f.file(), f.record(), f.encode(counts)));
+    }
+
+    /** The idempotency key of the last non-idempotent write; -1 until read from the board. */
+    private int lastKey = -1;
+
+    /**
+     * Writes a request that must never be applied twice (a step adds to a position): keyed with the board's
+     * {@code command_sequence} as its first register, so that a retry after a lost answer — the same request, the same
+     * key — is answered by the board but not applied again. Keys run 1…65535 and round again; the first one follows
+     * the board's last key, so a restarted master does not reuse it.
+     */
+    private synchronized void writeOnce(Bus.Write write) throws IOException {
+        Field key = config("command_sequence");
+        if (lastKey < 0) {
+            Span s = Span.of(key);
+            lastKey = (int) s.raw(key, bus.read(counters, s)[0]);
+        }
+        lastKey = lastKey % 65535 + 1;
+        bus.write(counters, new Bus.Write(key.file(), key.record(), key.encode(lastKey)), write);
     }
 
     private static final String CAPTURE = "step_capture";
@@ -242,7 +261,7 @@ final class SactDriver extends BoardDriver implements SactClient {
         // step against the motor in force
         bus.write(counters, new Bus.Write(which.file(), which.record(), which.encode(file)), new Bus.Write(every
                 .file(), every.record(), every.encode(decimation)));
-        bus.write(counters, new Bus.Write(step.file(), step.record(), step.encode(counts)));
+        writeOnce(new Bus.Write(step.file(), step.record(), step.encode(counts)));
     }
 
     @Override
