@@ -65,6 +65,7 @@ import sabot.workbench.map.MapViewport;
 import sabot.workbench.views.FleetView;
 import sabot.workbench.views.FrameStatistics;
 import sabot.workbench.views.WorkspaceView;
+import sabot.testsupport.net.SilentRelay;
 import sabot.testsupport.robot.OnboardProcess;
 import sabot.testsupport.robot.SimProcess;
 import sabot.testsupport.xmpp.PrivateXmppServer;
@@ -429,6 +430,56 @@ class LiveFleetUiTest {
             HOLD.release();
             fleet.removeListener(onLate);
             context.ungetService(ref);
+        }
+    }
+
+    /**
+     * The workbench's own link goes silent — nothing passes, nothing is closed (a relay between the workbench and the
+     * server stops forwarding, as a Wi-Fi dead spot does): the workbench notices within two liveness intervals and a
+     * quarter, shows the robot offline and says why on its status line; once traffic passes again it reconnects and
+     * the robot is live again.
+     */
+    @Test
+    @Order(7)
+    void aSilentLinkGreysTheRobotAndTheWorkbenchReconnects() throws Exception {
+        XmppAccountStore store = XmppAccountStore.workbenchStore();
+        BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
+        ServiceReference<FleetState> ref = context.getServiceReference(FleetState.class);
+        FleetState fleet = context.getService(ref);
+        List<String> statuses = new CopyOnWriteArrayList<>();
+        FleetListener watch = new FleetListener() {
+            @Override
+            public void robotChanged(RobotState robot) {
+            }
+
+            @Override
+            public void connectionChanged(sabot.workbench.fleet.ConnectionStatus status) {
+                statuses.add(status.summary());
+            }
+        };
+        fleet.addListener(watch);
+        try (SilentRelay relay = new SilentRelay(xmpp.port())) {
+            store.save(new XmppAccount("127.0.0.1", relay.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+                    "operator-pw".toCharArray());
+            waitFor(() -> live(robotRow()) && statusLineText().contains(":" + relay.port()), 60,
+                    () -> "robot not live through the relay: " + fleetView().rows() + "; " + statusLineText());
+            long silenced = System.nanoTime();
+            relay.silence();
+            waitFor(() -> robotRow() != null && robotRow().availability() == Availability.OFFLINE, 20,
+                    () -> "silence not noticed: " + statusLineText() + "; " + robotRow());
+            System.out.printf(Locale.ROOT, "[figure] workbench link silent to robot shown offline: %d ms (liveness "
+                    + "%.1f s)%n", TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - silenced),
+                    sabot.fleet.LinkWatch.DEFAULT_INTERVAL_S);
+            assertTrue(statuses.stream().anyMatch(t -> t.contains("offline (connection silent for")),
+                    "the status line never said why: " + statuses);
+            relay.resume();
+            waitFor(() -> live(robotRow()), 60, () -> "robot not live again after the silence: " + fleetView().rows()
+                    + "; " + statusLineText());
+        } finally {
+            fleet.removeListener(watch);
+            context.ungetService(ref);
+            store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+                    "operator-pw".toCharArray());
         }
     }
 

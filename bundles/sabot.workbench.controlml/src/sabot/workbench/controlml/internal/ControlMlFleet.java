@@ -91,7 +91,8 @@ public final class ControlMlFleet implements FleetState {
         telemetry = new FleetTelemetry(clock, registry, requests, connector, this::session);
         FleetRoster roster = new FleetRoster(registry, telemetry, connector, this::session);
         maps = new RobotMaps(this);
-        connection = new FleetConnection(connector, backoff, requestTimeout, registry, roster, telemetry, maps);
+        connection = new FleetConnection(connector, named("sabot-fleet-liveness"), backoff, requestTimeout, registry,
+                roster, telemetry, maps);
     }
 
     private FleetSession session() {

@@ -4,6 +4,7 @@ import java.io.IOException;
 import java.net.InetAddress;
 import java.time.Duration;
 import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
@@ -20,6 +21,7 @@ import org.slf4j.LoggerFactory;
 
 import sabot.controlml.ControlMlManager;
 import sabot.fleet.FleetConnections;
+import sabot.fleet.LinkWatch;
 import sabot.fleet.SubscriptionGate;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
@@ -36,10 +38,13 @@ final class FleetConnection {
 
     /** Resource part of the workbench's full JID (several workbenches of one operator differ by a suffix). */
     static final String RESOURCE_PREFIX = "workbench-";
+    /** Silence from the server after which it is pinged; twice it, the link is lost (as on the robots). */
+    static final Duration LINK_LIVENESS = Duration.ofMillis(Math.round(LinkWatch.DEFAULT_INTERVAL_S * 1000));
 
     private static final Logger LOG = LoggerFactory.getLogger("sabot.workbench.controlml");
 
     private final ScheduledExecutorService connector;
+    private final ThreadFactory watchThreads;
     private final Backoff backoff;
     private final Duration requestTimeout;
     private final RobotRegistry registry;
@@ -51,10 +56,17 @@ final class FleetConnection {
     private final AtomicBoolean reconnectQueued = new AtomicBoolean();
     /** The live session, touched on the connection thread only (read elsewhere). */
     private volatile FleetSession session;
+    /** The current session's watch on a silent link; connection thread only. */
+    private LinkWatch linkWatch;
 
-    FleetConnection(ScheduledExecutorService connector, Backoff backoff, Duration requestTimeout,
-            RobotRegistry registry, FleetRoster roster, FleetTelemetry telemetry, RobotMaps maps) {
+    /**
+     * @param watchThreads makes the thread of each session's {@link LinkWatch}
+     */
+    FleetConnection(ScheduledExecutorService connector, ThreadFactory watchThreads, Backoff backoff,
+            Duration requestTimeout, RobotRegistry registry, FleetRoster roster, FleetTelemetry telemetry,
+            RobotMaps maps) {
         this.connector = connector;
+        this.watchThreads = watchThreads;
         this.backoff = backoff;
         this.requestTimeout = requestTimeout;
         this.registry = registry;
@@ -142,10 +154,13 @@ final class FleetConnection {
             c.addConnectionListener(new ConnectionListener() {
                 @Override
                 public void connectionClosedOnError(Exception e) {
-                    connector.execute(() -> lost(s, e));
+                    connector.execute(() -> lost(s, "connection lost: " + describe(e)));
                 }
             });
+            // a silent network (nothing passes, nothing closes) greys the robots and reconnects within seconds
+            linkWatch = new LinkWatch(c, LINK_LIVENESS, watchThreads, why -> connector.execute(() -> lost(s, why)));
             c.connect().login();
+            linkWatch.online();
             r.reloadAndWait(); // the robots are known before the status says online
             session = s;
             roster.start(s, store.loadRobots(), store.loadLobby());
@@ -169,17 +184,21 @@ final class FleetConnection {
             if (c != null) {
                 c.instantShutdown();
             }
+            if (linkWatch != null) {
+                linkWatch.close();
+                linkWatch = null;
+            }
             session = null;
             retry(account.jid(), describe(e));
         }
     }
 
-    private void lost(FleetSession s, Exception e) {
+    private void lost(FleetSession s, String why) {
         if (session != s) {
             return; // an older connection's last words
         }
         closeSession();
-        retry(registry.status().account(), "connection lost: " + describe(e));
+        retry(registry.status().account(), why);
     }
 
     private void retry(String account, String why) {
@@ -192,6 +211,10 @@ final class FleetConnection {
     private void closeSession() {
         FleetSession s = session;
         session = null;
+        if (linkWatch != null) {
+            linkWatch.close();
+            linkWatch = null;
+        }
         maps.clear();
         if (s != null) {
             s.connection().instantShutdown();

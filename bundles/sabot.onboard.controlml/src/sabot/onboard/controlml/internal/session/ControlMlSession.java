@@ -36,6 +36,7 @@ import org.slf4j.LoggerFactory;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.StaleCommandPolicy;
+import sabot.fleet.LinkWatch;
 import sabot.fleet.NoDelaySocketFactory;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
@@ -150,7 +151,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                 }
             }
         });
-        linkWatch = new LinkWatch(connection, settings.liveness(), this::silent);
+        linkWatch = new LinkWatch(connection, settings.liveness(), NamedThreads.daemon("sabot-session-liveness"),
+                this::silent);
         tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
             @Override
             public OnboardTask addingService(ServiceReference<OnboardTask> reference) {

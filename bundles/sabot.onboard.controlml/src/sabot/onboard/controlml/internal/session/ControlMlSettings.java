@@ -16,6 +16,7 @@ import org.jxmpp.stringprep.XmppStringprepException;
 import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
+import sabot.fleet.LinkWatch;
 import sabot.onboard.task.InvalidSettings;
 import sabot.onboard.task.TaskProperties;
 import sabot.onboard.task.OnboardTask;
@@ -53,7 +54,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     /** {@code StaleCommandPolicy.DEFAULT}'s age, s (a test checks they agree: a Metatype default is a constant). */
     static final double DEFAULT_STALE_COMMAND_AFTER_S = 30;
     /** Default liveness interval, s: a silent link is noticed within 2¼ of it, so that a moving robot brakes. */
-    static final double DEFAULT_LIVENESS_S = 1;
+    static final double DEFAULT_LIVENESS_S = LinkWatch.DEFAULT_INTERVAL_S;
     /** Shortest reconnection delay, s. */
     static final double MIN_RECONNECT_S = 0.001;
 

@@ -1,18 +1,15 @@
-package sabot.onboard.controlml.internal.session;
+package sabot.fleet;
 
 import java.time.Duration;
 import java.util.Locale;
 import java.util.concurrent.Executors;
 import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
 
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.ping.packet.Ping;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
-
-import sabot.onboard.task.NamedThreads;
 
 /**
  * Notices a silent link — packets dropped, nothing closed (no FIN, no RST): a Wi-Fi dead spot — which TCP alone
@@ -21,36 +18,41 @@ import sabot.onboard.task.NamedThreads;
  * as well), and when nothing has arrived for two intervals the link is silent: {@code silent} is told once, with the
  * time, and the session takes it as a loss (it goes offline, so a moving robot brakes, and reconnects with back-off).
  * The watch looks four times per interval, so silence is noticed within 2¼ intervals. Costs one small IQ per interval
- * on a link that carries nothing else.
+ * on a link that carries nothing else. Both ends use it: the robot's session (which brakes a moving robot on the
+ * loss) and the workbench's connection (which greys its robots and reconnects).
  */
-final class LinkWatch implements AutoCloseable {
+public final class LinkWatch implements AutoCloseable {
 
-    private static final Logger LOG = LoggerFactory.getLogger(LinkWatch.class);
+    /** The default interval, s: a silent link is noticed within 2¼ s, so that a moving robot brakes. */
+    public static final double DEFAULT_INTERVAL_S = 1;
 
     private final XMPPTCPConnection connection;
     private final long intervalMillis;
     private final Consumer<String> silent;
-    private final ScheduledExecutorService timer = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
-            "sabot-session-liveness"));
+    private final ScheduledExecutorService timer;
     /** Timer thread only, besides {@link #online()}: when the current session came online, epoch ms. */
     private volatile long onlineSince = Long.MAX_VALUE;
     private volatile boolean reported;
     private volatile long lastPing;
 
     /**
+     * Starts watching; nothing counts before {@link #online()}.
+     *
      * @param interval the silence after which the server is pinged; twice it, the link is silent
+     * @param threads  makes the watch's one thread (a daemon, named and prioritised as its owner's threads are)
      * @param silent   told why, once per session, on the watch's thread
      */
-    LinkWatch(XMPPTCPConnection connection, Duration interval, Consumer<String> silent) {
+    public LinkWatch(XMPPTCPConnection connection, Duration interval, ThreadFactory threads, Consumer<String> silent) {
         this.connection = connection;
+        this.timer = Executors.newSingleThreadScheduledExecutor(threads);
         this.intervalMillis = Math.max(1, interval.toMillis());
         this.silent = silent;
         long period = Math.max(1, intervalMillis / 4);
         timer.scheduleAtFixedRate(this::check, period, period, TimeUnit.MILLISECONDS);
     }
 
-    /** A new session is online: the silence counts from now. */
-    void online() {
+    /** A new session is online (logged in): the silence counts from now. */
+    public void online() {
         lastPing = 0;
         reported = false;
         onlineSince = System.currentTimeMillis();
@@ -75,7 +77,7 @@ final class LinkWatch implements AutoCloseable {
                         2 * intervalMillis);
             }
         } catch (RuntimeException e) {
-            LOG.debug("liveness check: {}", e.toString());
+            // a ping that cannot be sent (the connection closed meanwhile): the loss is reported by the connection
         }
     }
 
