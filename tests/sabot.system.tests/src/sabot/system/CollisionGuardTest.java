@@ -24,8 +24,6 @@ import sabot.testsupport.robot.SimProcess;
  */
 class CollisionGuardTest extends RigTest {
 
-    /** The joystick's rate, Hz, as the workbench's joystick sends it. */
-    static final int JOYSTICK_HZ = 10;
     /** The robot's top speed, m/s (docs/sabot-robot.properties). */
     static final double TOP_SPEED = 0.5;
     /** The robot's footprint radius, m (the planner's default). */

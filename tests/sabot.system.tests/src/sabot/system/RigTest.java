@@ -23,6 +23,8 @@ abstract class RigTest {
     static final double[] CORRIDOR_MIDDLE = { 4.5, 1.0, 0.0 };
     /** The robot's linear acceleration limit, m/s² (docs/sabot-robot.properties). */
     static final double A_MAX = 0.5;
+    /** The joystick's rate, Hz, as the workbench's joystick sends it. */
+    static final int JOYSTICK_HZ = 10;
 
     protected final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
 

@@ -30,8 +30,6 @@ import sabot.testsupport.robot.SimProcess;
 class SafetyTest extends RigTest {
 
     static final double[] START = CORRIDOR_MIDDLE;
-    /** The joystick's rate, Hz, as the workbench's joystick sends it. */
-    static final int JOYSTICK_HZ = 10;
     static final double SPEED = 0.3;
     static final double DEADMAN = 0.5;
 
