@@ -59,6 +59,8 @@ class Client(slixmpp.ClientXMPP):
         if not verify_tls:  # a private server's self-signed certificate (loopback demo)
             self.ssl_context.check_hostname = False
             self.ssl_context.verify_mode = ssl.CERT_NONE
+        # XEP-0202: a robot measures its requesters' clocks to judge their commands' send times (spec section 5)
+        self.register_plugin("xep_0202")
         self.ids = cm.RequestIds()
         self.started = asyncio.Event()
         self.failed: str | None = None

@@ -31,6 +31,7 @@ _ID_RE = re.compile(r"([0-9]{8}):(0|[1-9][0-9]{0,9})")
 # xs:double lexical space: decimal or scientific, and the special values (section 3 refuses 1,5, 0x1p3, Infinity)
 _DOUBLE_RE = re.compile(r"[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?|NaN|INF|-INF|\+INF")
 _TIME_RE = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}(\.[0-9]+)?(Z|[+-][0-9]{2}:[0-9]{2})")
+_UTC_RE = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}(\.[0-9]{1,9})?Z")  # sent (section 1)
 
 
 class PayloadError(ValueError):
@@ -137,15 +138,22 @@ def format_double(value: float) -> str:
     return repr(value)
 
 
-def control_ml(kind: str, request_id: str, res: str, payload: ET.Element | None = None) -> ET.Element:
-    """The ``<control-ml/>`` element: exactly the attributes type, id and res, and at most one payload."""
+def control_ml(kind: str, request_id: str, res: str, payload: ET.Element | None = None,
+               sent: str | None = None) -> ET.Element:
+    """The ``<control-ml/>`` element: the attributes type, id and res, on a set its send time ``sent`` (section 1;
+    now when None), and at most one payload."""
     if kind not in TYPES:
         raise PayloadError(f"type '{kind}' is not one of {', '.join(TYPES)}")
     if not is_request_id(request_id):
         raise PayloadError(f"id '{request_id}' is not YYYYMMDD:UINT32")
     if not _RES_RE.fullmatch(res):
         raise PayloadError(f"res '{res}' is not cm.<word>[.<word>...]")
-    elem = ET.Element(f"{{{CM_NS}}}control-ml", {"type": kind, "id": request_id, "res": res})
+    attributes = {"type": kind, "id": request_id, "res": res}
+    if kind == "set":
+        attributes["sent"] = sent or utc_time()
+    elif sent is not None:
+        raise PayloadError("only a set carries a send time")
+    elem = ET.Element(f"{{{CM_NS}}}control-ml", attributes)
     if payload is not None:
         elem.append(payload)
     return elem
@@ -442,9 +450,12 @@ def decode(elem: ET.Element) -> Element:
     """Decodes a ``<control-ml/>`` element (attributes checked, payload decoded)."""
     if elem.tag != f"{{{CM_NS}}}control-ml":
         raise PayloadError(f"<{local(elem.tag)}> is not a control-ml element")
-    if set(elem.attrib) != {"type", "id", "res"}:
-        raise PayloadError(f"attributes {sorted(elem.attrib)}: exactly type, id and res are allowed")
     kind, rid, res = elem.get("type"), elem.get("id"), elem.get("res")
+    allowed = {"type", "id", "res", "sent"} if kind == "set" else {"type", "id", "res"}
+    if not {"type", "id", "res"} <= set(elem.attrib) <= allowed:
+        raise PayloadError(f"attributes {sorted(elem.attrib)}: type, id, res and on a set sent are allowed")
+    if "sent" in elem.attrib and not _UTC_RE.fullmatch(elem.get("sent")):
+        raise PayloadError(f"sent '{elem.get('sent')}' is not an ISO 8601 UTC time stamp")
     if kind not in TYPES or not is_request_id(rid) or not _RES_RE.fullmatch(res):
         raise PayloadError(f"bad attributes type='{kind}' id='{rid}' res='{res}'")
     kids = list(elem)

@@ -24,6 +24,7 @@ import tempfile
 import uuid
 import xml.etree.ElementTree as ET
 import zlib
+from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
 import slixmpp
@@ -80,7 +81,11 @@ def goal_xml(x: str = "1.5", unit: str = "m", pad: int = 0) -> str:
     return f"<DataRecord xmlns='{cm.SWE_NS}'>{' ' * pad}{body}</DataRecord>"
 
 
-def control_ml(attributes: str, content: str = "") -> ET.Element:
+def control_ml(attributes: str, content: str = "", stamp: bool = True) -> ET.Element:
+    """A control-ml element from raw attribute text; a set gets its send time (section 1) unless ``stamp`` is
+    false or the text has one."""
+    if stamp and "type='set'" in attributes and "sent=" not in attributes:
+        attributes += f" sent='{cm.utc_time()}'"
     return ET.fromstring(f"<control-ml xmlns='{cm.CM_NS}' {attributes}>{content}</control-ml>")
 
 
@@ -208,6 +213,25 @@ async def refusals(op: Peer, viewer: Peer, stranger: Peer, robot: str) -> None:
         refusal(name, await op.raw(robot, "get", control_ml(attributes)), reason, echo=False)
     refusal("extra attribute", await op.raw(robot, "get", control_ml(
         f"type='get' id='{ids.next()}' res='cm.position' urgent='yes'")), "bad-attributes")
+    # the send time (section 1): on a set only, UTC, and required where the set moves the robot (section 5)
+    refusal("sent on a get", await op.raw(robot, "get", control_ml(
+        f"type='get' id='{ids.next()}' res='cm.position' sent='{cm.utc_time()}'")), "bad-attributes")
+    refusal("sent with a zone offset", await op.raw(robot, "set", control_ml(
+        f"type='set' id='{ids.next()}' res='cm.goal' sent='2026-11-28T10:15:30+01:00'", goal_xml())),
+        "bad-attributes")
+    refusal("a cm.goal set without its send time", await op.raw(robot, "set", control_ml(
+        f"type='set' id='{ids.next()}' res='cm.goal'", goal_xml(), stamp=False)), "bad-attributes")
+    a = await op.raw(robot, "set", control_ml(f"type='set' id='{ids.next()}' res='cm.limits'", ET.tostring(cm.encode_record(
+        "cm.limits", {"maxLinearSpeed": 0.5, "maxAngularSpeed": 1.0, "maxLinearAcceleration": 0.5,
+                      "maxAngularAcceleration": 1.0}, text_form=False)), stamp=False))
+    check("a cm.limits set without a send time is applied (it does not move the robot)", a.type == "result",
+          str(a))
+    an_hour_ago = cm.utc_time(datetime.now(timezone.utc) - timedelta(hours=1))
+    refusal("a cm.goal sent an hour ago", await op.raw(robot, "set", control_ml(
+        f"type='set' id='{ids.next()}' res='cm.goal' sent='{an_hour_ago}'", goal_xml())), "stale-command")
+    in_an_hour = cm.utc_time(datetime.now(timezone.utc) + timedelta(hours=1))
+    refusal("a cm.goal sent an hour ahead of the device's clock", await op.raw(robot, "set", control_ml(
+        f"type='set' id='{ids.next()}' res='cm.goal' sent='{in_an_hour}'", goal_xml())), "stale-command")
     refusal("control-ml set in an iq get", await op.raw(robot, "get", control_ml(
         f"type='set' id='{ids.next()}' res='cm.goal'", goal_xml())), "type-mismatch")
     refusal("control-ml error without failure in an iq set", await op.raw(robot, "set", control_ml(

@@ -121,7 +121,9 @@ class SpecExamples(unittest.TestCase):
     def test_offline_command_message_carries_a_set(self):
         msg = spec_example("<message type='normal'")[0]
         elem = cm.find_control_ml(msg)
-        self.assertEqual({"type": "set", "id": "20261121:9", "res": "cm.goal"}, elem.attrib)
+        self.assertEqual({"type": "set", "id": "20261121:9", "res": "cm.goal", "sent": "2026-11-21T09:14:03.512Z"},
+                         elem.attrib)
+        self.assertEqual("set", cm.decode(elem).type)
 
 
 class RequestIdsTest(unittest.TestCase):
@@ -254,6 +256,23 @@ class ReadingTest(unittest.TestCase):
         count.text = "2"
         with self.assertRaisesRegex(cm.PayloadError, "elementCount 2 but 1 blocks"):
             cm.decode(elem)
+
+    def test_a_set_carries_its_send_time_and_only_a_set(self):
+        elem = cm.control_ml("set", "20261121:1", "cm.goal", cm.encode_record("cm.goal", cm.goal(1, 2, 0)),
+                             sent="2026-11-28T10:15:30.125Z")
+        self.assertEqual("2026-11-28T10:15:30.125Z", elem.get("sent"))
+        self.assertRegex(cm.control_ml("set", "20261121:2", "cm.limits").get("sent"), r"Z$")  # now, in UTC
+        self.assertIsNone(cm.control_ml("get", "20261121:3", "cm.goal").get("sent"))
+        with self.assertRaises(cm.PayloadError):
+            cm.control_ml("get", "20261121:4", "cm.goal", sent="2026-11-28T10:15:30Z")
+        for bad in ("2026-11-28T10:15:30+01:00", "2026-11-28T10:15:30", "yesterday"):
+            elem.set("sent", bad)
+            with self.assertRaises(cm.PayloadError, msg=bad):
+                cm.decode(elem)
+        get = cm.control_ml("get", "20261121:5", "cm.position")
+        get.set("sent", "2026-11-28T10:15:30Z")
+        with self.assertRaises(cm.PayloadError):
+            cm.decode(get)
 
     def test_extra_attribute_on_control_ml_is_refused(self):
         elem = cm.control_ml("get", "20261121:1", "cm.position")

@@ -31,6 +31,15 @@ public final class ControlMl {
      */
     public static final String RECORD_STRUCTURE_PREFIX = NAMESPACE + ":record:";
     /** Service discovery feature a ControlML endpoint announces. */
+    /**
+     * A requester's default wait for an answer, s ({@link ControlMlManager#setRequestTimeout}).
+     */
+    public static final int DEFAULT_REQUEST_TIMEOUT_S = 10;
+    /**
+     * A device's default stale-command limit, s ({@link StaleCommandPolicy#DEFAULT}): below
+     * {@link #DEFAULT_REQUEST_TIMEOUT_S}, so that a command its operator saw time out is never applied (section 5).
+     */
+    public static final int DEFAULT_STALE_COMMAND_S = 5;
     public static final String FEATURE = NAMESPACE;
 
     private ControlMl() {

@@ -1,5 +1,6 @@
 package sabot.controlml;
 
+import java.time.Instant;
 import java.util.Objects;
 import java.util.regex.Pattern;
 
@@ -10,6 +11,7 @@ import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.packet.XmlEnvironment;
 
 import sabot.controlml.payload.PayloadException;
+import sabot.controlml.swe.IsoInstant;
 import sabot.controlml.swe.RecordTemplate;
 import sabot.controlml.swe.SweComponent;
 import sabot.controlml.swe.SweXml;
@@ -36,6 +38,8 @@ public final class ControlMlElement implements ExtensionElement {
     private final SweComponent payload;
     private final ControlMlError failure;
     private final ControlMlError defect;
+    /** A set's send time on the requester's clock ({@code sent}), or null. */
+    private final Instant sent;
     /** Write the payload in the text form when the resource has a record structure and the value fits it. */
     private final boolean textForm;
     /**
@@ -59,6 +63,12 @@ public final class ControlMlElement implements ExtensionElement {
 
     private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect, boolean textForm, Decoded<?> decoded) {
+        this(type, id, res, payload, failure, defect, textForm, decoded, null);
+    }
+
+    private ControlMlElement(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect, boolean textForm, Decoded<?> decoded, Instant sent) {
+        this.sent = sent;
         this.decoded = decoded;
         this.textForm = textForm;
         this.type = type;
@@ -101,12 +111,18 @@ public final class ControlMlElement implements ExtensionElement {
      */
     public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
             ControlMlError failure, ControlMlError defect) {
+        return received(type, id, res, payload, failure, defect, null);
+    }
+
+    /** For providers: an element as read, with a set's send time ({@code sent}, null when absent). */
+    public static ControlMlElement received(ControlMlType type, RequestId id, String res, SweComponent payload,
+            ControlMlError failure, ControlMlError defect, Instant sent) {
         // Section 4's resources only: Smack's reader is process-wide and knows no connection's registry. A result of
         // a registered resource of another bundle is decoded by value() on the thread that asked for it.
         Resource<?, ?> resource = type == ControlMlType.RESULT && defect == null && payload != null ? Resources.byName(
                 res) : null;
         Decoded<?> decoded = resource == null ? Decoded.NONE : Decoded.of(resource, payload);
-        return new ControlMlElement(type, id, res, payload, failure, defect, false, decoded);
+        return new ControlMlElement(type, id, res, payload, failure, defect, false, decoded, sent);
     }
 
     /** What a received result's payload decoded to while it was read. */
@@ -173,7 +189,25 @@ public final class ControlMlElement implements ExtensionElement {
      * @return this element with that payload form; equal to this one
      */
     public ControlMlElement withTextForm(boolean text) {
-        return text == textForm ? this : new ControlMlElement(type, id, res, payload, failure, defect, text);
+        return text == textForm ? this : new ControlMlElement(type, id, res, payload, failure, defect, text, decoded,
+                sent);
+    }
+
+    /**
+     * @param time when the requester sends this set, on its clock (section 1's {@code sent}); null for none
+     * @return this set carrying that send time
+     * @throws IllegalStateException when this is not a set
+     */
+    public ControlMlElement withSent(Instant time) {
+        if (type != ControlMlType.SET) {
+            throw new IllegalStateException("only a set carries a send time, not a " + type);
+        }
+        return new ControlMlElement(type, id, res, payload, failure, defect, textForm, decoded, time);
+    }
+
+    /** @return a set's send time on the requester's clock ({@code sent}), or null when it carries none */
+    public Instant sent() {
+        return sent;
     }
 
     /** @return true when the payload is written in the text form where its resource allows it */
@@ -260,7 +294,7 @@ public final class ControlMlElement implements ExtensionElement {
         }
     }
 
-    /** Appends the three attributes, each preceded by a space. */
+    /** Appends the attributes, each preceded by a space. */
     public void appendAttributes(StringBuilder sb) {
         if (type != null) {
             sb.append(" type='").append(type.attribute()).append('\'');
@@ -270,6 +304,11 @@ public final class ControlMlElement implements ExtensionElement {
         }
         if (res != null) {
             sb.append(" res='").append(res).append('\'');
+        }
+        if (sent != null) {
+            sb.append(" sent='");
+            IsoInstant.format(sent, sb);
+            sb.append('\'');
         }
     }
 
@@ -324,17 +363,17 @@ public final class ControlMlElement implements ExtensionElement {
     public boolean equals(Object o) {
         return o instanceof ControlMlElement e && type == e.type && Objects.equals(id, e.id) && Objects.equals(res,
                 e.res) && Objects.equals(payload, e.payload) && Objects.equals(failure, e.failure) && Objects
-                        .equals(defect, e.defect);
+                        .equals(defect, e.defect) && Objects.equals(sent, e.sent);
     }
 
     @Override
     public int hashCode() {
-        return Objects.hash(type, id, res, payload, failure, defect);
+        return Objects.hash(type, id, res, payload, failure, defect, sent);
     }
 
     @Override
     public String toString() {
-        return "control-ml[" + type + " " + id + " " + res + (payload == null ? "" : " +payload") + (failure == null
+        return "control-ml[" + type + " " + id + " " + res + (sent == null ? "" : " sent=" + sent) + (payload == null ? "" : " +payload") + (failure == null
                 ? "" : " failure=" + failure) + (defect == null ? "" : " defect=" + defect) + "]";
     }
 }

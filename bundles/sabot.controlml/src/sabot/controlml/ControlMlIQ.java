@@ -5,6 +5,8 @@ import java.util.Objects;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.IqData;
 
+import sabot.controlml.swe.IsoInstant;
+
 /**
  * An {@code <iq/>} carrying one {@code <control-ml/>}: requests ({@code iq get/set} with control-ml get/set) and
  * their answers ({@code iq result} with control-ml result; {@code iq error} with control-ml error plus the RFC 6120
@@ -58,6 +60,11 @@ public final class ControlMlIQ extends IQ {
         }
         if (element.res() != null) {
             xml.attribute("res", element.res());
+        }
+        if (element.sent() != null) {
+            StringBuilder sent = new StringBuilder(30);
+            IsoInstant.format(element.sent(), sent);
+            xml.attribute("sent", sent);
         }
         String content = element.contentXml();
         if (content.isEmpty()) {

@@ -27,17 +27,21 @@ import org.jivesoftware.smack.packet.IqData;
 import org.jivesoftware.smack.packet.StanzaBuilder;
 import org.jivesoftware.smack.packet.Message;
 import org.jivesoftware.smack.packet.MessageBuilder;
+import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.packet.Stanza;
 import org.jivesoftware.smack.packet.StandardExtensionElement;
 import org.jivesoftware.smack.packet.StanzaError;
+import org.jivesoftware.smack.util.Async;
 import org.jivesoftware.smackx.delay.DelayInformationManager;
 import org.jivesoftware.smackx.disco.ServiceDiscoveryManager;
+import org.jivesoftware.smackx.time.EntityTimeManager;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 import org.osgi.annotation.versioning.ConsumerType;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.controlml.internal.ClockOffsets;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.internal.SchemaValidator;
 import sabot.controlml.payload.NoQuery;
@@ -72,8 +76,10 @@ public final class ControlMlManager extends Manager {
         ControlMlProviders.register();
     }
 
+    private final Clock clock;
     private final RequestIdGenerator ids;
     private final Endpoint endpoint;
+    private final ClockOffsets clocks;
     private final Map<RequestId, PendingMessage<?>> pendingMessages = new ConcurrentHashMap<>();
     private final Map<String, Boolean> sentStanzaIds = new LinkedHashMap<>(1024, 0.75f, false) {
         private static final long serialVersionUID = 1L;
@@ -84,7 +90,7 @@ public final class ControlMlManager extends Manager {
         }
     };
 
-    private volatile Duration requestTimeout = Duration.ofSeconds(10);
+    private volatile Duration requestTimeout = Duration.ofSeconds(ControlMl.DEFAULT_REQUEST_TIMEOUT_S);
     private volatile boolean validateResultsWithSchema = false;
     private volatile boolean textForm = true;
 
@@ -101,8 +107,15 @@ public final class ControlMlManager extends Manager {
 
     private ControlMlManager(XMPPConnection connection, Clock clock) {
         super(connection);
+        this.clock = clock;
         this.ids = new RequestIdGenerator(clock);
         this.endpoint = new Endpoint(clock, new ResourceRegistry());
+        this.clocks = new ClockOffsets(clock, this::entityTimeOf, r -> Async.go(r, "ControlML clock of a requester"));
+        endpoint.setClockOffsets(clocks);
+        EntityTimeManager.getInstanceFor(connection).enable(); // so that the devices it commands can measure its clock
+        // A device learns each requester's clock when it comes online, before its first command (section 5).
+        connection.addAsyncStanzaListener(this::onPresence, stanza -> stanza instanceof Presence && endpoint
+                .servesSets());
         ServiceDiscoveryManager.getInstanceFor(connection).addFeature(ControlMl.FEATURE);
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.get));
         connection.registerIQRequestHandler(new RequestHandler(IQ.Type.set));
@@ -272,13 +285,13 @@ public final class ControlMlManager extends Manager {
     }
 
     /**
-     * Sends a request element as is and waits for the answer element: the low-level form of {@link #get} and
-     * {@link #set}, for tools and tests.
+     * Sends a request element as is (a set without a send time gets one: now) and waits for the answer element: the
+     * low-level form of {@link #get} and {@link #set}, for tools and tests.
      *
      * @return the answer element (a result; errors arrive as a failure), or why there is none
      */
     public Outcome<ControlMlElement> exchange(Jid device, ControlMlElement request) {
-        ControlMlIQ iq = new ControlMlIQ(request);
+        ControlMlIQ iq = new ControlMlIQ(stamped(request));
         iq.setTo(device);
         String stanzaId = iq.setStanzaId();
         synchronized (sentStanzaIds) {
@@ -367,6 +380,7 @@ public final class ControlMlManager extends Manager {
                 .encode(Objects.requireNonNull(value))).withTextForm(textForm);
         CompletableFuture<Outcome<T>> future = new CompletableFuture<>();
         pendingMessages.put(id, new PendingMessage<>(resource, future));
+        element = stamped(element);
         Message message = messageTo(device, element, "ControlML command " + resource.name() + " " + id
                 + " (needs a ControlML endpoint)");
         try {
@@ -380,6 +394,39 @@ public final class ControlMlManager extends Manager {
             future.complete(Outcome.failure(ControlMlCondition.NOT_CONNECTED, "interrupted while sending"));
         }
         return new PendingCommand<>(id, future);
+    }
+
+    /** @return the request; a set without a send time carries now as its send time (section 1's {@code sent}) */
+    private ControlMlElement stamped(ControlMlElement request) {
+        return request.type() == ControlMlType.SET && request.sent() == null ? request.withSent(clock.instant())
+                : request;
+    }
+
+    private Instant entityTimeOf(Jid requester) throws Exception {
+        Date time = EntityTimeManager.getInstanceFor(connection()).getTime(requester).getTime();
+        return time == null ? null : time.toInstant();
+    }
+
+    private void onPresence(Stanza stanza) {
+        Jid from = stanza.getFrom();
+        XMPPConnection c = connection();
+        if (from == null || !from.hasResource() || from.equals(c.getUser())) {
+            return;
+        }
+        if (((Presence) stanza).isAvailable()) {
+            clocks.measure(from);
+        } else {
+            clocks.forget(from);
+        }
+    }
+
+    /**
+     * @param requester a requester's full JID
+     * @return its clock minus this device's as measured with XEP-0202 (section 5), or null when not measured
+     */
+    public Duration clockOffsetOf(Jid requester) {
+        ClockOffsets.Offset o = clocks.of(requester);
+        return o == null ? null : o.offset();
     }
 
     private Message messageTo(Jid to, ControlMlElement element, String body) {

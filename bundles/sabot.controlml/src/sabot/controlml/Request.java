@@ -13,9 +13,11 @@ import org.jxmpp.jid.Jid;
  * @param id       the ControlML id; never null
  * @param resource the resource name; never null
  * @param carrier  what it arrived in; never null
- * @param sent     when it was sent: the XEP-0203 delay stamp the server added while holding it, else the time it
- *                 arrived; never null
- * @param age      how long it waited before it arrived (zero when it carried no delay stamp); never null
+ * @param sent     when it was sent, on the device's clock: a set's {@code sent} moved by the requester's measured
+ *                 clock offset, or the XEP-0203 delay stamp the server added while holding it when that is
+ *                 earlier, else the time it arrived; never null
+ * @param age      how long ago it was sent (zero when it carried neither stamp; negative when its send time is
+ *                 ahead of the device's clock); never null
  */
 public record Request(Jid from, RequestId id, String resource, Carrier carrier, Instant sent, Duration age) {
     public Request {

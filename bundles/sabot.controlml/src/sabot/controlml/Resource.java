@@ -24,6 +24,7 @@ public final class Resource<T, Q> {
     private final boolean settable;
     private final String description;
     private final String recordHref;
+    private boolean moving;
     private T recordPrototype;
     private volatile RecordTemplate recordTemplate;
 
@@ -72,6 +73,7 @@ public final class Resource<T, Q> {
         private boolean get;
         private boolean set;
         private String description = "";
+        private boolean moving;
 
         private Builder(String name, PayloadCodec<T> codec, PayloadCodec<Q> queryCodec) {
             this.name = name;
@@ -100,7 +102,17 @@ public final class Resource<T, Q> {
             b.get = true;
             b.set = set;
             b.description = description;
+            b.moving = moving;
             return b;
+        }
+
+        /**
+         * @return this builder; a set of the resource can start motion, so it carries its send time ({@code sent},
+         *         section 1) and is judged by its age ({@link Resource#isMotionCommand()})
+         */
+        public Builder<T, Q> movesTheRobot() {
+            this.moving = true;
+            return this;
         }
 
         /** @param text one line for people (logs, the resource's documentation); never null */
@@ -117,7 +129,9 @@ public final class Resource<T, Q> {
             if (!get && !set) {
                 throw new IllegalStateException(name + " allows neither get nor set");
             }
-            return new Resource<>(name, codec, queryCodec, get, set, description);
+            Resource<T, Q> r = new Resource<>(name, codec, queryCodec, get, set, description);
+            r.moving = moving;
+            return r;
         }
     }
 
@@ -144,6 +158,21 @@ public final class Resource<T, Q> {
     /** @return true when a set may be sent */
     public boolean isSettable() {
         return settable;
+    }
+
+    /**
+     * @return true when a set of this resource can start motion: such a set MUST carry its send time ({@code sent}),
+     *         and a device refuses one without it ({@code bad-attributes}) or older than its limit
+     *         ({@code stale-command})
+     */
+    public boolean isMotionCommand() {
+        return moving;
+    }
+
+    /** Marks a resource of section 4 whose set can start motion (see {@link #isMotionCommand()}). */
+    Resource<T, Q> movingTheRobot() {
+        this.moving = true;
+        return this;
     }
 
     /**

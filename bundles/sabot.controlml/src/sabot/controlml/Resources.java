@@ -40,13 +40,14 @@ public final class Resources {
     /** {@code cm.velocity} (set: joystick twist; get: the twist being executed). */
     public static final Resource<VelocityCommand, NoQuery> VELOCITY = new Resource<VelocityCommand, NoQuery>(
             "cm.velocity", VelocityCommand.CODEC, null, true, true, "joystick twist (linear m/s, angular rad/s)")
-                    .withRecordStructure(new VelocityCommand(Instant.EPOCH, Twist2D.ZERO));
+                    .withRecordStructure(new VelocityCommand(Instant.EPOCH, Twist2D.ZERO)).movingTheRobot();
     /** {@code cm.goal} (get/set): the mission's target pose. */
     public static final Resource<Goal, NoQuery> GOAL = new Resource<Goal, NoQuery>("cm.goal", Goal.CODEC, null,
-            true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1));
+            true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1))
+                    .movingTheRobot();
     /** {@code cm.trajectory} (get/set): timed path. */
     public static final Resource<TrajectoryPayload, NoQuery> TRAJECTORY = new Resource<>("cm.trajectory",
-            TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)");
+            TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)").movingTheRobot();
     /** {@code cm.map} (get/set): occupancy grid. */
     public static final Resource<GridMap, NoQuery> MAP = new Resource<>("cm.map", GridMap.CODEC, null, true, true,
             "occupancy grid (at most 64 KiB of payload; larger maps via cm.fs)");
@@ -62,7 +63,7 @@ public final class Resources {
                     new LimitsPayload(1, 1, 1, 1));
     /** {@code cm.mission} (get: state; set: pause/resume/abort/maintenance). */
     public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<>("cm.mission", MissionStatus.CODEC,
-            null, true, true, "mission state and maintenance mode");
+            null, true, true, "mission state and maintenance mode").movingTheRobot();
     /** {@code cm.tasks} (get): loaded tasks. */
     public static final Resource<TaskList, NoQuery> TASKS = new Resource<>("cm.tasks", TaskList.CODEC, null, true,
             false, "tasks loaded on the robot");

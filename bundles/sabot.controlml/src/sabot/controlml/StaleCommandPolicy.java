@@ -4,8 +4,9 @@ import java.time.Duration;
 import java.util.Objects;
 
 /**
- * What a device does with a command that waited at the server (XEP-0203 delay stamp) before it arrived: commands
- * older than {@code maxAge} are refused with {@link ControlMlCondition#STALE_COMMAND}, or applied anyway when
+ * What a device does with a set by its age: since its send time ({@code sent} on the requester's clock, moved by
+ * the measured clock offset) or since the server held it (XEP-0203 delay stamp). Sets older than {@code maxAge}, or
+ * sent more than {@code maxAge} ahead of the device's clock, are refused with {@link ControlMlCondition#STALE_COMMAND}, or applied anyway when
  * {@code refuse} is false. Gets are never stale.
  *
  * @param maxAge oldest acceptable command; never null, not negative
@@ -13,8 +14,9 @@ import java.util.Objects;
  */
 public record StaleCommandPolicy(Duration maxAge, boolean refuse) {
 
-    /** The default: refuse sets older than 30 s. */
-    public static final StaleCommandPolicy DEFAULT = new StaleCommandPolicy(Duration.ofSeconds(30), true);
+    /** The default: refuse sets older than {@link ControlMl#DEFAULT_STALE_COMMAND_S}. */
+    public static final StaleCommandPolicy DEFAULT = new StaleCommandPolicy(Duration.ofSeconds(
+            ControlMl.DEFAULT_STALE_COMMAND_S), true);
 
     public StaleCommandPolicy {
         Objects.requireNonNull(maxAge, "maxAge");

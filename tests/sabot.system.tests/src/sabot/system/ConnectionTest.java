@@ -10,18 +10,26 @@ import java.util.Arrays;
 import java.util.Map;
 import java.util.Random;
 import java.util.TreeMap;
+import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 
+import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
+import sabot.controlml.ControlMlIQ;
 import sabot.controlml.ControlMlManager;
+import sabot.controlml.ControlMlType;
 import sabot.controlml.Outcome;
+import sabot.controlml.RequestIdGenerator;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileQuery;
@@ -77,7 +85,8 @@ class ConnectionTest extends RigTest {
     /**
      * A network that goes silent mid-mission — nothing passes, nothing is closed, as a Wi-Fi dead spot — stops the
      * robot within two liveness intervals (1 s each), the check's quarter interval and the braking; the robot says
-     * why, reconnects once traffic passes again, and stands still until a new command.
+     * why, reconnects once traffic passes again, and stands still until a new command. A goal sent into the silence,
+     * which the operator saw time out, reaches the robot on stream resumption and is refused as stale.
      */
     @Test
     void robotBrakesWhenTheLinkGoesSilentAndStandsStillWhenItComesBack(@TempDir Path dir) throws Exception {
@@ -99,12 +108,26 @@ class ConnectionTest extends RigTest {
             rig.onboard.await(l -> l.contains("XMPP connection lost while moving (connection silent for"),
                     "reporting why it stopped");
 
+            // The operator sends a new goal into the silence: the server holds it for the robot's session, and the
+            // operator's request times out (as the workbench's does) before the link is back.
+            BlockingQueue<ControlMlElement> late = new LinkedBlockingQueue<>();
+            rig.operatorConnection.addAsyncStanzaListener(iq -> late.add(((ControlMlIQ) iq).element()),
+                    stanza -> stanza instanceof ControlMlIQ iq && iq.getType() == IQ.Type.error);
+            ControlMlElement held = ControlMlElement.request(ControlMlType.SET, new RequestIdGenerator().next(),
+                    "cm.goal", Resources.GOAL.codec().encode(new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3)));
+            Outcome<ControlMlElement> timedOut = rig.operator.exchange(rig.robot, held);
+            assertEquals(ControlMlCondition.TIMEOUT, timedOut.errorOrNull().cmCondition(), timedOut::toString);
+
             relay.resume();
             rig.onboard.awaitCount(l -> l.contains("XMPP session online"), 2, "saying the session is back");
+            // the server delivers the held goal on stream resumption; the robot judges it by its send time
+            ControlMlElement answer = late.poll(30, TimeUnit.SECONDS);
+            assertTrue(answer != null && held.id().equals(answer.id()), "no answer to the held goal: " + answer);
+            assertEquals(ControlMlCondition.STALE_COMMAND, answer.failure().cmCondition(), answer.toString());
             MissionStatus mission = rig.get(Resources.MISSION);
             assertEquals(MissionState.FAILED, mission.state(), mission.toString());
             assertTrue(mission.detail().contains("connection silent"), mission.toString());
-            SimProcess.Truth later = awaitSimTime(rig.sim, 1.5);
+            SimProcess.Truth later = awaitSimTime(rig.sim, 3);
             assertTrue(later.distanceTo(stopped.x(), stopped.y()) < 0.01, "moved without a new command: " + later);
         }
     }

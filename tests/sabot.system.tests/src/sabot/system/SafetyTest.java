@@ -13,6 +13,11 @@ import org.jivesoftware.smack.packet.Presence;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
+import sabot.controlml.ControlMlType;
+import sabot.controlml.Outcome;
+import sabot.controlml.RequestIdGenerator;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
@@ -53,6 +58,36 @@ class SafetyTest extends RigTest {
             assertTrue(travelled <= brakingDistance + 0.05, "travelled " + travelled + " m after the last twist, "
                     + "bound " + brakingDistance + " m");
             rig.onboard.await(l -> l.contains("deadman"), "reporting the deadman stop");
+        }
+    }
+
+    /**
+     * Commands that arrive late do not move the robot: a twist sent 2 s ago (older than {@code teleop.maxAge},
+     * 0.5 s) and a goal sent 10 s ago (older than {@code controlml.staleCommandAfter}, 5 s) are refused as
+     * {@code stale-command} by their send time, and the robot stands still.
+     */
+    @Test
+    void aTwistOrAGoalSentTooLongAgoIsRefusedAndTheRobotStandsStill(@TempDir Path dir) throws Exception {
+        RequestIdGenerator ids = new RequestIdGenerator(); // this test's own requests, sent as they are
+        try (RobotRig rig = RobotRig.start(xmpp, dir, START, new String[0], "")) {
+            SimProcess.Truth before = rig.sim.truth();
+            for (int i = 0; i < JOYSTICK_HZ; i++) {
+                Instant sent = Instant.now().minusSeconds(2);
+                Outcome<ControlMlElement> twist = rig.operator.exchange(rig.robot, ControlMlElement.request(
+                        ControlMlType.SET, ids.next(), "cm.velocity", Resources.VELOCITY.codec()
+                                .encode(new VelocityCommand(sent, new Twist2D(SPEED, 0)))).withSent(sent));
+                assertEquals(ControlMlCondition.STALE_COMMAND, twist.errorOrNull().cmCondition(), twist::toString);
+                assertTrue(twist.errorOrNull().text().contains("teleop.maxAge"), twist.errorOrNull().text());
+                TimeUnit.MILLISECONDS.sleep(1000 / JOYSTICK_HZ); // the stimulus: a joystick at 10 Hz
+            }
+            Outcome<ControlMlElement> goal = rig.operator.exchange(rig.robot, ControlMlElement.request(ControlMlType
+                    .SET, ids.next(), "cm.goal", Resources.GOAL.codec().encode(new Goal(
+                            new Pose2D(START[0] + 2, START[1], 0), 0.15, 0.3))).withSent(Instant.now().minusSeconds(
+                                    10)));
+            assertEquals(ControlMlCondition.STALE_COMMAND, goal.errorOrNull().cmCondition(), goal::toString);
+            SimProcess.Truth later = awaitSimTime(rig.sim, 3);
+            assertTrue(later.distanceTo(before.x(), before.y()) < 0.01, "moved on a stale command: " + later);
+            assertEquals(MissionState.IDLE, rig.get(Resources.MISSION).state());
         }
     }
 

@@ -55,6 +55,7 @@ public final class Endpoint {
     private final Object setLock = new Object();
     private volatile AccessPolicy accessPolicy = AccessPolicy.CLOSED;
     private volatile StaleCommandPolicy stalePolicy = StaleCommandPolicy.DEFAULT;
+    private volatile ClockOffsets clocks;
     private volatile boolean validateWithSchema = true;
     private volatile boolean textForm = true;
     private final AtomicLong requestsServed = new AtomicLong();
@@ -119,6 +120,19 @@ public final class Endpoint {
     /** @param policy the stale-command policy; default {@link StaleCommandPolicy#DEFAULT} */
     public void setStaleCommandPolicy(StaleCommandPolicy policy) {
         this.stalePolicy = Objects.requireNonNull(policy);
+    }
+
+    /**
+     * @param offsets the requesters' clocks, to judge a set's send time ({@code sent}) on this device's clock; null
+     *                (the default) takes every requester's clock as this one
+     */
+    public void setClockOffsets(ClockOffsets offsets) {
+        this.clocks = offsets;
+    }
+
+    /** @return true when a set handler is registered (this connection serves as a device) */
+    public boolean servesSets() {
+        return !setHandlers.isEmpty();
     }
 
     /** @param text answers in the text form where the resource allows it (see ControlMlManager#setTextForm) */
@@ -249,11 +263,22 @@ public final class Endpoint {
         return refuse(request, request.defect());
     }
 
+    /**
+     * The request's send time on this device's clock: the earlier of its {@code sent} (moved by the requester's
+     * measured clock offset) and the server's delay stamp; the arrival when it carries neither. The age may be
+     * negative: a send time ahead of this clock.
+     */
     private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
         Instant now = clock.instant();
-        Instant sent = delayStamp != null ? delayStamp : now;
-        Duration age = Duration.between(sent, now);
-        return new Request(from, request.id(), request.res(), carrier, sent, age.isNegative() ? Duration.ZERO : age);
+        Instant sent = now;
+        if (request.sent() != null) {
+            ClockOffsets offsets = clocks;
+            sent = offsets == null ? request.sent() : request.sent().minus(offsets.offsetOf(from));
+        }
+        if (delayStamp != null && (request.sent() == null || delayStamp.isBefore(sent))) {
+            sent = delayStamp;
+        }
+        return new Request(from, request.id(), request.res(), carrier, sent, Duration.between(sent, now));
     }
 
     @SuppressWarnings("unchecked")
@@ -326,14 +351,34 @@ public final class Endpoint {
         } catch (PayloadException e) {
             return refuse(request, e.error());
         }
+        if (resource.isMotionCommand() && request.sent() == null) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.BAD_ATTRIBUTES, "a set of " + resource
+                    .name() + " moves the robot and must carry its send time (sent)"));
+        }
+        ClockOffsets offsets = clocks;
+        if (offsets != null && request.sent() != null) {
+            offsets.measure(from); // known from the requester's presence, as a rule; else for its next command
+        }
         Request r = requestOf(request, from, delayStamp, carrier);
         StaleCommandPolicy policy = stalePolicy;
         if (policy.isStale(r.age())) {
             return refuse(request, ControlMlError.of(ControlMlCondition.STALE_COMMAND, "command sent " + r.sent()
                     + " waited " + r.age().toMillis() + " ms, longer than the device accepts ("
-                    + policy.maxAge().toMillis() + " ms)"));
+                    + policy.maxAge().toMillis() + " ms)" + offsetNote(offsets, from)));
+        }
+        if (policy.isStale(r.age().negated())) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.STALE_COMMAND, "command sent " + r.sent()
+                    + ", " + r.age().negated().toMillis() + " ms ahead of the device's clock: its age cannot be"
+                    + " judged (more than the " + policy.maxAge().toMillis() + " ms the device accepts)" + offsetNote(
+                            offsets, from)));
         }
         return answerFor(request, resource, handler.set(r, value), false);
+    }
+
+    private static String offsetNote(ClockOffsets offsets, Jid from) {
+        ClockOffsets.Offset o = offsets == null ? null : offsets.of(from);
+        return o == null ? "; your clock is taken as the device's (not measured)" : "; your clock differs by "
+                + o.offset().toMillis() + " ms (±" + o.uncertainty().toMillis() + ")";
     }
 
     private Answer answerFor(ControlMlElement request, Resource<Object, Object> resource, Outcome<Object> outcome,

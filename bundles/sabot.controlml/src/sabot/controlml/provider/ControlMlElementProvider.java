@@ -1,6 +1,8 @@
 package sabot.controlml.provider;
 
 import java.io.IOException;
+import java.time.Instant;
+import java.time.format.DateTimeParseException;
 
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.packet.XmlEnvironment;
@@ -16,6 +18,7 @@ import sabot.controlml.ControlMlType;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
+import sabot.controlml.swe.IsoInstant;
 import sabot.controlml.swe.Swe;
 import sabot.controlml.swe.RecordTemplate;
 import sabot.controlml.swe.SweComponent;
@@ -50,7 +53,7 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
         if (attributes.defect() != null) {
             skipToEnd(parser, initialDepth);
             return ControlMlElement.received(attributes.type(), attributes.id(), attributes.res(), null, null,
-                    attributes.defect());
+                    attributes.defect(), null);
         }
         Content content = new Content(attributes.type(), attributes.res());
         ControlMlError defect = content.read(parser, initialDepth);
@@ -58,15 +61,16 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
             skipToEnd(parser, initialDepth);
         }
         return ControlMlElement.received(attributes.type(), attributes.id(), attributes.res(), defect == null
-                ? content.payload : null, content.failure, defect);
+                ? content.payload : null, content.failure, defect, attributes.sent());
     }
 
     /**
-     * The three attributes as far as they could be read, and the first problem with them.
+     * The attributes as far as they could be read, and the first problem with them.
      *
-     * @param res null when absent or not a resource name
+     * @param res  null when absent or not a resource name
+     * @param sent a set's send time, null when absent
      */
-    private record Attributes(ControlMlType type, RequestId id, String res, ControlMlError defect) {
+    private record Attributes(ControlMlType type, RequestId id, String res, Instant sent, ControlMlError defect) {
     }
 
     private static Attributes readAttributes(XmlPullParser parser) {
@@ -74,6 +78,7 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
         String typeText = null;
         String idText = null;
         String res = null;
+        String sentText = null;
         for (int i = 0; i < parser.getAttributeCount(); i++) {
             String name = parser.getAttributeName(i);
             String value = parser.getAttributeValue(i);
@@ -85,8 +90,9 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                 case "type" -> typeText = value;
                 case "id" -> idText = value;
                 case "res" -> res = value;
+                case "sent" -> sentText = value;
                 default -> defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "unexpected attribute "
-                        + abbreviate(name) + " (control-ml has exactly type, id and res)");
+                        + abbreviate(name) + " (control-ml has type, id, res and, on a set, sent)");
             }
         }
         if (typeText == null || idText == null || res == null) {
@@ -114,7 +120,31 @@ public final class ControlMlElementProvider extends ExtensionElementProvider<Con
                     + "' is not a resource name (cm.<name>)");
             res = null;
         }
-        return new Attributes(type, id, res, defect);
+        Instant sent = null;
+        if (sentText != null) {
+            if (type != ControlMlType.SET) {
+                defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "sent belongs on a set only");
+            } else {
+                sent = readSent(sentText);
+                if (sent == null) {
+                    defect = first(defect, ControlMlCondition.BAD_ATTRIBUTES, "sent must be an ISO 8601 UTC time"
+                            + " stamp (2026-11-28T10:15:30.125Z), not '" + abbreviate(sentText) + "'");
+                }
+            }
+        }
+        return new Attributes(type, id, res, sent, defect);
+    }
+
+    /** @return the send time, or null when the text is not a UTC time stamp of section 3's form */
+    private static Instant readSent(String text) {
+        if (text.isEmpty() || text.charAt(text.length() - 1) != 'Z') {
+            return null; // Instant.parse would take an offset; the protocol's time stamps are UTC
+        }
+        try {
+            return IsoInstant.parse(text);
+        } catch (DateTimeParseException e) {
+            return null;
+        }
     }
 
     /** Reads the content of an element whose attributes were all readable: one payload, or an error's failure. */

@@ -1,5 +1,6 @@
 package sabot.onboard.robot;
 
+import java.time.Duration;
 import java.time.Instant;
 import java.util.Optional;
 
@@ -43,12 +44,14 @@ public interface RobotMotion {
     /**
      * A joystick twist (m/s, rad/s). Clamped to the limits; the robot stops by itself when no twist arrives for the
      * teleop timeout (deadman, default 0.5 s). Refused (INVALID_STATE) while a mission runs, or after a fault until
-     * the fault is cleared by a new command.
+     * the fault is cleared by a new command. Dropped (STALE_COMMAND) when sent longer ago than the teleop task's
+     * {@code maxAge}.
      *
      * @param sent when the operator's client sent the twist (its ControlML {@code time}), for the command-to-wheel
      *             latency figure; may be null
+     * @param age  how long ago it was sent, on this robot's clock (ControlML's {@code Request.age})
      */
-    void teleop(Twist2D twist, Instant sent) throws CommandRefused;
+    void teleop(Twist2D twist, Instant sent, Duration age) throws CommandRefused;
 
     /** @return the goal of the current or last mission, if any */
     Optional<Goal> goal();

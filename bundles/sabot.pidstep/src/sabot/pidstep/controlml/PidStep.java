@@ -18,8 +18,8 @@ public final class PidStep {
 
     /** {@code cm.pid.step}. */
     public static final Resource<StepTest, NoQuery> RESOURCE = Resource.builder("cm.pid.step", StepTest.CODEC)
-            .settable().description("position step test of one wheel's motor loop, response sampled on the robot")
-            .build();
+            .settable().movesTheRobot().description("position step test of one wheel's motor loop, response sampled "
+                    + "on the robot").build();
 
     private PidStep() {
     }

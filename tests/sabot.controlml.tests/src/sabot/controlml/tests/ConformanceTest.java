@@ -44,7 +44,7 @@ import sabot.controlml.payload.Goal;
 class ConformanceTest {
 
     private static final String SET_GOAL = "<control-ml xmlns='urn:sabot:controlml:1' type='set' id='20261121:7' "
-            + "res='cm.goal'>";
+            + "res='cm.goal'" + ControlMlBadInputTest.SENT + ">";
 
     private Jid operator;
     private RecordingDevice device;

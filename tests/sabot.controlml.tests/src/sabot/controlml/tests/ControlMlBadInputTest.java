@@ -39,7 +39,10 @@ import sabot.model.geometry.Pose2D;
  */
 class ControlMlBadInputTest {
 
-    static final String HEAD = "<control-ml xmlns='urn:sabot:controlml:1' type='set' id='20261121:7' res='cm.goal'>";
+    /** The send time of the sets below: the device's (fixed) clock, so they are fresh (section 5). */
+    static final String SENT = " sent='2026-11-21T12:00:00Z'";
+    static final String HEAD = "<control-ml xmlns='urn:sabot:controlml:1' type='set' id='20261121:7' res='cm.goal'"
+            + SENT + ">";
     static final String SWE = "<DataRecord xmlns='http://www.opengis.net/swe/2.0'>";
 
     static String goal(String x, String xUnit) {
@@ -292,7 +295,7 @@ class ControlMlBadInputTest {
 
     @Test
     void unsolicitedResultInARequestPositionIsATypeMismatch() throws Exception {
-        ControlMlElement e = Xml.element(goal("1", "m").replace("type='set'", "type='result'"));
+        ControlMlElement e = Xml.element(goal("1", "m").replace("type='set'", "type='result'").replace(SENT, ""));
         assertRefused(endpoint.serve(e, ControlMlType.SET, operator, null, Carrier.IQ), Condition.bad_request,
                 ControlMlCondition.TYPE_MISMATCH);
     }

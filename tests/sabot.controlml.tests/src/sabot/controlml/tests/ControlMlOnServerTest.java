@@ -9,9 +9,12 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.lang.reflect.Field;
 import java.net.Socket;
 import java.time.Duration;
+import java.time.Instant;
 import java.time.LocalDate;
+import java.util.Calendar;
 import java.util.List;
 import java.util.Map;
+import java.util.TimeZone;
 import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.CompletableFuture;
@@ -20,12 +23,15 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 
 import org.jivesoftware.smack.StanzaCollector;
+import org.jivesoftware.smack.iqrequest.AbstractIqRequestHandler;
+import org.jivesoftware.smack.iqrequest.IQRequestHandler;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.Message;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.mam.MamManager;
+import org.jivesoftware.smackx.time.packet.Time;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInfo;
@@ -479,14 +485,22 @@ abstract class ControlMlOnServerTest {
         closeAfterClass.clear();
     }
 
+    /**
+     * Section 5: a set the server held for the robot's hibernated session (XEP-0198) and delivered on resumption is
+     * judged by its send time: older than the robot accepts, it is refused as stale and never applied; the
+     * requester's retry under the same id gets the same answer from the replay cache.
+     */
     @Test
-    void streamResumptionNeitherLosesNorDuplicatesASet(TestInfo info) throws Exception {
+    void aSetHeldDuringALinkDropIsRefusedAsStaleOnResumption(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
         Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Duration limit = Duration.ofSeconds(1);
+        robot.manager().setStaleCommandPolicy(StaleCommandPolicy.refuseOlderThan(limit));
         assertTrue(robot.connection().isSmResumptionPossible(), "server did not offer resumption");
         ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+        Instant sent = Instant.now();
         ControlMlElement command = ControlMlElement.request(ControlMlType.SET, new RequestId(LocalDate.now(), 4242),
-                "cm.goal", Resources.GOAL.codec().encode(NEW_GOAL));
+                "cm.goal", Resources.GOAL.codec().encode(NEW_GOAL)).withSent(sent);
 
         socketOf(robot.connection()).close(); // the robot's network drops
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
@@ -497,18 +511,65 @@ abstract class ControlMlOnServerTest {
         // The server still thinks the robot is there: it queues the set for the hibernating session.
         CompletableFuture<Outcome<ControlMlElement>> first = CompletableFuture.supplyAsync(() -> client.exchange(robot
                 .jid(), command));
+        // the link stays down longer than the robot accepts a command's age (the condition under test, not a wait
+        // for something to happen)
+        Thread.sleep(Math.max(0, Duration.between(Instant.now(), sent.plus(limit).plusMillis(200)).toMillis()));
         robot.connection().connect();
         robot.connection().login();
         assertTrue(robot.connection().streamWasResumed(), "stream was not resumed");
 
         Outcome<ControlMlElement> answer = first.get(TIMEOUT_S + 5, TimeUnit.SECONDS);
-        // the workbench retries (as after a timeout of its own): same ControlML id, new stanza
-        Outcome<ControlMlElement> retry = client.exchange(robot.jid(), command);
+        Outcome<ControlMlElement> retry = client.exchange(robot.jid(), command); // same ControlML id, new stanza
 
-        assertTrue(answer.isSuccess(), answer::toString);
-        assertTrue(retry.isSuccess(), retry::toString);
-        assertEquals(List.of("cm.goal " + command.id()), robot.device().applied, "lost or applied twice");
+        assertEquals(ControlMlCondition.STALE_COMMAND, answer.errorOrNull().cmCondition(), answer::toString);
+        assertEquals(ControlMlCondition.STALE_COMMAND, retry.errorOrNull().cmCondition(), retry::toString);
+        assertTrue(robot.device().applied.isEmpty(), "a held command was applied: " + robot.device().applied);
         assertEquals(1, robot.manager().statistics().duplicatesReplayed());
+    }
+
+    /**
+     * Section 5's clock rule over a real server: a requester whose clock runs an hour ahead (its XEP-0202 answer and
+     * its send times both) is measured when its presence arrives, and its sets are judged on its own clock.
+     */
+    @Test
+    void aRequesterWhoseClockIsAnHourAheadIsJudgedOnItsOwnClock(TestInfo info) throws Exception {
+        Duration ahead = Duration.ofHours(1);
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        ControlMlManager client = ControlMlManager.getInstanceFor(wb);
+        // its own XEP-0202 answer replaces Smack's: the workbench's clock, an hour ahead
+        wb.registerIQRequestHandler(new AbstractIqRequestHandler(Time.ELEMENT, Time.NAMESPACE, IQ.Type.get,
+                IQRequestHandler.Mode.async) {
+            @Override
+            public IQ handleIQRequest(IQ request) {
+                Calendar c = Calendar.getInstance(TimeZone.getTimeZone("UTC"));
+                c.setTimeInMillis(Instant.now().plus(ahead).toEpochMilli());
+                Time t = new Time(c);
+                t.setType(IQ.Type.result);
+                t.setTo(request.getFrom());
+                t.setStanzaId(request.getStanzaId());
+                return t;
+            }
+        });
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        Duration measured;
+        while ((measured = robot.manager().clockOffsetOf(wb.getUser())) == null && System.nanoTime() < deadline) {
+            Thread.onSpinWait(); // the robot asks for the workbench's time when its presence arrives
+        }
+        assertNotNull(measured, "the robot never measured the workbench's clock");
+        assertTrue(measured.minus(ahead).abs().toMillis() < 1000, "offset " + measured);
+
+        RequestId fresh = new RequestId(LocalDate.now(), 77);
+        Outcome<ControlMlElement> a = client.exchange(robot.jid(), ControlMlElement.request(ControlMlType.SET, fresh,
+                "cm.goal", Resources.GOAL.codec().encode(NEW_GOAL)).withSent(Instant.now().plus(ahead)));
+        assertTrue(a.isSuccess(), "a set sent now on the workbench's clock: " + a);
+        Outcome<ControlMlElement> old = client.exchange(robot.jid(), ControlMlElement.request(ControlMlType.SET,
+                new RequestId(LocalDate.now(), 78), "cm.goal", Resources.GOAL.codec().encode(NEW_GOAL)).withSent(
+                        Instant.now().plus(ahead).minusSeconds(60)));
+        assertEquals(ControlMlCondition.STALE_COMMAND, old.errorOrNull().cmCondition(), old::toString);
+        assertTrue(old.errorOrNull().text().contains("your clock differs by 36"), old.errorOrNull().text());
+        assertEquals(List.of("cm.goal " + fresh), robot.device().applied);
     }
 
     private static Socket socketOf(XMPPTCPConnection connection) throws ReflectiveOperationException {

@@ -2,14 +2,14 @@ package sabot.motion.sim;
 
 import java.io.IOException;
 import java.time.Duration;
-import java.util.List;
+import java.util.Optional;
 
 import sabot.control.WheelSpeeds;
 import sabot.controlml.payload.PidGains;
-import sabot.model.geometry.Point2D;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
 import sabot.onboard.motion.loop.RobotBoards;
+import sabot.onboard.motion.loop.SonarPing;
 
 /**
  * The robot's boards over a {@link SimulatedRobot} and a {@link SimulatedImu}: the encoder read answers the true
@@ -77,8 +77,8 @@ final class SimulatedBoards implements RobotBoards {
     }
 
     @Override
-    public List<Point2D> readSonar(int sensor) {
-        return List.of();
+    public Optional<SonarPing> readSonar(int sensor) {
+        return Optional.empty();
     }
 
     @Override

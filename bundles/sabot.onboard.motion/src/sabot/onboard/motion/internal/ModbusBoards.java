@@ -4,7 +4,10 @@ import java.io.IOException;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.List;
+import java.util.Map;
+import java.util.Optional;
 
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
@@ -23,6 +26,7 @@ import sabot.modbus.WheelCounts;
 import sabot.modbus.WheelState;
 import sabot.modbus.Wheels;
 import sabot.onboard.motion.loop.RobotBoards;
+import sabot.onboard.motion.loop.SonarPing;
 
 /** {@link RobotBoards} over the three board clients of one Modbus bus. */
 final class ModbusBoards implements RobotBoards {
@@ -40,6 +44,8 @@ final class ModbusBoards implements RobotBoards {
     private static final Duration STEP_GRACE = Duration.ofSeconds(1);
 
     private final ModbusBus bus;
+    /** Where each sonar sensor sits on the robot, learnt from its echoes; loop thread only. */
+    private final Map<Integer, Point2D> sonarOrigins = new HashMap<>();
 
     ModbusBoards(ModbusBus bus) {
         this.bus = bus;
@@ -113,10 +119,21 @@ final class ModbusBoards implements RobotBoards {
         return bus.sonar().sensorCount();
     }
 
+    /**
+     * The board reports the echo's position and range, not the sensor's: the sensor sits at the echo minus the range
+     * along the axis (its servo turns it in place), remembered per sensor for the pings that hear nothing.
+     */
     @Override
-    public List<Point2D> readSonar(int sensor) throws IOException {
+    public Optional<SonarPing> readSonar(int sensor) throws IOException {
         SonarReading r = bus.sonar().readSensor(sensor);
-        return r.valid() && r.range().isPresent() ? List.of(new Point2D(r.x(), r.y())) : List.of();
+        if (r.valid() && r.range().isPresent()) {
+            double range = r.range().getAsDouble();
+            Point2D origin = new Point2D(r.x() - range * Math.cos(r.angle()), r.y() - range * Math.sin(r.angle()));
+            sonarOrigins.put(sensor, origin);
+            return Optional.of(new SonarPing(origin, r.angle(), range, true));
+        }
+        Point2D origin = sonarOrigins.get(sensor);
+        return origin == null ? Optional.empty() : Optional.of(SonarPing.silence(origin, r.angle()));
     }
 
     @Override

@@ -441,10 +441,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     }
 
     @Override
-    public void teleop(Twist2D twist, Instant sent) throws CommandRefused {
+    public void teleop(Twist2D twist, Instant sent, Duration age) throws CommandRefused {
         TeleopTask t = teleopTask;
         if (t == null) {
             throw new CommandRefused(ControlMlCondition.UNSUPPORTED_OPERATION, "the teleop task is not running");
+        }
+        double maxAge = t.config().maxAge();
+        if (age.toNanos() > maxAge * 1e9) {
+            throw new CommandRefused(ControlMlCondition.STALE_COMMAND, "twist sent " + age.toMillis()
+                    + " ms ago, longer than teleop.maxAge (" + Math.round(maxAge * 1000) + " ms): dropped");
         }
         if (!twist.isFinite()) {
             throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "twist must be finite");

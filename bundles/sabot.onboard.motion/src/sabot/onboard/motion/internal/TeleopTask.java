@@ -32,6 +32,12 @@ public final class TeleopTask implements OnboardTask {
                 + "velocity smoother's command timeout is the same.", min = "0.05", max = "10")
         double timeout() default LoopDefaults.DEADMAN;
 
+        @AttributeDefinition(name = "Oldest twist", description = "Seconds since a joystick twist was sent (its "
+                + "send time on the operator's clock, moved by the measured clock offset) after which it is dropped "
+                + "(stale-command), whenever it arrives: a twist held by the network must not drive.", min = "0.01",
+                max = "10")
+        double maxAge() default LoopDefaults.TELEOP_MAX_AGE;
+
         @AttributeDefinition(name = "Largest linear speed", description = "Largest joystick linear speed, m/s (also "
                 + "bounded by the motion limits).", min = "0.01", max = "10")
         double maxLinear() default 0.5;

@@ -1,35 +1,47 @@
 package sabot.onboard.motion.loop;
 
-import java.util.ArrayDeque;
 import java.util.ArrayList;
-import java.util.Deque;
+import java.util.Iterator;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
 
 import sabot.controlml.payload.Obstacle;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
+import sabot.model.map.GridGeometry;
+import sabot.model.map.OccupancyGrid;
 import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 
 /**
- * The sonar echoes the loop remembers, in the map frame: those near a wall the map already has are dropped, the rest
- * are kept for the obstacle memory's time, reported (cm.obstacles), planned around, and checked against the path
- * ahead. Used by the loop's thread only.
+ * What the sonar saw, as an obstacle layer over the static map's grid (the costmap's raytracing, in the manner of
+ * ROS's range sensor layer): each ping clears the cells of its 30° cone up to the echo — nothing nearer answered — and,
+ * when the echo is not explained by the map, marks the arc of cells at its range across the cone, since the reflector
+ * may be anywhere on it. An echo is explained by the map when a mapped wall lies in the cone no further than the echo's
+ * range: the wall answered (a side wall seen at the cone's edge, the wall ahead). An echo nearer than every mapped
+ * wall in the cone is an obstacle the map does not have, even right in front of a wall. Marks are kept for the
+ * obstacle memory's time unless a later ping clears them; they are reported (cm.obstacles), planned around, checked
+ * against the path ahead and by the collision guard. Used by the loop's thread only.
  */
 final class EchoMemory {
 
     /** Half-angle of a sonar's beam (HC-SR04 figures, onboard-bridge/README.md): an echo lies within it. */
     static final double SONAR_HALF_BEAM = Math.toRadians(15);
-    /** Largest number of obstacle points kept (cm.obstacles allows 1024 rows). */
+    /** The sonar's largest range, m (HC-SR04: 4 m): a ping without an echo saw nothing that near. */
+    static final double SONAR_MAX_RANGE = 4.0;
+    /** Largest number of marked cells kept (cm.obstacles allows 1024 rows); the oldest go first. */
     static final int MAX_OBSTACLES = 1024;
-    /** Reported radius of one sonar obstacle point, m (one echo: the sonar's resolution, not the object's size). */
+    /** Reported radius of one marked cell, m (cm.obstacles). */
     static final double ECHO_RADIUS = 0.05;
-    /** Step along the trajectory ahead at which it is checked against the echoes, s. */
+    /** Step along the trajectory ahead at which it is checked against the marks, s. */
     private static final double BLOCKED_CHECK_STEP = 0.1;
 
     private final NavigationPlanner planner;
-    /** Each echo as {time s, x m, y m}, oldest first. */
-    private final Deque<double[]> echoes = new ArrayDeque<>();
+    /** The grid the marks index: the static map's; marks are dropped when the map changes. */
+    private GridGeometry geometry;
+    /** Marked cells: grid index to the time of the last echo that marked it, oldest first. */
+    private final LinkedHashMap<Integer, Double> marks = new LinkedHashMap<>();
 
     /** @param planner knows the static map, whose walls the sonar need not report again */
     EchoMemory(NavigationPlanner planner) {
@@ -37,48 +49,95 @@ final class EchoMemory {
     }
 
     /**
-     * Remembers one echo seen at {@code t} from {@code pose}.
-     *
-     * @param robotFrame the echo in the robot frame, m
+     * The band around an echo's range that it marks and that the map must reach to explain it, m: three sigmas of the
+     * board's range noise (3 mm + 0.5 % of the range, onboard-bridge/README.md), at least two cells.
      */
-    void add(double t, Pose2D pose, Point2D robotFrame) {
-        double c = Math.cos(pose.theta());
-        double s = Math.sin(pose.theta());
-        Point2D p = new Point2D(pose.x() + c * robotFrame.x() - s * robotFrame.y(),
-                pose.y() + s * robotFrame.x() + c * robotFrame.y());
-        // the board puts an echo on the beam's axis; the reflector may be anywhere across the beam at that range
-        double across = Math.hypot(robotFrame.x(), robotFrame.y()) * Math.sin(SONAR_HALF_BEAM);
-        if (planner.isNearStaticObstacle(p, across)) {
-            return;
-        }
-        echoes.addLast(new double[] { t, p.x(), p.y() });
-        while (echoes.size() > MAX_OBSTACLES) {
-            echoes.removeFirst();
-        }
-    }
-
-    /** Forgets the echoes older than {@code memory} seconds at {@code t}. */
-    void prune(double t, double memory) {
-        while (!echoes.isEmpty() && t - echoes.peekFirst()[0] > memory) {
-            echoes.removeFirst();
-        }
+    static double band(double range, double resolution) {
+        return Math.max(2 * resolution, 3 * (0.003 + 0.005 * range));
     }
 
     /**
-     * @param from      trajectory time from which to look, s
-     * @param lookahead s of driving checked
-     * @param clearance m an echo must keep from the robot's centre on the path
-     * @return whether an echo lies on the path ahead
+     * Takes one ping seen at {@code t} from {@code pose}.
+     *
+     * @return whether it marked cells (an obstacle the map does not have)
      */
-    boolean blocks(Trajectory trajectory, double from, double lookahead, double clearance) {
-        if (echoes.isEmpty()) {
+    boolean add(double t, Pose2D pose, SonarPing ping) {
+        OccupancyGrid map = planner.map();
+        GridGeometry g = map.geometry();
+        if (!g.equals(geometry)) {
+            marks.clear();
+            geometry = g;
+        }
+        double c = Math.cos(pose.theta());
+        double s = Math.sin(pose.theta());
+        double ox = pose.x() + c * ping.origin().x() - s * ping.origin().y();
+        double oy = pose.y() + s * ping.origin().x() + c * ping.origin().y();
+        double axis = pose.theta() + ping.axis();
+        double res = g.resolution();
+        double band = band(ping.range(), res);
+        double clearTo = ping.echo() ? ping.range() - band : ping.range();
+        if (clearTo > 0) {
+            Cone cone = new Cone(axis, clearTo, res);
+            for (int i = 0; i < cone.rays; i++) {
+                double a = cone.angle(i);
+                double dx = Math.cos(a);
+                double dy = Math.sin(a);
+                for (double d = 0; d < clearTo; d += res / 2) {
+                    int index = index(g, ox + d * dx, oy + d * dy);
+                    if (index >= 0) {
+                        marks.remove(index);
+                    }
+                }
+            }
+        }
+        if (!ping.echo() || wallWithin(map, ox, oy, axis, ping.range() + band)) {
             return false;
         }
-        double end = Math.min(trajectory.duration(), from + lookahead);
-        for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
-            TrajectorySample r = trajectory.sample(s);
-            for (double[] e : echoes) {
-                if (Math.hypot(e[1] - r.x(), e[2] - r.y()) < clearance) {
+        Cone arc = new Cone(axis, ping.range(), res);
+        boolean marked = false;
+        for (int i = 0; i < arc.rays; i++) {
+            double a = arc.angle(i);
+            int index = index(g, ox + ping.range() * Math.cos(a), oy + ping.range() * Math.sin(a));
+            if (index >= 0) {
+                marks.remove(index); // marked again: now the newest
+                marks.put(index, t);
+                marked = true;
+            }
+        }
+        while (marks.size() > MAX_OBSTACLES) {
+            marks.pollFirstEntry();
+        }
+        return marked;
+    }
+
+    /** Rays across a cone, spaced so that neighbours are at most half a cell apart at its far end. */
+    private static final class Cone {
+        final double axis;
+        final int rays;
+
+        Cone(double axis, double range, double resolution) {
+            this.axis = axis;
+            this.rays = 1 + Math.max(6, (int) Math.ceil(2 * SONAR_HALF_BEAM * range / (resolution / 2)));
+        }
+
+        double angle(int i) {
+            return axis - SONAR_HALF_BEAM + 2 * SONAR_HALF_BEAM * i / (rays - 1);
+        }
+    }
+
+    /** @return whether an occupied cell of the static map (or the map's edge) lies in the cone within {@code range} */
+    private static boolean wallWithin(OccupancyGrid map, double ox, double oy, double axis, double range) {
+        GridGeometry g = map.geometry();
+        double res = g.resolution();
+        Cone cone = new Cone(axis, range, res);
+        for (int i = 0; i < cone.rays; i++) {
+            double a = cone.angle(i);
+            double dx = Math.cos(a);
+            double dy = Math.sin(a);
+            for (double d = 0; d <= range; d += res / 2) {
+                int col = (int) Math.floor(g.toGridX(ox + d * dx));
+                int row = (int) Math.floor(g.toGridY(oy + d * dy));
+                if (!g.contains(col, row) || map.get(col, row) >= NavigationPlanner.OCCUPIED_THRESHOLD) {
                     return true;
                 }
             }
@@ -86,11 +145,60 @@ final class EchoMemory {
         return false;
     }
 
-    /** @return the distance from (x, y) to the nearest echo, m, or {@code limit} when none is nearer */
+    /** @return the cell's index in {@code g}, or -1 outside the grid */
+    private static int index(GridGeometry g, double x, double y) {
+        int col = (int) Math.floor(g.toGridX(x));
+        int row = (int) Math.floor(g.toGridY(y));
+        return g.contains(col, row) ? g.index(col, row) : -1;
+    }
+
+    private Point2D centre(int index) {
+        return geometry.cellCentre(index % geometry.width(), index / geometry.width());
+    }
+
+    /** Forgets the marks older than {@code memory} seconds at {@code t}. */
+    void prune(double t, double memory) {
+        Iterator<Map.Entry<Integer, Double>> it = marks.entrySet().iterator();
+        while (it.hasNext() && t - it.next().getValue() > memory) {
+            it.remove();
+        }
+    }
+
+    /**
+     * @param from      trajectory time from which to look, s
+     * @param lookahead s of driving checked
+     * @param clearance m a mark must keep from the robot's centre on the path
+     * @return whether a marked cell lies on the path ahead
+     */
+    boolean blocks(Trajectory trajectory, double from, double lookahead, double clearance) {
+        if (marks.isEmpty()) {
+            return false;
+        }
+        List<Point2D> points = points();
+        double end = Math.min(trajectory.duration(), from + lookahead);
+        for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
+            TrajectorySample r = trajectory.sample(s);
+            for (Point2D p : points) {
+                if (Math.hypot(p.x() - r.x(), p.y() - r.y()) < clearance) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    /** @return the distance from (x, y) to the nearest marked cell's centre, m, or {@code limit} when none is nearer */
     double nearest(double x, double y, double limit) {
         double best = limit;
-        for (double[] e : echoes) {
-            double d = Math.hypot(e[1] - x, e[2] - y);
+        if (marks.isEmpty()) {
+            return best;
+        }
+        int width = geometry.width();
+        double res = geometry.resolution();
+        double x0 = geometry.origin().x() + res / 2;
+        double y0 = geometry.origin().y() + res / 2;
+        for (int index : marks.keySet()) {
+            double d = Math.hypot(x0 + (index % width) * res - x, y0 + (index / width) * res - y);
             if (d < best) {
                 best = d;
             }
@@ -98,20 +206,21 @@ final class EchoMemory {
         return best;
     }
 
-    /** @return the echoes as points, for the planner */
+    /** @return the marked cells' centres, for the planner */
     List<Point2D> points() {
-        List<Point2D> points = new ArrayList<>(echoes.size());
-        for (double[] e : echoes) {
-            points.add(new Point2D(e[1], e[2]));
+        List<Point2D> points = new ArrayList<>(marks.size());
+        for (int index : marks.keySet()) {
+            points.add(centre(index));
         }
         return points;
     }
 
-    /** @return the echoes as reported obstacles */
+    /** @return the marked cells as reported obstacles */
     List<Obstacle> obstacles() {
-        List<Obstacle> obstacles = new ArrayList<>(echoes.size());
-        for (double[] e : echoes) {
-            obstacles.add(new Obstacle(e[1], e[2], ECHO_RADIUS));
+        List<Obstacle> obstacles = new ArrayList<>(marks.size());
+        for (int index : marks.keySet()) {
+            Point2D p = centre(index);
+            obstacles.add(new Obstacle(p.x(), p.y(), ECHO_RADIUS));
         }
         return obstacles;
     }

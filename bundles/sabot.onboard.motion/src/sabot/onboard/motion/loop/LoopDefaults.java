@@ -41,6 +41,11 @@ public final class LoopDefaults {
     // teleop task
     /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */
     public static final double DEADMAN = 0.5;
+    /**
+     * {@code teleop.maxAge}, s: a twist sent longer ago is dropped. The deadman's time: a twist the deadman would
+     * already have braked for must not drive.
+     */
+    public static final double TELEOP_MAX_AGE = DEADMAN;
 
     // planner task
     /** {@code planner.algorithm}. */

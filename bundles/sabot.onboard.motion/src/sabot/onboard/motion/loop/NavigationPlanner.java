@@ -24,7 +24,7 @@ import sabot.planner.costmap.MovingObstacleModel;
 public final class NavigationPlanner implements AutoCloseable {
 
     /** Occupancy (0..100) from which a map cell is a known obstacle (ROS map_server: occupied_thresh 0.65). */
-    private static final int OCCUPIED_THRESHOLD = 65;
+    static final int OCCUPIED_THRESHOLD = 65;
     /** Step along an imposed path at which the footprint is checked, m. */
     static final double COLLISION_STEP = 0.02;
 

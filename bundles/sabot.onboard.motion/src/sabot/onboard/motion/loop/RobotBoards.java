@@ -2,10 +2,9 @@ package sabot.onboard.motion.loop;
 
 import java.io.IOException;
 import java.time.Duration;
-import java.util.List;
+import java.util.Optional;
 
 import sabot.controlml.payload.PidGains;
-import sabot.model.geometry.Point2D;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
 
@@ -52,8 +51,11 @@ public interface RobotBoards {
     /** @return the number of sonar sensors */
     int sonarSensors();
 
-    /** @return the echo of one sonar sensor as a point in the robot frame (metres), or empty; one transaction */
-    List<Point2D> readSonar(int sensor) throws IOException;
+    /**
+     * @return the latest ping of one sonar sensor (where it sat and pointed, what answered), or empty when the board
+     *         cannot say where the sensor is; one transaction
+     */
+    Optional<SonarPing> readSonar(int sensor) throws IOException;
 
     /** Brakes both motors (set-points zeroed) or releases the brake. */
     void brake(boolean on) throws IOException;

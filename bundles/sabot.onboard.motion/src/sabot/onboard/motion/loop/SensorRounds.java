@@ -2,6 +2,7 @@ package sabot.onboard.motion.loop;
 
 import java.io.IOException;
 import java.util.HashSet;
+import java.util.Optional;
 import java.util.Set;
 import java.util.function.DoubleSupplier;
 
@@ -9,7 +10,6 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import sabot.localization.MeasurementResult;
-import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
@@ -91,8 +91,9 @@ final class SensorRounds {
             localizer.inertial(now.getAsDouble(), s.yawRate(), s.forwardAcceleration());
         } else {
             int sensor = sonarRound++ % sonars;
-            for (Point2D p : boards.readSonar(sensor)) {
-                echoes.add(t, pose, p);
+            Optional<SonarPing> ping = boards.readSonar(sensor);
+            if (ping.isPresent()) {
+                echoes.add(t, pose, ping.get());
             }
         }
     }

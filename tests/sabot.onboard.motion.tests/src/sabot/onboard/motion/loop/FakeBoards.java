@@ -4,6 +4,7 @@ import java.io.IOException;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Optional;
 
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
@@ -101,9 +102,14 @@ final class FakeBoards implements RobotBoards {
         return 1;
     }
 
+    /** The first scripted echo, from a sensor at the robot's centre looking at it; nothing when there is none. */
     @Override
-    public List<Point2D> readSonar(int sensor) {
-        return echoes;
+    public Optional<SonarPing> readSonar(int sensor) {
+        if (echoes.isEmpty()) {
+            return Optional.empty();
+        }
+        Point2D e = echoes.get(0);
+        return Optional.of(new SonarPing(new Point2D(0, 0), Math.atan2(e.y(), e.x()), Math.hypot(e.x(), e.y()), true));
     }
 
     @Override

@@ -165,7 +165,8 @@ public final class ControlMlEndpoint {
         m.onGet(Resources.POSITION, (request, none) -> Outcome.success(motion.pose()));
         m.onSet(Resources.POSITION, (request, estimate) -> apply(() -> motion.relocalise(estimate.pose())));
         m.onGet(Resources.VELOCITY, (request, none) -> Outcome.success(motion.velocity()));
-        m.onSet(Resources.VELOCITY, (request, twist) -> apply(() -> motion.teleop(twist.twist(), twist.time())));
+        m.onSet(Resources.VELOCITY, (request, twist) -> apply(() -> motion.teleop(twist.twist(), twist.time(),
+                request.age())));
         m.onGet(Resources.GOAL, (request, none) -> goal());
         m.onSet(Resources.GOAL, (request, goal) -> apply(() -> motion.navigateTo(goal)));
         m.onGet(Resources.TRAJECTORY, (request, none) -> Outcome.success(motion.trajectory()));

@@ -16,6 +16,7 @@ import org.jxmpp.stringprep.XmppStringprepException;
 import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
+import sabot.controlml.ControlMl;
 import sabot.fleet.LinkWatch;
 import sabot.onboard.task.InvalidSettings;
 import sabot.onboard.task.TaskProperties;
@@ -51,8 +52,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     static final String DEFAULT_RESOURCE = "onboard";
     static final double DEFAULT_RECONNECT_MIN_S = 1;
     static final double DEFAULT_RECONNECT_MAX_S = 30;
-    /** {@code StaleCommandPolicy.DEFAULT}'s age, s (a test checks they agree: a Metatype default is a constant). */
-    static final double DEFAULT_STALE_COMMAND_AFTER_S = 30;
+    /** {@code StaleCommandPolicy.DEFAULT}'s age, s. */
+    static final double DEFAULT_STALE_COMMAND_AFTER_S = ControlMl.DEFAULT_STALE_COMMAND_S;
     /** Default liveness interval, s: a silent link is noticed within 2¼ of it, so that a moving robot brakes. */
     static final double DEFAULT_LIVENESS_S = LinkWatch.DEFAULT_INTERVAL_S;
     /** Shortest reconnection delay, s. */
@@ -107,8 +108,10 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
                 + "every contact with a mutual subscription in the robot's roster may set.")
         String operators() default "";
 
-        @AttributeDefinition(name = "Stale command age", description = "Seconds a set may have waited at the server "
-                + "(offline delivery) before it is refused as stale.", min = "0", max = "86400")
+        @AttributeDefinition(name = "Stale command age", description = "Seconds since a set was sent (its send "
+                + "time, on the sender's clock as measured by XEP-0202, or the server's delay stamp of an offline "
+                + "delivery) after which it is refused as stale; keep it below the workbench's request timeout (10 s)"
+                + " so that a command its operator saw time out is never applied.", min = "0", max = "86400")
         double staleCommandAfter() default DEFAULT_STALE_COMMAND_AFTER_S;
 
         @AttributeDefinition(name = "Liveness interval", description = "Seconds without anything from the server "

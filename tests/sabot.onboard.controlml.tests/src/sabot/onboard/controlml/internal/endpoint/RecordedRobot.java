@@ -190,7 +190,8 @@ final class RecordedRobot implements RobotMotion {
     }
 
     @Override
-    public synchronized void teleop(Twist2D command, java.time.Instant sent) throws CommandRefused {
+    public synchronized void teleop(Twist2D command, java.time.Instant sent, java.time.Duration age)
+            throws CommandRefused {
         calls.add("teleop " + command);
         requireNoMaintenance();
         if (mission.state().isActive()) {
