@@ -158,7 +158,7 @@ final class FleetConnection {
                 }
             });
             // a silent network (nothing passes, nothing closes) greys the robots and reconnects within seconds
-            linkWatch = new LinkWatch(c, LINK_LIVENESS, watchThreads, why -> connector.execute(() -> lost(s, why)));
+            linkWatch = new LinkWatch(c, LINK_LIVENESS, watchThreads, why -> silent(s, why));
             c.connect().login();
             linkWatch.online();
             r.reloadAndWait(); // the robots are known before the status says online
@@ -191,6 +191,24 @@ final class FleetConnection {
             session = null;
             retry(account.jid(), describe(e));
         }
+    }
+
+    /**
+     * Watch thread: the link went silent. The connection thread may be waiting out a request's timeout on the dead
+     * link (a telemetry subscription, a roster reconciliation), so the loss is shown here at once: the connection is
+     * shut (further requests fail at once instead of waiting), the status says why and the robots go grey; the
+     * connection thread closes the session and retries when it is free.
+     */
+    private void silent(FleetSession s, String why) {
+        if (session != s) {
+            return;
+        }
+        s.connection().instantShutdown();
+        registry.setStatus(State.RETRYING, registry.status().account(), why);
+        for (String jid : registry.jids()) {
+            registry.update(jid, r -> r.withPresence(Availability.OFFLINE, ""));
+        }
+        connector.execute(() -> lost(s, why));
     }
 
     private void lost(FleetSession s, String why) {
