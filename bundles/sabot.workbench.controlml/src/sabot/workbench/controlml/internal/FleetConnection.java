@@ -56,6 +56,8 @@ final class FleetConnection {
     private final AtomicBoolean reconnectQueued = new AtomicBoolean();
     /** The live session, touched on the connection thread only (read elsewhere). */
     private volatile FleetSession session;
+    /** The connection thread (the connector's one thread), for {@link #silent} to interrupt its waits. */
+    private volatile Thread connectorThread;
     /** The current session's watch on a silent link; connection thread only. */
     private LinkWatch linkWatch;
 
@@ -113,6 +115,7 @@ final class FleetConnection {
 
     /** Connection thread: connects with the stored account, or schedules the next attempt. */
     private void connect() {
+        connectorThread = Thread.currentThread();
         closeSession();
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         XmppAccount account = store.load();
@@ -207,6 +210,13 @@ final class FleetConnection {
         registry.setStatus(State.RETRYING, registry.status().account(), why);
         for (String jid : registry.jids()) {
             registry.update(jid, r -> r.withPresence(Availability.OFFLINE, ""));
+        }
+        // A request the connection thread waits on ends at its timeout, which a shut connection does not shorten:
+        // interrupt the wait (its code takes an interruption as a failed request; the executor clears the flag
+        // before its next task, and an idle executor ignores it).
+        Thread busy = connectorThread;
+        if (busy != null) {
+            busy.interrupt();
         }
         connector.execute(() -> lost(s, why));
     }
