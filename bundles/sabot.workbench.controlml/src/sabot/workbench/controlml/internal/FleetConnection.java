@@ -56,6 +56,8 @@ final class FleetConnection {
     private final AtomicBoolean reconnectQueued = new AtomicBoolean();
     /** The live session, touched on the connection thread only (read elsewhere). */
     private volatile FleetSession session;
+    /** The connection thread (the connector's one thread), for {@link #silent} to interrupt its waits. */
+    private volatile Thread connectorThread;
     /** The current session's watch on a silent link; connection thread only. */
     private LinkWatch linkWatch;
 
@@ -113,6 +115,7 @@ final class FleetConnection {
 
     /** Connection thread: connects with the stored account, or schedules the next attempt. */
     private void connect() {
+        connectorThread = Thread.currentThread();
         closeSession();
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         XmppAccount account = store.load();
@@ -158,7 +161,7 @@ final class FleetConnection {
                 }
             });
             // a silent network (nothing passes, nothing closes) greys the robots and reconnects within seconds
-            linkWatch = new LinkWatch(c, LINK_LIVENESS, watchThreads, why -> connector.execute(() -> lost(s, why)));
+            linkWatch = new LinkWatch(c, LINK_LIVENESS, watchThreads, why -> silent(s, why));
             c.connect().login();
             linkWatch.online();
             r.reloadAndWait(); // the robots are known before the status says online
@@ -191,6 +194,31 @@ final class FleetConnection {
             session = null;
             retry(account.jid(), describe(e));
         }
+    }
+
+    /**
+     * Watch thread: the link went silent. The connection thread may be waiting out a request's timeout on the dead
+     * link (a telemetry subscription, a roster reconciliation), so the loss is shown here at once: the connection is
+     * shut (further requests fail at once instead of waiting), the status says why and the robots go grey; the
+     * connection thread closes the session and retries when it is free.
+     */
+    private void silent(FleetSession s, String why) {
+        if (session != s) {
+            return;
+        }
+        s.connection().instantShutdown();
+        registry.setStatus(State.RETRYING, registry.status().account(), why);
+        for (String jid : registry.jids()) {
+            registry.update(jid, r -> r.withPresence(Availability.OFFLINE, ""));
+        }
+        // A request the connection thread waits on ends at its timeout, which a shut connection does not shorten:
+        // interrupt the wait (its code takes an interruption as a failed request; the executor clears the flag
+        // before its next task, and an idle executor ignores it).
+        Thread busy = connectorThread;
+        if (busy != null) {
+            busy.interrupt();
+        }
+        connector.execute(() -> lost(s, why));
     }
 
     private void lost(FleetSession s, String why) {
