@@ -223,7 +223,7 @@ async def refusals(op: Peer, viewer: Peer, stranger: Peer, robot: str) -> None:
         f"type='set' id='{ids.next()}' res='cm.goal'", goal_xml(), stamp=False)), "bad-attributes")
     a = await op.raw(robot, "set", control_ml(f"type='set' id='{ids.next()}' res='cm.limits'", ET.tostring(cm.encode_record(
         "cm.limits", {"maxLinearSpeed": 0.5, "maxAngularSpeed": 1.0, "maxLinearAcceleration": 0.5,
-                      "maxAngularAcceleration": 1.0}, text_form=False)), stamp=False))
+                      "maxAngularAcceleration": 1.0}, text_form=False), encoding="unicode"), stamp=False))
     check("a cm.limits set without a send time is applied (it does not move the robot)", a.type == "result",
           str(a))
     an_hour_ago = cm.utc_time(datetime.now(timezone.utc) - timedelta(hours=1))

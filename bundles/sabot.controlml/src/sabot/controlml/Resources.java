@@ -46,8 +46,9 @@ public final class Resources {
             true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1))
                     .movingTheRobot();
     /** {@code cm.trajectory} (get/set): timed path. */
-    public static final Resource<TrajectoryPayload, NoQuery> TRAJECTORY = new Resource<>("cm.trajectory",
-            TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)").movingTheRobot();
+    public static final Resource<TrajectoryPayload, NoQuery> TRAJECTORY = new Resource<TrajectoryPayload, NoQuery>(
+            "cm.trajectory", TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)")
+                    .movingTheRobot();
     /** {@code cm.map} (get/set): occupancy grid. */
     public static final Resource<GridMap, NoQuery> MAP = new Resource<>("cm.map", GridMap.CODEC, null, true, true,
             "occupancy grid (at most 64 KiB of payload; larger maps via cm.fs)");
@@ -62,8 +63,8 @@ public final class Resources {
             LimitsPayload.CODEC, null, true, true, "speed and acceleration limits").withRecordStructure(
                     new LimitsPayload(1, 1, 1, 1));
     /** {@code cm.mission} (get: state; set: pause/resume/abort/maintenance). */
-    public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<>("cm.mission", MissionStatus.CODEC,
-            null, true, true, "mission state and maintenance mode").movingTheRobot();
+    public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<MissionStatus, NoQuery>("cm.mission",
+            MissionStatus.CODEC, null, true, true, "mission state and maintenance mode").movingTheRobot();
     /** {@code cm.tasks} (get): loaded tasks. */
     public static final Resource<TaskList, NoQuery> TASKS = new Resource<>("cm.tasks", TaskList.CODEC, null, true,
             false, "tasks loaded on the robot");
