@@ -19,8 +19,8 @@ import sabot.testsupport.robot.SimProcess;
 
 /**
  * The collision guard on the running robot, judged on the simulator's truth: a joystick held towards the lab's
- * partition (a wall of the map) and towards a crate that is on no map (only the sonar sees it) stops the robot short
- * of each without a contact; in open space the joystick's speed is not cut.
+ * partition (a wall of the map), towards a crate that is on no map and towards a standing robot (only the sonar sees
+ * them) stops the robot short of each without a contact; in open space the joystick's speed is not cut.
  */
 class CollisionGuardTest extends RigTest {
 
@@ -82,6 +82,27 @@ class CollisionGuardTest extends RigTest {
                 awaitSimTime(rig.sim, 3.5);
             }
             assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
+        }
+    }
+
+    /**
+     * A second robot of the simulator stands 0.8 m ahead (centre to centre; the simulator puts robot 2 there): only
+     * the sonar sees it, as a crate. The joystick at the top speed stops the robot short of it without a contact.
+     */
+    @Test
+    void joystickTowardsAStandingRobotStopsShortOfIt(@TempDir Path dir) throws Exception {
+        double[] start = { WEST_OF_PARTITION[0], WEST_OF_PARTITION[1], Math.PI / 2 };
+        try (RobotRig rig = RobotRig.start(xmpp, dir, start, new String[] { "--robots", "2" }, "")) {
+            SimProcess.Truth other = rig.sim.truth(2);
+            SimProcess.Truth stopped = holdJoystick(rig, TOP_SPEED, 4);
+            double gap = stopped.distanceTo(other.x(), other.y()) - 2 * RADIUS;
+            System.out.printf(Locale.ROOT, "[figure] collision guard, joystick at %.1f m/s towards a standing robot: "
+                    + "stopped %.3f m short, contacts %d%n", TOP_SPEED, gap, stopped.contacts());
+            assertEquals(0, stopped.contacts(), "touched the other robot: " + stopped);
+            assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
+            assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the other robot");
+            SimProcess.Truth still = rig.sim.truth(2);
+            assertTrue(still.distanceTo(other.x(), other.y()) < 0.005, "the other robot was pushed: " + still);
         }
     }
 

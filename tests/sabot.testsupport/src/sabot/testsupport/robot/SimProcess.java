@@ -221,7 +221,12 @@ public final class SimProcess implements AutoCloseable {
 
     /** @return robot 1's true state now */
     public Truth truth() throws IOException {
-        String answer = command("truth 1");
+        return truth(1);
+    }
+
+    /** @return that robot's true state now (robots are numbered from 1) */
+    public Truth truth(int robot) throws IOException {
+        String answer = command("truth " + robot);
         double[] v = new double[7];
         String[] names = { "t", "x", "y", "theta", "v", "omega", "contacts" };
         Matcher m = FIELD.matcher(answer);

@@ -60,7 +60,7 @@ class ControlMlSettingsTest {
         assertEquals(Duration.ofSeconds(1), s.reconnectMin());
         assertEquals(Duration.ofSeconds(30), s.reconnectMax());
         assertEquals(Set.of(), s.operators());
-        assertEquals(Duration.ofSeconds(30), s.staleCommandAfter());
+        assertEquals(Duration.ofSeconds(5), s.staleCommandAfter()); // below the workbench's 10 s request timeout
         assertEquals("sabot-01", s.robotName(), "without robot.name, the JID's local part");
         assertTrue(!s.toString().contains("s3cret"), "the password is never printed");
     }
