@@ -142,6 +142,9 @@ final class FleetConnection {
                             .getLocalpart().toString(), new String(password)).setResource(RESOURCE_PREFIX + Long
                                     .toHexString(System.nanoTime() & 0xffffff)).build());
             ReconnectionManager.getInstanceFor(c).disableAutomaticReconnection(); // our own back-off, below
+            // Each attempt is a new connection, never a resumed stream: without resumption a request on a lost
+            // connection fails at once instead of being queued for a resumption that never comes.
+            c.setUseStreamManagementResumption(false);
             ControlMlManager manager = ControlMlManager.getInstanceFor(c);
             manager.setRequestTimeout(requestTimeout);
             Roster r = Roster.getInstanceFor(c);

@@ -161,8 +161,8 @@ final class FleetRoster {
 
     /** Connection thread, every {@link #RECONCILE_MS} while the session lives: see there. */
     private void reconcile(FleetSession s) {
-        if (current.get() != s) {
-            return;
+        if (current.get() != s || !s.connection().isAuthenticated()) {
+            return; // a lost session's roster still holds the presences it had: they would undo the loss
         }
         for (RobotState r : registry.robots()) {
             try {
