@@ -58,13 +58,13 @@ class CollisionGuardTest extends RigTest {
         double crateRadius = 0.2;
         double freeAhead = 1.0;
         try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], "")) {
-            String verb = "add";
+            boolean first = true;
             for (double speed : new double[] { 0.1, 0.3, 0.5 }) {
                 SimProcess.Truth start = rig.sim.truth();
                 double crateX = start.x() + RADIUS + freeAhead + crateRadius;
-                rig.sim.command(String.format(Locale.ROOT, "obstacle %s crate %.3f 1.00 %.2f", verb, crateX,
-                        crateRadius));
-                verb = "move";
+                rig.sim.command(first ? String.format(Locale.ROOT, "obstacle add crate %.3f 1.00 %.2f", crateX,
+                        crateRadius) : String.format(Locale.ROOT, "obstacle move crate %.3f 1.00", crateX));
+                first = false;
                 double[] top = { 0 };
                 SimProcess.Truth stopped = holdJoystick(rig, speed, freeAhead / speed + 3, () -> {
                     MissionStatus m = rig.get(Resources.MISSION);
