@@ -250,10 +250,13 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         boolean nowOnline = false;
         try {
             try {
-                if (!connection.isConnected()) {
-                    connection.connect();
-                }
                 if (!connection.isAuthenticated()) {
+                    if (connection.isConnected()) {
+                        // half made by an attempt that timed out on a silent network: its stream's state would be
+                        // taken for this one's (Smack then finds no SASL mechanisms, attempt after attempt)
+                        connection.instantShutdown();
+                    }
+                    connection.connect();
                     connection.login();
                 }
             } catch (SmackException | XMPPException | java.io.IOException | RuntimeException e) {
