@@ -12,14 +12,17 @@ import java.util.concurrent.CopyOnWriteArrayList;
 
 /**
  * A TCP relay on loopback between a client and a server that can go silent: while silenced it passes nothing in
- * either direction and closes nothing (no FIN, no RST), as a Wi-Fi dead spot or a broken switch does; new connections
- * are accepted and then left silent too. Resumed, it passes again what it held. Daemon threads, one pair per
+ * either direction on the connections it carries and closes none of them (no FIN, no RST), as a Wi-Fi dead spot or a
+ * broken switch does; a new connection's handshake fails meanwhile (the port is closed). Resumed, it passes again
+ * what it held and takes new connections on the same port. Daemon threads, one pair per
  * connection; {@link #close()} ends them all.
  */
 public final class SilentRelay implements AutoCloseable {
 
-    private final ServerSocket listener;
+    private final int port;
     private final InetSocketAddress target;
+    /** The listening socket; closed while silent (guarded by {@link #gate}). */
+    private ServerSocket listener;
     private final List<Socket> sockets = new CopyOnWriteArrayList<>();
     private final Object gate = new Object();
     private boolean silent;
@@ -31,35 +34,51 @@ public final class SilentRelay implements AutoCloseable {
     public SilentRelay(int targetPort) throws IOException {
         this.target = new InetSocketAddress(InetAddress.getLoopbackAddress(), targetPort);
         this.listener = new ServerSocket(0, 16, InetAddress.getLoopbackAddress());
-        Thread acceptor = new Thread(this::accept, "silent-relay-accept");
+        this.port = listener.getLocalPort();
+        startAccepting(listener);
+    }
+
+    private void startAccepting(ServerSocket on) {
+        Thread acceptor = new Thread(() -> accept(on), "silent-relay-accept");
         acceptor.setDaemon(true);
         acceptor.start();
     }
 
     /** @return the port clients connect to */
     public int port() {
-        return listener.getLocalPort();
+        return port;
     }
 
-    /** From now on nothing passes, in either direction, on any connection. */
-    public void silence() {
+    /**
+     * From now on nothing passes, in either direction, on any connection; a new connection's handshake fails (the
+     * port is closed: refused at once, where a dead link would let it time out).
+     */
+    public void silence() throws IOException {
         synchronized (gate) {
             silent = true;
+            listener.close();
         }
     }
 
-    /** Passes traffic again, what was held first. */
-    public void resume() {
+    /** Passes traffic again, what was held first, and takes new connections on the same port. */
+    public void resume() throws IOException {
         synchronized (gate) {
             silent = false;
             gate.notifyAll();
+            if (!closed && listener.isClosed()) {
+                ServerSocket again = new ServerSocket();
+                again.setReuseAddress(true);
+                again.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), port), 16);
+                listener = again;
+                startAccepting(again);
+            }
         }
     }
 
-    private void accept() {
-        while (!closed) {
+    private void accept(ServerSocket on) {
+        while (!closed && !on.isClosed()) {
             try {
-                Socket client = listener.accept();
+                Socket client = on.accept();
                 Socket server = new Socket();
                 server.connect(target, 5000);
                 client.setTcpNoDelay(true);
@@ -69,7 +88,7 @@ public final class SilentRelay implements AutoCloseable {
                 pump(client, server, "up");
                 pump(server, client, "down");
             } catch (IOException e) {
-                if (closed) {
+                if (closed || on.isClosed()) {
                     return;
                 }
             }
@@ -120,12 +139,15 @@ public final class SilentRelay implements AutoCloseable {
 
     @Override
     public void close() {
-        closed = true;
-        resume();
-        try {
-            listener.close();
-        } catch (IOException ignored) {
-            // closing
+        synchronized (gate) {
+            closed = true;
+            silent = false;
+            gate.notifyAll();
+            try {
+                listener.close();
+            } catch (IOException ignored) {
+                // closing
+            }
         }
         sockets.forEach(SilentRelay::closeQuietly);
     }
