@@ -75,6 +75,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     private final MapViewport viewport = new MapViewport(50, 5, 5);
     private final List<ISelectionChangedListener> selectionListeners = new ArrayList<>();
+    /** How a robot's collision guard says that it stopped before an obstacle (docs/USER-GUIDE.md). */
+    static final String GUARD_STOP = "stopped: obstacle ";
+    /** The robots whose guard stop the status line has told (UI thread): told once per stop. */
+    private final java.util.Set<String> guardStopped = new java.util.HashSet<>();
     private final PaintObservers observers = new PaintObservers();
     private final GoalGesture gesture = new GoalGesture(viewport);
     private final DrawnWaiters waiters = new DrawnWaiters();
@@ -312,10 +316,43 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (canvas.isDisposed()) {
             return;
         }
+        reportGuardStops();
         if (painter.map() == null) {
             mapFetch.request();
         }
         canvas.redraw();
+    }
+
+    /**
+     * Says in the status line, once per stop, that a robot's collision guard stopped it before an obstacle
+     * ({@code sabot-01: stopped: obstacle 0.31 m ahead}): the robot's own words, read from its mission's detail.
+     */
+    private void reportGuardStops() {
+        for (RobotState r : fleet.robots()) {
+            String stop = guardStop(r);
+            if (stop == null) {
+                guardStopped.remove(r.jid());
+            } else if (guardStopped.add(r.jid())) {
+                show(r.name() + ": " + stop, false);
+            }
+        }
+    }
+
+    /**
+     * @return the part of the robot's mission detail in which its collision guard says it stopped before an obstacle
+     *         ({@code stopped: obstacle 0.31 m ahead}; during a mission it follows the mission's own detail after
+     *         {@code "; "}), or null
+     */
+    static String guardStop(RobotState r) {
+        if (r.mission() == null) {
+            return null;
+        }
+        for (String part : r.mission().detail().split("; ")) {
+            if (part.startsWith(GUARD_STOP)) {
+                return part;
+            }
+        }
+        return null;
     }
 
     /** Shows a map (UI thread). */
