@@ -414,6 +414,9 @@ public final class ControlMlManager extends Manager {
             return;
         }
         if (((Presence) stanza).isAvailable()) {
+            if (endpoint.accessPolicy().levelOf(from) != AccessLevel.SET) {
+                return; // only those who may command: not every contact or room occupant
+            }
             clocks.measure(from);
         } else {
             clocks.forget(from);

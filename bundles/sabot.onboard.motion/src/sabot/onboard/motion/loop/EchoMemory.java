@@ -19,7 +19,7 @@ import sabot.model.path.TrajectorySample;
  * ROS's range sensor layer): each ping clears the cells of its 30° cone up to the echo — nothing nearer answered — and,
  * when the echo is not explained by the map, marks the arc of cells at its range across the cone, since the reflector
  * may be anywhere on it. An echo is explained by the map when a mapped wall lies in the cone no further than the echo's
- * range: the wall answered (a side wall seen at the cone's edge, the wall ahead). An echo nearer than every mapped
+ * range (allowing for the pose estimate's error: {@link #POSE_ALLOWANCE}, {@link #ANGLE_ALLOWANCE}): the wall answered (a side wall seen at the cone's edge, the wall ahead). An echo nearer than every mapped
  * wall in the cone is an obstacle the map does not have, even right in front of a wall. Marks are kept for the
  * obstacle memory's time unless a later ping clears them; they are reported (cm.obstacles), planned around, checked
  * against the path ahead and by the collision guard. Used by the loop's thread only.
@@ -34,6 +34,13 @@ final class EchoMemory {
     static final int MAX_OBSTACLES = 1024;
     /** Reported radius of one marked cell, m (cm.obstacles). */
     static final double ECHO_RADIUS = 0.05;
+    /**
+     * How much nearer than a mapped wall an echo may come and still be the wall's, m, and how far outside the beam
+     * the wall may lie, rad: the pose estimate's error (a few centimetres, about a degree; docs/ONBOARD.md) and the
+     * map's cells put the wall a little off where the robot believes it sees it.
+     */
+    static final double POSE_ALLOWANCE = 0.1;
+    static final double ANGLE_ALLOWANCE = Math.toRadians(2);
     /** Step along the trajectory ahead at which it is checked against the marks, s. */
     private static final double BLOCKED_CHECK_STEP = 0.1;
 
@@ -90,7 +97,7 @@ final class EchoMemory {
                 }
             }
         }
-        if (!ping.echo() || wallWithin(map, ox, oy, axis, ping.range() + band)) {
+        if (!ping.echo() || wallWithin(map, ox, oy, axis, ping.range() + band + POSE_ALLOWANCE)) {
             return false;
         }
         Cone arc = new Cone(axis, ping.range(), res);
@@ -113,23 +120,32 @@ final class EchoMemory {
     /** Rays across a cone, spaced so that neighbours are at most half a cell apart at its far end. */
     private static final class Cone {
         final double axis;
+        final double half;
         final int rays;
 
         Cone(double axis, double range, double resolution) {
+            this(axis, SONAR_HALF_BEAM, range, resolution);
+        }
+
+        Cone(double axis, double half, double range, double resolution) {
             this.axis = axis;
-            this.rays = 1 + Math.max(6, (int) Math.ceil(2 * SONAR_HALF_BEAM * range / (resolution / 2)));
+            this.half = half;
+            this.rays = 1 + Math.max(6, (int) Math.ceil(2 * half * range / (resolution / 2)));
         }
 
         double angle(int i) {
-            return axis - SONAR_HALF_BEAM + 2 * SONAR_HALF_BEAM * i / (rays - 1);
+            return axis - half + 2 * half * i / (rays - 1);
         }
     }
 
-    /** @return whether an occupied cell of the static map (or the map's edge) lies in the cone within {@code range} */
+    /**
+     * @return whether an occupied cell of the static map (or the map's edge) lies in the cone, widened by
+     *         {@link #ANGLE_ALLOWANCE}, within {@code range}
+     */
     private static boolean wallWithin(OccupancyGrid map, double ox, double oy, double axis, double range) {
         GridGeometry g = map.geometry();
         double res = g.resolution();
-        Cone cone = new Cone(axis, range, res);
+        Cone cone = new Cone(axis, SONAR_HALF_BEAM + ANGLE_ALLOWANCE, range, res);
         for (int i = 0; i < cone.rays; i++) {
             double a = cone.angle(i);
             double dx = Math.cos(a);

@@ -115,6 +115,16 @@ class EchoMemoryTest {
     }
 
     @Test
+    void aWallSeenALittleNearerThanTheMapHasItIsStillTheWall() {
+        // the estimate a few centimetres off: the wall 2 m ahead answers at 1.93 m, and 2° beside the beam
+        EchoMemory m = memory(LoopRig.wallAt(3.0));
+        assertFalse(m.add(0, ROBOT, echo(0, 2.0 - 0.07)), m.points().toString());
+        assertTrue(m.points().isEmpty());
+        // a crate 0.25 m before it is not the wall
+        assertTrue(m.add(0.1, ROBOT, echo(0, 2.0 - 0.25)));
+    }
+
+    @Test
     void marksAreForgottenAfterTheMemoryUnlessSeenAgain() {
         EchoMemory m = memory(LoopRig.emptyMap());
         m.add(0, ROBOT, echo(Math.toRadians(40), 1.5));
