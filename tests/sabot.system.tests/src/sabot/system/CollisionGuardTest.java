@@ -5,14 +5,20 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
 import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.TimeUnit;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.TrajectoryPayload;
+import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Twist2D;
 import sabot.testsupport.robot.SimProcess;
@@ -20,7 +26,8 @@ import sabot.testsupport.robot.SimProcess;
 /**
  * The collision guard on the running robot, judged on the simulator's truth: a joystick held towards the lab's
  * partition (a wall of the map), towards a crate that is on no map and towards a standing robot (only the sonar sees
- * them) stops the robot short of each without a contact; in open space the joystick's speed is not cut.
+ * them) stops the robot short of each without a contact; in open space the joystick's speed is not cut. An imposed
+ * trajectory through a wall is refused, a free one followed.
  */
 class CollisionGuardTest extends RigTest {
 
@@ -118,6 +125,44 @@ class CollisionGuardTest extends RigTest {
             }
             assertTrue(top >= 0.95 * speed, "the guard cut the speed in open space: top " + top + " m/s");
         }
+    }
+
+    /**
+     * An imposed {@code cm.trajectory} is checked against the map like the joystick: one through the partition is
+     * refused with {@code invalid-value} naming its first colliding point, and the robot does not move; one that
+     * stops short of the partition is followed, and the robot ends where it ends.
+     */
+    @Test
+    void anImposedTrajectoryThroughTheWallIsRefusedAndAFreeOneIsFollowed(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, WEST_OF_PARTITION, new String[0], "")) {
+            SimProcess.Truth before = rig.sim.truth();
+            Outcome<TrajectoryPayload> through = rig.operator.set(rig.robot, Resources.TRAJECTORY, eastward(
+                    WEST_OF_PARTITION[0], 4.5, WEST_OF_PARTITION[1]));
+            assertEquals(ControlMlCondition.INVALID_VALUE, through.errorOrNull().cmCondition(), through.toString());
+            assertTrue(through.errorOrNull().text().matches("trajectory point \\d+ .* collides: .*"), through
+                    .errorOrNull().text());
+            SimProcess.Truth still = awaitSimTime(rig.sim, 1.5);
+            assertTrue(still.distanceTo(before.x(), before.y()) < 0.01, "moved on a refused trajectory: " + still);
+
+            double end = 3.0 - RADIUS - 0.2; // 0.2 m short of the partition's face
+            assertTrue(rig.operator.set(rig.robot, Resources.TRAJECTORY, eastward(WEST_OF_PARTITION[0], end,
+                    WEST_OF_PARTITION[1])).isSuccess(), rig.onboard.output());
+            SimProcess.Truth there = awaitTruth(rig.sim, t -> t.x() > end - 0.1 && Math.abs(t.v()) < 0.01, 20,
+                    "the robot at the trajectory's end");
+            assertEquals(0, there.contacts(), there.toString());
+        }
+    }
+
+    /** @return a trajectory due east at 0.2 m/s from (x0, y) to (x1, y), a point every 0.1 s, starting now */
+    private static TrajectoryPayload eastward(double x0, double x1, double y) {
+        double v = 0.2;
+        List<TrajectoryPoint> points = new ArrayList<>();
+        int n = (int) Math.ceil((x1 - x0) / v / 0.1);
+        for (int i = 0; i <= n; i++) {
+            double t = Math.min(i * 0.1, (x1 - x0) / v);
+            points.add(new TrajectoryPoint(t, x0 + v * t, y, 0, i == n ? 0 : v, 0));
+        }
+        return new TrajectoryPayload(Instant.now(), points);
     }
 
     private static void twist(RobotRig rig, double speed) throws Exception {
