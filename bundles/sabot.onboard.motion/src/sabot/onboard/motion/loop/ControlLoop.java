@@ -220,9 +220,15 @@ public final class ControlLoop {
             LOG.info("ready to move ({})", settings.localizer().useImu() ? "inertial biases settled after "
                     + settings.localizer().imuSettleTime() + " s at rest" : "odometry only");
         }
+        // While a joystick drives, the sensor read comes before the wheel write: a twist that arrives during it then
+        // goes out with this period's write, not in the next period (the read would otherwise end the period).
+        boolean readFirst = sensorPeriod && mode == Mode.TELEOP && !wroteTwist;
+        if (readFirst) {
+            optionalReads(t, true);
+        }
         if (mode == Mode.TELEOP && !wroteTwist) {
-            // a twist that arrived during this period's encoder read goes out with this period's wheel write, not at
-            // the start of the next period
+            // a twist that arrived during this period's encoder or sensor read goes out with this period's wheel
+            // write, not at the start of the next period
             host.applyPendingCommands();
         }
         // every command passes the collision guard, whatever produced it
@@ -247,8 +253,8 @@ public final class ControlLoop {
                 LOG.warn("wheel speed write failed: {}", e.getMessage());
             }
         }
-        if (sensorPeriod) {
-            optionalReads(t);
+        if (sensorPeriod && !readFirst) {
+            optionalReads(t, false);
         }
         timing.ended(clock.nanoTime());
         if (settings.statusPeriod() > 0 && t - lastStatus >= settings.statusPeriod()) {
@@ -285,11 +291,15 @@ public final class ControlLoop {
     /**
      * Reads the inertial board, one sonar sensor or the landmark board when the rest of the period leaves the time for
      * it (in the periods without an encoder read), in every mode: the collision guard needs fresh echoes most when a
-     * joystick drives. A twist that arrives during such a read waits for the next period's wheel write.
+     * joystick drives. While one does, the read comes before the period's wheel write ({@code writeFollows}), so that
+     * a twist arriving during it goes out with that write.
      */
-    private void optionalReads(double t) {
-        // the period's last transaction has just ended: the whole inter-frame silence comes first
-        if (!fitsBeforeNextPeriod(boards.interFrameDelay(), boards.optionalReadWireTime())) {
+    private void optionalReads(double t, boolean writeFollows) {
+        // the period's last transaction has just ended: the whole inter-frame silence comes first; when the wheel
+        // write follows in this period, it must fit as well
+        double silence = boards.interFrameDelay();
+        double wire = boards.optionalReadWireTime() + (writeFollows ? silence + boards.wheelWriteWireTime() : 0);
+        if (!fitsBeforeNextPeriod(silence, wire)) {
             timing.skippedOptionalRead();
             return;
         }
