@@ -134,7 +134,11 @@ public final class Bus implements ModbusBus {
         for (Span s : spans) {
             req.addRequest(new ReadFileRecordRequest.RecordRequest(s.file(), s.record(), s.count()));
         }
-        ModbusResponse response = transact(board, req, r -> {
+        int[] counts = new int[spans.length];
+        for (int i = 0; i < spans.length; i++) {
+            counts[i] = spans[i].count();
+        }
+        ModbusResponse response = transact(board, req, BusTiming.readAnswerBytes(counts), r -> {
             if (!(r instanceof ReadFileRecordResponse rr) || rr.getRecordCount() != spans.length) {
                 return "not an answer to a read of " + spans.length + " sub-requests";
             }
@@ -165,7 +169,11 @@ public final class Bus implements ModbusBus {
         for (Write w : writes) {
             req.addRequest(new WriteFileRecordRequest.RecordRequest(w.file(), w.record(), w.values()));
         }
-        transact(board, req, r -> r instanceof WriteFileRecordResponse wr && wr.getRequestCount() == writes.length
+        int[] counts = new int[writes.length];
+        for (int i = 0; i < writes.length; i++) {
+            counts[i] = writes[i].values().length;
+        }
+        transact(board, req, BusTiming.writeBytes(counts), r -> r instanceof WriteFileRecordResponse wr && wr.getRequestCount() == writes.length
                 ? null : "not the echo of a write of " + writes.length + " sub-requests");
     }
 
@@ -174,7 +182,9 @@ public final class Bus implements ModbusBus {
         String problem(ModbusResponse response);
     }
 
-    private ModbusResponse transact(Counters board, ModbusRequest request, Check check) throws BoardException {
+    /** @param answerBytes the length of the answer when it is not an exception, for the line's waits */
+    private ModbusResponse transact(Counters board, ModbusRequest request, int answerBytes, Check check)
+            throws BoardException {
         lock.lock();
         try {
             if (closed) {
@@ -186,7 +196,7 @@ public final class Bus implements ModbusBus {
             int attempts = settings.retries() + 1;
             for (int i = 0; i < attempts; i++) {
                 board.sent.incrementAndGet();
-                Line.Attempt a = line.attempt(request);
+                Line.Attempt a = line.attempt(request, answerBytes);
                 if (a instanceof Line.Attempt.Answer(ModbusResponse response)) {
                     String problem = response.getUnitID() != board.slave
                             ? "answer from slave " + response.getUnitID() + ", asked " + board.slave

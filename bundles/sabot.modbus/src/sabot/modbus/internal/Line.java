@@ -15,6 +15,7 @@ import com.ghgande.j2mod.modbus.net.SerialConnection;
 import com.ghgande.j2mod.modbus.util.SerialParameters;
 
 import sabot.modbus.BusSettings;
+import sabot.modbus.BusTiming;
 import sabot.modbus.Parity;
 
 /**
@@ -51,7 +52,8 @@ final class Line implements AutoCloseable {
     private Line(BusSettings settings, AbstractSerialConnection channel) throws IOException {
         this.settings = settings;
         this.channel = channel;
-        this.observed = new ObservedConnection(channel);
+        BusTiming timing = BusTiming.of(settings);
+        this.observed = new ObservedConnection(channel, timing.characterTime().toNanos(), timing.t35().toNanos());
         this.timeoutNanos = settings.responseTimeout().toNanos();
         this.interFrameNanos = settings.interFrameDelay().toNanos();
         int timeoutMs = (int) Math.max(1, settings.responseTimeout().toMillis());
@@ -97,14 +99,17 @@ final class Line implements AutoCloseable {
     /**
      * Sends {@code request} once and reads the answer: keeps the inter-frame silence first, then gives the answer
      * {@code responseTimeout} to arrive.
+     *
+     * @param answerBytes the answer's length when it is not an exception answer: the reads wait for the time the line
+     *                    needs to bring it before they look for it
      */
-    Attempt attempt(ModbusRequest request) {
+    Attempt attempt(ModbusRequest request, int answerBytes) {
         long quietUntil = lastFrameEnd + interFrameNanos;
         for (long wait = quietUntil - System.nanoTime(); wait > 0; wait = quietUntil - System.nanoTime()) {
             // the line's protocol silence (t3.5), not a synchronisation: the slave needs it to see the frame end
             LockSupport.parkNanos(wait);
         }
-        observed.startAttempt(System.nanoTime() + timeoutNanos);
+        observed.startAttempt(System.nanoTime() + timeoutNanos, answerBytes);
         try {
             transport.writeRequest(request);
             ModbusResponse response = transport.readResponse();

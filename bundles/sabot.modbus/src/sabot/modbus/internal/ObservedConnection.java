@@ -17,7 +17,13 @@ import com.ghgande.j2mod.modbus.net.AbstractSerialConnection;
  * through termios {@code VTIME}, which counts in tenths of a second ({@code VTIME = readTimeout / 100}, rounded up to
  * one tick), so a 50 ms timeout lasts 100 ms and the bound timeout × attempts would not hold. Before each read this
  * class waits until the bytes asked for are there or the deadline has come, checking {@code bytesAvailable()}
- * (FIONREAD) every {@value #POLL_NANOS} ns, then reads only what is there.
+ * (FIONREAD), then reads only what is there.
+ * <p>
+ * The checks start when the line can have brought the answer, not at once: the request must cross the line, the slave
+ * must see the inter-frame silence after it (t3.5) before it answers, and the answer's bytes take one character time
+ * each. Until then the thread sleeps; after, it checks every {@value #POLL_NANOS} ns. (Checking every 50 µs from the
+ * write on cost about 28 wake-ups per transaction on the robot's bus, a few per cent of a core.) An exception answer,
+ * shorter than the one expected, is read that much later, within the timeout.
  */
 final class ObservedConnection extends AbstractSerialConnection {
 
@@ -26,17 +32,31 @@ final class ObservedConnection extends AbstractSerialConnection {
 
     private final AbstractSerialConnection inner;
     private final boolean pollSerial;
+    private final long characterNanos;
+    private final long silenceNanos;
     private long deadlineNanos = Long.MAX_VALUE;
+    /** Bytes of the answer expected in this attempt. */
+    private int answerBytes;
+    /** The earliest time the whole answer can be there: the request and the answer on the line, and t3.5. */
+    private long answerNanos = Long.MIN_VALUE;
     private boolean unanswered;
 
-    ObservedConnection(AbstractSerialConnection inner) {
+    /**
+     * @param characterNanos one character's time on the line (11 bits at the baud rate)
+     * @param silenceNanos   the inter-frame silence (t3.5) a slave waits for before it answers
+     */
+    ObservedConnection(AbstractSerialConnection inner, long characterNanos, long silenceNanos) {
         this.inner = inner;
         this.pollSerial = !(inner instanceof SocketConnection);
+        this.characterNanos = characterNanos;
+        this.silenceNanos = silenceNanos;
     }
 
-    /** Starts an attempt that must end by {@code nanoTime}. */
-    void startAttempt(long nanoTime) {
+    /** Starts an attempt that must end by {@code nanoTime}, whose answer is {@code answerBytes} long. */
+    void startAttempt(long nanoTime, int answerBytes) {
         deadlineNanos = nanoTime;
+        this.answerBytes = answerBytes;
+        answerNanos = Long.MIN_VALUE;
         unanswered = false;
         if (inner instanceof SocketConnection s) {
             s.deadline(nanoTime);
@@ -57,9 +77,12 @@ final class ObservedConnection extends AbstractSerialConnection {
         int ask = bytesToRead;
         if (pollSerial) {
             int available;
-            while ((available = inner.bytesAvailable()) < bytesToRead && System.nanoTime() < deadlineNanos) {
-                // waits for the slave's bytes (a condition on the port), bounded by the attempt's deadline
-                LockSupport.parkNanos(POLL_NANOS);
+            long now;
+            while ((available = inner.bytesAvailable()) < bytesToRead && (now = System.nanoTime()) < deadlineNanos) {
+                // waits for the slave's bytes (a condition on the port), bounded by the attempt's deadline, no sooner
+                // than the line can bring them
+                long due = Math.max(answerNanos, now + POLL_NANOS);
+                LockSupport.parkNanos(Math.min(deadlineNanos, due) - now);
             }
             available = inner.bytesAvailable();
             if (available <= 0) {
@@ -77,6 +100,7 @@ final class ObservedConnection extends AbstractSerialConnection {
 
     @Override
     public int writeBytes(byte[] buffer, int bytesToWrite) {
+        answerNanos = System.nanoTime() + (long) (bytesToWrite + answerBytes) * characterNanos + silenceNanos;
         int n = inner.writeBytes(buffer, bytesToWrite);
         if (n != bytesToWrite) {
             unanswered = true;
