@@ -172,6 +172,28 @@ public final class CollisionGuard {
         return scaled(command, allowed, allowed > 0 ? Action.SLOWED : Action.STOPPED, signedFree);
     }
 
+    /**
+     * For a short move the guard cannot limit while it happens (the motor board's position step of one wheel, which
+     * runs on the board): the free travel along the arc the move follows, to compare with the move's length plus the
+     * margin before starting it.
+     *
+     * @param pose      where the robot stands (map frame)
+     * @param direction a twist whose arc the move follows (its linear speed's sign gives forwards or backwards; only
+     *                  the ratio of the two speeds matters); without linear speed the footprint sweeps nothing new
+     * @param field     the obstacles
+     * @return the distance along that arc to the last point before the footprint would come closer to an obstacle than
+     *         its radius (and closer than before), m; infinite when none within the lookahead
+     */
+    public double freeTravel(Pose2D pose, Twist2D direction, ObstacleField field) {
+        if (!pose.isFinite() || !direction.isFinite()) {
+            return 0;
+        }
+        if (Math.abs(direction.linear()) < STANDSTILL) {
+            return Double.POSITIVE_INFINITY;
+        }
+        return freeTravel(pose, direction.linear(), direction.angular(), field);
+    }
+
     /** @return the command with its linear speed brought down to {@code speed}, its curvature kept */
     private static Decision scaled(Twist2D command, double speed, Action action, double obstacle) {
         double f = speed / Math.abs(command.linear());

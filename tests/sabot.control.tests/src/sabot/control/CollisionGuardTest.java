@@ -126,6 +126,20 @@ class CollisionGuardTest {
         assertEquals(curving.obstacle(), rotated.obstacle(), 1e-9);
     }
 
+    /** A move judged before it starts (the PID step): the free travel along its arc, either way along it. */
+    @Test
+    void theFreeTravelOfAMoveFollowsItsArcAndDirection() {
+        ObstacleField wall = wallAt(0.30);
+        // forwards the footprint reaches the wall after 0.04 m (checked every 2 cm); backwards nothing is in the way
+        assertEquals(0.04, GUARD.freeTravel(ORIGIN, new Twist2D(0.001, 0), wall), 1e-9);
+        assertEquals(Double.POSITIVE_INFINITY, GUARD.freeTravel(ORIGIN, new Twist2D(-0.001, 0), wall));
+        // a pivot about the right wheel (left wheel forwards) of a 0.2 m track: the same arc at any scale
+        assertEquals(GUARD.freeTravel(ORIGIN, new Twist2D(0.001, -0.01), wall), GUARD.freeTravel(ORIGIN, new Twist2D(
+                0.5, -5), wall), 1e-12);
+        assertEquals(Double.POSITIVE_INFINITY, GUARD.freeTravel(ORIGIN, new Twist2D(0, 1), wall), "a turn in place");
+        assertEquals(0, GUARD.freeTravel(ORIGIN, new Twist2D(Double.NaN, 0), wall));
+    }
+
     @Test
     void aNonFiniteCommandIsAStop() {
         assertEquals(new Decision(Twist2D.ZERO, Action.STOPPED, 0), GUARD.limit(ORIGIN, new Twist2D(Double.NaN, 0),

@@ -633,11 +633,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
      * Runs on the session's ordered request thread (Smack's sync IQ mode: one robot connection, its requests served
      * one after the other), so no cm.mission set can end maintenance and start a mission while the step runs: the
      * final brake cannot stop a mission. Other requests wait for the test (≈ 0.2 s, bounded by the recording); in
-     * maintenance they cannot move the robot anyway.
+     * maintenance they cannot move the robot anyway. The loop's collision guard judges the step before it starts.
      */
     @Override
     public StepTest stepTest(int motor, double step) throws CommandRefused {
-        return tuning.stepTest(motor, step, mission());
+        return tuning.stepTest(motor, step, mission(), (m, s) -> {
+            String[] blocked = new String[1];
+            apply(l -> blocked[0] = l.stepTestBlocked(m, s));
+            return blocked[0];
+        });
     }
 
     @Override

@@ -50,13 +50,27 @@ final class MotorTuning {
         }
     }
 
-    /** @param now the mission's status: the step test runs in maintenance only */
-    StepTest stepTest(int motor, double step, MissionStatus now) throws CommandRefused {
+    /** Judges a step before the board runs it (the collision guard: the board's step is beyond the loop's reach). */
+    @FunctionalInterface
+    interface StepGuard {
+        /** @return why the step may not start from where the robot stands, or null */
+        String blocked(int motor, double step) throws CommandRefused;
+    }
+
+    /**
+     * @param now   the mission's status: the step test runs in maintenance only
+     * @param guard refuses a step that would move the robot's footprint towards an obstacle
+     */
+    StepTest stepTest(int motor, double step, MissionStatus now, StepGuard guard) throws CommandRefused {
         synchronized (stepTestLock) {
             if (!now.maintenance()) {
                 throw new CommandRefused(ControlMlCondition.INVALID_STATE, "the step test moves a wheel on its own: "
                         + "switch the robot to maintenance first (cm.mission maintenance=true); the mission is "
                         + now.state().code());
+            }
+            String blocked = guard.blocked(motor, step);
+            if (blocked != null) {
+                throw new CommandRefused(ControlMlCondition.INVALID_STATE, blocked);
             }
             RobotBoards.StepRecording r;
             try {

@@ -661,6 +661,11 @@ public final class ControlLoop {
         LOG.info("stopped: {}", reason);
     }
 
+    /** @return why the PID step test of {@code motor} by {@code step} m may not start from here, or null */
+    public String stepTestBlocked(int motor, double step) {
+        return guard.stepBlocked(pose, drive, motor, step);
+    }
+
     public void maintenance(boolean on, String detail) {
         brake();
         MissionState state = mission.state();

@@ -1,10 +1,14 @@
 package sabot.onboard.motion.loop;
 
+import java.util.Locale;
+
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import sabot.control.CollisionGuard;
+import sabot.control.DifferentialDrive;
 import sabot.control.MotionLimits;
+import sabot.control.WheelSpeeds;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 
@@ -49,6 +53,33 @@ final class LoopGuard {
         }
         last = d;
         return d.twist();
+    }
+
+    /**
+     * Whether a position step of one wheel (the PID step test) may start from {@code pose}. The motor board runs the
+     * step on its own, beyond this guard, so it is judged before: the robot turns about its other wheel, its centre
+     * travelling half the step along that arc, and the footprint must stay clear of every known obstacle by the travel
+     * plus the margin (a robot that stands close to a wall may still step away from it).
+     *
+     * @param motor 0 the left wheel, 1 the right; another is left to the motor board to refuse
+     * @param step  m of wheel travel, signed
+     * @return why it may not, or null
+     */
+    String stepBlocked(Pose2D pose, DifferentialDrive drive, int motor, double step) {
+        if ((motor != 0 && motor != 1) || !Double.isFinite(step) || step == 0) {
+            return null;
+        }
+        Twist2D direction = drive.toTwist(motor == 0 ? new WheelSpeeds(step, 0) : new WheelSpeeds(0, step));
+        double travel = Math.abs(direction.linear());
+        double free = guard.freeTravel(pose, direction, field);
+        double needed = travel + guard.settings().margin();
+        if (free >= needed) {
+            return null;
+        }
+        return String.format(Locale.ROOT, "collision guard: the step turns the robot about its %s wheel, its centre "
+                + "%.4f m %s along an arc with an obstacle %.3f m along it; it needs %.3f m (the travel and "
+                + "motion.guardMargin)", motor == 0 ? "right" : "left", travel, step > 0 ? "forwards" : "backwards",
+                free, needed);
     }
 
     /** @return what the guard last did, in the operator's words ({@code stopped: obstacle 0.31 m ahead}); "" if free */

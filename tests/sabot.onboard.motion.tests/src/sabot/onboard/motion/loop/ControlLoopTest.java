@@ -3,6 +3,7 @@ package sabot.onboard.motion.loop;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotEquals;
+import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.util.List;
@@ -244,5 +245,26 @@ class ControlLoopTest {
         rig.drive(-0.3, 0, 1.0);
         assertEquals(-LoopDefaults.REVERSE_SPEED, rig.boards.lastWrite().left() * R, 1e-9);
         assertTrue(rig.loop.guardStatus().startsWith("reversing at 0.10 m/s"), rig.loop.guardStatus());
+    }
+
+    /**
+     * The PID step test's move runs on the motor board, beyond the guard: the loop judges it before it starts. The
+     * robot stands 3 cm from a wall facing it; a step of either wheel forwards would turn its front into the wall.
+     */
+    @Test
+    void aStepTestTowardsAWallIsRefusedAndOneAwayFromItIsNot() {
+        LoopRig walled = new LoopRig(LoopRig.wallAt(4.0));
+        walled.run(0.1);
+        walled.loop.relocalise(new Pose2D(4.0 - LoopRig.ROBOT_RADIUS - 0.03, 5.0, 0));
+        walled.run(0.1);
+        String left = walled.loop.stepTestBlocked(0, 0.004);
+        assertTrue(left != null && left.startsWith("collision guard: the step turns the robot about its right wheel")
+                && left.contains("motion.guardMargin"), left);
+        assertTrue(walled.loop.stepTestBlocked(1, 0.004).contains("about its left wheel"));
+        assertNull(walled.loop.stepTestBlocked(0, -0.004), "stepping back, away from the wall");
+        assertNull(walled.loop.stepTestBlocked(1, -0.004), "stepping back, away from the wall");
+        assertNull(walled.loop.stepTestBlocked(2, 0.004), "an unknown motor is the board's to refuse");
+        rig.run(0.1);
+        assertNull(rig.loop.stepTestBlocked(0, 0.004), "in the open");
     }
 }
