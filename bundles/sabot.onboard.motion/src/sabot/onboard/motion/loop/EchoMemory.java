@@ -190,14 +190,11 @@ final class EchoMemory {
         if (marks.isEmpty()) {
             return false;
         }
-        List<Point2D> points = points();
         double end = Math.min(trajectory.duration(), from + lookahead);
         for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
             TrajectorySample r = trajectory.sample(s);
-            for (Point2D p : points) {
-                if (Math.hypot(p.x() - r.x(), p.y() - r.y()) < clearance) {
-                    return true;
-                }
+            if (nearest(r.x(), r.y(), clearance) < clearance) {
+                return true;
             }
         }
         return false;
