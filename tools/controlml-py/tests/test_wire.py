@@ -3,6 +3,7 @@ and compared with the spec's examples (slixmpp drops a namespaced attribute whos
 form's xlink:href must survive). No network."""
 
 import asyncio
+import datetime
 import os
 import sys
 import unittest
@@ -30,6 +31,18 @@ class WireTest(unittest.TestCase):
         iq.append(cm.control_ml(kind, rid, res, payload))
         text = str(iq)  # slixmpp's serialisation, as written to the stream
         return ET.fromstring(text), text
+
+    def test_an_entity_time_request_is_answered_with_utc(self):
+        # slixmpp 1.17's own answer raises ValueError writing the zone offset; the client's answer must parse
+        request = self.client.make_iq(ito="operator@sabot.local/cli", ifrom="robot42@sabot.local/onboard",
+                                      itype="get")
+        request.enable("entity_time")
+        now = datetime.datetime(2026, 11, 28, 23, 7, 56, 532364, tzinfo=datetime.timezone.utc)
+        reply = ET.fromstring(str(controlml.time_answer(request, now)))
+        self.assertEqual(("result", "robot42@sabot.local/onboard"), (reply.get("type"), reply.get("to")))
+        time = reply.find("{urn:xmpp:time}time")
+        self.assertEqual("Z", time.findtext("{urn:xmpp:time}tzo"))
+        self.assertEqual("2026-11-28T23:07:56.532364Z", time.findtext("{urn:xmpp:time}utc"))
 
     def test_get_is_the_spec_request(self):
         iq, _ = self.sent("get", "cm.position", None)
