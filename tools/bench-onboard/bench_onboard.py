@@ -42,7 +42,7 @@ POSITION_TOLERANCE, HEADING_TOLERANCE = 0.15, 0.2
 # the partition's south end. The loop ends on goal 1 from NavigationTest's start, so goal 1 repeats in long runs.
 LOOP = ((10.5, 1.0, 0.0), (10.5, 7.5, 1.5708), (2.0, 7.5, 3.1416), (1.5, 4.0, 0.0), GOAL_1)
 # One joystick session after goal 1: a circle of 0.3 m radius at goal 1, clear of everything.
-JOYSTICK_LINEAR, JOYSTICK_ANGULAR, JOYSTICK_RATE, JOYSTICK_SECONDS = 0.15, 0.5, 20.0, 10.0
+JOYSTICK_LINEAR, JOYSTICK_ANGULAR, JOYSTICK_RATE, JOYSTICK_SECONDS = 0.15, 0.5, 19.1, 30.0
 MISSION_POLL_S = 0.25  # cm.mission gets while a goal runs: the end is seen within this
 SAMPLE_PERIOD_S = 1.0  # /proc samples of the onboard process
 GOAL_TIMEOUT_S = 180.0  # a goal not ended by then is aborted (the robot's own settle timeout is 15 s)
