@@ -102,7 +102,7 @@ class LiveFleetUiTest {
         Path dir = Files.createDirectories(Paths.get("target", "live-fleet").toAbsolutePath());
         sim = SimProcess.start(dir, START);
         onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
         // the lab map where a robot keeps it for workbenches: too large for one cm.map payload
         Path maps = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps");
         Files.copy(maps.resolve("lab.yaml"), dir.resolve("fs/map.yaml"), StandardCopyOption.REPLACE_EXISTING);

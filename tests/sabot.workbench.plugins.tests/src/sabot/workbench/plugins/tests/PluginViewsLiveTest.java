@@ -106,7 +106,7 @@ class PluginViewsLiveTest {
         dir = Files.createDirectories(Paths.get("target", "live-plugins").toAbsolutePath());
         sim = SimProcess.start(dir, START);
         onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
         onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
         onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
         XmppAccountStore store = XmppAccountStore.workbenchStore();
