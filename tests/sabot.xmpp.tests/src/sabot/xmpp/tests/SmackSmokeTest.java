@@ -70,14 +70,7 @@ abstract class SmackSmokeTest {
         XMPPTCPConnection secured = server().login("tls-user");
         assertTrue(secured.isSecureConnection(), "not encrypted");
 
-        // another CA, made the way sabot-xmpp makes the lab CA
-        java.nio.file.Path other = dir.resolve("other-ca.pem");
-        Process openssl = new ProcessBuilder("openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt",
-                "ec_paramgen_curve:prime256v1", "-nodes", "-days", "1", "-subj", "/CN=Another CA", "-addext",
-                "basicConstraints=critical,CA:TRUE", "-keyout", dir.resolve("other-ca.key").toString(), "-out",
-                other.toString()).redirectErrorStream(true).start();
-        String opensslOutput = new String(openssl.getInputStream().readAllBytes());
-        assertEquals(0, openssl.waitFor(), opensslOutput);
+        java.nio.file.Path other = sabot.testsupport.xmpp.TestCertificates.anotherCa(dir, "another-ca");
         sabot.fleet.ServerTrust stranger = sabot.fleet.ServerTrust.labCa(other);
         XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(server().port(), stranger,
                 "tls-user", PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD).build());
