@@ -35,6 +35,8 @@ s2s_require_encryption = false
 -- PLAIN never without TLS: on a plain stream (SABOT_TLS=off) only SCRAM, which does not send the password
 allow_unencrypted_plain_auth = false
 authentication = "internal_hashed"
+-- accounts stored as SCRAM-SHA-256 keys: the server then offers SCRAM-SHA-256 (and -PLUS on TLS 1.2), not SHA-1
+password_hash = "SHA-256"
 storage = { archive = ENV_SABOT_ARCHIVE_STORE or "internal" }
 
 -- Prosody defaults to Nagle on; with delayed ACKs that costs ~40 ms per request on loopback

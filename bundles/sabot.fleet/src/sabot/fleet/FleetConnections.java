@@ -3,11 +3,14 @@ package sabot.fleet;
 import java.net.InetAddress;
 
 import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
+import org.jivesoftware.smack.SASLAuthentication;
 import org.jivesoftware.smack.java7.XmppHostnameVerifier;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
 import org.jxmpp.jid.DomainBareJid;
 import org.jxmpp.stringprep.XmppStringprepException;
+
+import sabot.fleet.internal.ScramSha256Mechanism;
 
 /**
  * Connection settings every Sabot client (robot or workbench) needs: TLS required, the server's certificate checked
@@ -16,6 +19,14 @@ import org.jxmpp.stringprep.XmppStringprepException;
  * with resumption, so that a dropped network does not lose commands (XEP-0198).
  */
 public final class FleetConnections {
+
+    static {
+        // Smack 4.4 has SCRAM-SHA-1 only; servers that store SHA-256 password hashes offer SCRAM-SHA-256 alone
+        // (with PLAIN inside TLS, which Smack would otherwise choose)
+        if (!SASLAuthentication.isSaslMechanismRegistered(ScramSha256Mechanism.NAME)) {
+            SASLAuthentication.registerSASLMechanism(new ScramSha256Mechanism());
+        }
+    }
 
     private FleetConnections() {
     }

@@ -45,8 +45,8 @@ abstract class SmackSmokeTest {
 
     /**
      * TLS is required: before STARTTLS the server offers nothing else (no SASL mechanism, so no password can cross in
-     * clear); a client that trusts the server's lab CA gets an encrypted session, one that trusts another CA is
-     * refused with one line that says so.
+     * clear); a client that trusts the server's lab CA gets an encrypted session authenticated with SCRAM-SHA-256,
+     * one that trusts another CA is refused with one line that says so.
      */
     @Test
     void clientsMustStartTlsAndTrustTheLabCa(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
@@ -69,6 +69,8 @@ abstract class SmackSmokeTest {
         }
         XMPPTCPConnection secured = server().login("tls-user");
         assertTrue(secured.isSecureConnection(), "not encrypted");
+        // the accounts are stored as SHA-256 SCRAM keys: SCRAM-SHA-256 (sabot.fleet's, over the ongres library)
+        assertEquals("SCRAM-SHA-256", secured.getUsedSaslMechansism());
 
         java.nio.file.Path other = sabot.testsupport.xmpp.TestCertificates.anotherCa(dir, "another-ca");
         sabot.fleet.ServerTrust stranger = sabot.fleet.ServerTrust.labCa(other);

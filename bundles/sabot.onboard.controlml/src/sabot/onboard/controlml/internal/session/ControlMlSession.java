@@ -289,6 +289,9 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     }
 
     private void failed(String reason) {
+        synchronized (lock) {
+            lastLoss = reason; // the status says why the session is offline
+        }
         failures++;
         Duration delay = backoff(failures, settings.reconnectMin(), settings.reconnectMax());
         if (failures <= LOGGED_FAILURES) {
