@@ -77,6 +77,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final InventorySource inventorySource;
     private final String version;
     private final XMPPTCPConnection connection;
+    private final NoDelaySocketFactory sockets = new NoDelaySocketFactory();
     private final ControlMlManager controlMl;
     private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
             "sabot-session-connect"));
@@ -121,7 +122,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                     .setPort(settings.port())
                     .setUsernameAndPassword(settings.jid().getLocalpart(), settings.password())
                     .setResource(settings.resource())
-                    .setSocketFactory(new NoDelaySocketFactory())
+                    .setSocketFactory(sockets)
                     .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
                     .setSendPresence(false); // the session sends its own presence, with level and reason
         } catch (org.jxmpp.stringprep.XmppStringprepException e) {
@@ -325,6 +326,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
      */
     private void silent(String reason) {
         lost(reason);
+        sockets.abandonLast(); // no TLS close: it would reach the server after a resumption and end that stream
         connection.instantShutdown();
     }
 
