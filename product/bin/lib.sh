@@ -152,10 +152,11 @@ sabot_products() {
 }
 
 # The configuration of an onboard product driving a simulated robot over serial link $2 on map $3, starting at pose
-# $4 (X,Y,THETA in m, m, rad), with XMPP account $1 (full JID) on 127.0.0.1:$5, its password in file $6, commanded by
-# operator $7 (bare JID), its remote files under folder $8 (./sabot demo's robots, ./sabot bench onboard's).
+# $4 (X,Y,THETA in m, m, rad), with XMPP account $1 (full JID) on 127.0.0.1:$5 whose certificate is signed by the CA
+# of file $9, its password in file $6, commanded by operator $7 (bare JID), its remote files under folder $8
+# (./sabot demo's robots, ./sabot bench onboard's).
 sabot_onboard_conf() {
-    local jid=$1 link=$2 map=$3 pose=$4 port=$5 pwfile=$6 operator=$7 files=$8
+    local jid=$1 link=$2 map=$3 pose=$4 port=$5 pwfile=$6 operator=$7 files=$8 ca=$9
     local x y theta
     IFS=, read -r x y theta <<<"$pose"
     cat <<EOF
@@ -170,6 +171,7 @@ localizer.startY = $y
 localizer.startTheta = $theta
 controlml.server = 127.0.0.1
 controlml.port = $port
+controlml.caFile = $ca
 controlml.jid = $jid
 controlml.passwordFile = $pwfile
 controlml.operators = $operator
@@ -222,15 +224,18 @@ sabot_rig_build() {
 # sabot-sim on the lab map with ROBOTS robots, robot 1 at X,Y,THETA (ground truth DIR/truth.csv, its control channel
 # on a free loopback port), and per robot an onboard product (configuration DIR/robotI/onboard.conf, remote files
 # DIR/robotI/files, console DIR/robotI/onboard.log; JVM options added). Returns once they are started, not online
-# (sabot_rig_await_online). Sets RIG_DIR, RIG_PORT, RIG_SIM_PID, RIG_SIM_CONTROL, RIG_ROBOT_PIDS (robot I at I-1).
+# (sabot_rig_await_online). Sets RIG_DIR, RIG_PORT, RIG_CA (the server's lab CA, PEM), RIG_SIM_PID, RIG_SIM_CONTROL,
+# RIG_ROBOT_PIDS (robot I at I-1).
 sabot_rig_start() {
     local dir=$1 port=$2 robots=$3 start=$4 i line x y theta links=()
     shift 4
-    RIG_DIR=$dir RIG_PORT="" RIG_SIM_PID="" RIG_SIM_CONTROL="" RIG_ROBOT_PIDS=()
+    RIG_DIR=$dir RIG_PORT="" RIG_CA="" RIG_SIM_PID="" RIG_SIM_CONTROL="" RIG_ROBOT_PIDS=()
     rm -rf "$dir"; mkdir -p "$dir"
     line=$("$SABOT_ROOT/product/bin/sabot-xmpp" start --run "$dir/xmpp" --port "$port" \
         --archive "${SABOT_ARCHIVE_STORE:-internal}" --timeout 30) || sabot_die "the private Prosody did not start"
     RIG_PORT=$(sed -n 's/.* port=\([0-9]*\) .*/\1/p' <<<"$line")
+    RIG_CA=$(sed -n 's/.* ca=\([^ ]*\).*/\1/p' <<<"$line")
+    [ -s "$RIG_CA" ] || sabot_die "the private Prosody named no lab CA file: $line"
     for ((i = 1; i <= robots; i++)); do
         mkdir -p "$dir/robot$i/files"
         (umask 077; openssl rand -hex 16 | tr -d "\n" >"$dir/robot$i/password")
@@ -258,7 +263,7 @@ for r in j["robots"]: print(r["link"])')
         sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" \
             "$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta" \
             "$RIG_PORT" "$dir/robot$i/password" "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$dir/robot$i/files" \
-            >"$dir/robot$i/onboard.conf"
+            "$RIG_CA" >"$dir/robot$i/onboard.conf"
         (sabot_onboard_exec "$dir/robot$i/onboard.conf" "$@") >"$dir/robot$i/onboard.log" 2>&1 &
         RIG_ROBOT_PIDS+=($!)
         sabot_log "robot sabot-0$i@$SABOT_RIG_DOMAIN (pid $!): config $dir/robot$i/onboard.conf, log $dir/robot$i/onboard.log"

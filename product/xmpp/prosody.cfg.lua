@@ -7,7 +7,9 @@
 --   SABOT_RUN_AS_ROOT=1   needed when started by root, or Prosody refuses and hangs
 --   SABOT_ARCHIVE_STORE   "memory" for tests (the file archive caps a chatting pair at ~600 msgs/s)
 --   SABOT_DOMAIN, SABOT_DOMAIN2  the two virtual hosts (default sabot.local, sabot2.local)
---   SABOT_TLS=1           offer STARTTLS (needs sabot.local.crt/.key in $SABOT_XMPP_RUN/certs); off by default
+--   SABOT_TLS             "required" (the default): clients must STARTTLS, with the certificates sabot-xmpp made
+--                         in $SABOT_XMPP_RUN/certs (signed by the lab CA of $SABOT_XMPP_RUN/ca); "off": plain TCP, for
+--                         the benchmark that compares the two only
 local run = ENV_SABOT_XMPP_RUN or error("SABOT_XMPP_RUN is not set")
 local c2s_port = (ENV_SABOT_C2S_PORT or "15222") + 0
 
@@ -15,10 +17,7 @@ run_as_root = (ENV_SABOT_RUN_AS_ROOT == "1")
 data_path = run .. "/data"
 pidfile   = run .. "/prosody.pid"
 certificates = run .. "/certs"
--- No TLS until the fleet gives servers real certificates: mod_tls advertises STARTTLS even without a certificate
--- ("No certificate present ... SNI will be required") and the handshake then fails, so standard clients that take
--- an offered STARTTLS cannot log in. SABOT_TLS=1 (with sabot.local.crt/.key in $SABOT_XMPP_RUN/certs) turns it on.
-local tls_module = (ENV_SABOT_TLS == "1") and "tls" or nil
+local tls = (ENV_SABOT_TLS or "required") ~= "off"
 log = { { levels = { min = ENV_SABOT_XMPP_LOGLEVEL or "info" }, to = "file", filename = run .. "/prosody.log" } }
 
 -- loopback only, non-default port, no s2s, no http
@@ -31,10 +30,13 @@ s2s_ports = { }
 s2s_direct_tls_ports = { }
 modules_disabled = { "s2s", "s2s_auth_certs" }
 
-c2s_require_encryption = false
+c2s_require_encryption = tls
 s2s_require_encryption = false
-allow_unencrypted_plain_auth = true
+-- PLAIN never without TLS: on a plain stream (SABOT_TLS=off) only SCRAM, which does not send the password
+allow_unencrypted_plain_auth = false
 authentication = "internal_hashed"
+-- accounts stored as SCRAM-SHA-256 keys: the server then offers SCRAM-SHA-256 (and -PLUS on TLS 1.2), not SHA-1
+password_hash = "SHA-256"
 storage = { archive = ENV_SABOT_ARCHIVE_STORE or "internal" }
 
 -- Prosody defaults to Nagle on; with delayed ACKs that costs ~40 ms per request on loopback
@@ -60,7 +62,8 @@ max_archive_query_results = 250
 -- XEP-0198 stream management: sessions survive a dropped socket this long
 smacks_hibernation_time = 60
 
-modules_enabled = {
+-- built in a local and assigned once: a Prosody config file cannot read back an option it has set
+local modules = {
     "roster"; "saslauth"; "disco"; "ping"; "time"; "version"; "uptime";
     "private"; "blocklist"; "carbons";
     "register";      -- XEP-0077
@@ -71,7 +74,8 @@ modules_enabled = {
     "smacks";        -- XEP-0198
     "offline";       -- XEP-0160 offline storage with XEP-0203 delay stamps
 }
-if tls_module then table.insert(modules_enabled, tls_module) end
+if tls then table.insert(modules, "tls") end
+modules_enabled = modules
 
 VirtualHost (ENV_SABOT_DOMAIN or "sabot.local")
 VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests

@@ -112,7 +112,7 @@ def loadavg() -> list[float]:
 class Drive:
     def __init__(self, args: argparse.Namespace):
         self.args = args
-        self.client = controlml.Client(args.jid, args.password, starttls=False)
+        self.client = controlml.Client(args.jid, args.password, args.ca_file)
         self.robot = ""
         self.samples: list[tuple[float, float, float]] = []
         self.record: dict = {"minutes": args.minutes, "goals": [], "joystick": None, "samples": [],
@@ -191,8 +191,9 @@ class Drive:
 
     async def joystick(self) -> dict:
         shown = ["./sabot", "controlml", "--jid", self.args.jid, "--password", self.args.password, "--port",
-                 str(self.args.port), "joystick", self.args.robot, f"{JOYSTICK_LINEAR:g}", f"{JOYSTICK_ANGULAR:g}",
-                 "--rate", f"{JOYSTICK_RATE:g}", "--duration", f"{JOYSTICK_SECONDS:g}"]
+                 str(self.args.port), "--ca-file", self.args.ca_file, "joystick", self.args.robot,
+                 f"{JOYSTICK_LINEAR:g}", f"{JOYSTICK_ANGULAR:g}", "--rate", f"{JOYSTICK_RATE:g}", "--duration",
+                 f"{JOYSTICK_SECONDS:g}"]
         proc = await asyncio.create_subprocess_exec(sys.executable, self.args.controlml, *shown[2:],
                                                     stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE)
         try:
@@ -458,6 +459,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         s.add_argument("--log", required=True, help="the onboard product's console log")
     d.add_argument("--pid", type=int, required=True, help="the onboard product's JVM")
     d.add_argument("--port", type=int, required=True)
+    d.add_argument("--ca-file", required=True, help="the private server's lab CA (PEM)")
     d.add_argument("--jid", required=True)
     d.add_argument("--password", required=True)
     d.add_argument("--robot", required=True)

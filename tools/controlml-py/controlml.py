@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import datetime as dt
+import hashlib
 import logging
 import math
 import os
@@ -44,6 +45,28 @@ class Failure(Exception):
         self.status = status
 
 
+def ssl_context(ca_file: str | None) -> ssl.SSLContext:
+    """A client TLS context that checks the server's certificate and host name against ``ca_file``'s CAs only, or
+    against the system's trusted CAs when it is None."""
+    try:
+        return ssl.create_default_context(cafile=ca_file)
+    except (OSError, ssl.SSLError) as e:
+        raise Failure(EXIT_USAGE, f"--ca-file {ca_file}: {e}") from None
+
+
+def trust_description(ca_file: str | None) -> str:
+    """What a client trusts, in the words of a refusal: the CA file and its SHA-256 fingerprint, or the system's."""
+    if ca_file is None:
+        return "the system's trusted CAs"
+    try:
+        with open(ca_file, encoding="ascii") as f:
+            der = ssl.PEM_cert_to_DER_cert(f.read())
+        fingerprint = hashlib.sha256(der).hexdigest().upper()
+        return f"the CA of {ca_file} (SHA-256 " + ":".join(fingerprint[i:i + 2] for i in range(0, 64, 2)) + ")"
+    except (OSError, ValueError):
+        return f"the CA of {ca_file}"
+
+
 def time_answer(iq, now: dt.datetime | None = None):
     """The XEP-0202 answer to the entity time request ``iq``: this clock's UTC time to the microsecond, zone offset Z
     (the offset does not matter to a robot: it compares UTC times)."""
@@ -58,21 +81,28 @@ def time_answer(iq, now: dt.datetime | None = None):
 class Client(slixmpp.ClientXMPP):
     """One XMPP session: login, robot presence tracking, ControlML request/answer."""
 
-    def __init__(self, jid: str, password: str, starttls: bool, verify_tls: bool = True):
+    def __init__(self, jid: str, password: str, ca_file: str | None = None, plain: bool = False):
+        """``ca_file``: PEM of the CA that must sign the server's certificate (the lab CA of ``./sabot xmpp start``);
+        None: the system's trusted CAs. ``plain``: no TLS at all, for the benchmark that compares the two only."""
         super().__init__(jid, password)
         # slixmpp writes a namespaced attribute only when its namespace has a prefix here (xlink:href of the text
         # form and of Time units would be dropped otherwise)
         self.namespace_map[cm.XLINK_NS] = "xlink"
-        # one way in: the server's c2s port, plain or upgraded with STARTTLS (slixmpp would otherwise try direct TLS
-        # first and report its failure as a failed connection)
+        # one way in: the server's c2s port, upgraded with STARTTLS (slixmpp would otherwise try direct TLS first and
+        # report its failure as a failed connection); never a silent fallback to a plain stream
         self.enable_direct_tls = False
-        self.enable_starttls = starttls
-        self.enable_plaintext = not starttls
+        self.enable_starttls = not plain
+        self.enable_plaintext = plain
         # on a plain stream only SCRAM, which never sends the password (PLAIN stays refused)
-        self.plugin["feature_mechanisms"].unencrypted_scram = not starttls
-        if not verify_tls:  # a private server's self-signed certificate (loopback demo)
-            self.ssl_context.check_hostname = False
-            self.ssl_context.verify_mode = ssl.CERT_NONE
+        self.plugin["feature_mechanisms"].unencrypted_scram = plain
+        self.trust = trust_description(ca_file)
+        if not plain:
+            # the lab CA only (not added to the system's store), the certificate must name the XMPP domain
+            self.ssl_context = ssl_context(ca_file)
+        self.add_event_handler("ssl_invalid_chain", lambda _: self._fail(
+            f"the certificate for {self.boundjid.domain} is not signed by {self.trust}"))
+        self.add_event_handler("ssl_invalid_cert", lambda _: self._fail(
+            f"the certificate for {self.boundjid.domain} was refused (trusted: {self.trust})"))
         # XEP-0202: a robot measures its requesters' clocks to judge their commands' send times (spec section 5).
         # The plugin announces the feature; its own answer is replaced: slixmpp 1.17 fails while writing the answer's
         # zone offset (it parses a time without a date: ValueError), so the robot would never measure this clock.
@@ -246,7 +276,11 @@ def status_line(pose: cm.Element | Failure, mission: cm.Element | Failure, prese
 
 
 async def run(args: argparse.Namespace) -> int:
-    client = Client(args.jid, args.password, args.tls == "starttls", not args.no_verify)
+    try:
+        client = Client(args.jid, args.password, args.ca_file, args.plain)
+    except Failure as f:
+        print(f"controlml: {f}", file=sys.stderr)
+        return f.status
     try:
         await client.login(args.server, args.port, args.timeout)
         robot = await client.find_robot(args.robot, args.timeout)
@@ -316,11 +350,13 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--server", default=os.environ.get("CONTROLML_SERVER", "127.0.0.1"))
     p.add_argument("--port", type=int, default=int(os.environ.get("SABOT_XMPP_PORT", "15222")))
     p.add_argument("--timeout", type=float, default=10.0, help="seconds for login, presence and each answer")
-    p.add_argument("--tls", choices=("off", "starttls"),
-                   help="STARTTLS or a plain stream (default: off on a loopback server, whose private server has no "
-                        "certificate and offers no STARTTLS; starttls elsewhere). The "
-                        "password never travels in clear: SCRAM is used on a plain stream.")
-    p.add_argument("--no-verify", action="store_true", help="accept a self-signed TLS certificate")
+    p.add_argument("--ca-file", default=os.environ.get("SABOT_XMPP_CA") or None,
+                   help="PEM of the CA that signs the server's certificate: the lab CA of ./sabot xmpp start "
+                        "(DIR/ca/ca.pem; default $SABOT_XMPP_CA); without it, the system's trusted CAs. The connection "
+                        "always uses STARTTLS and checks that the certificate names the JID's domain")
+    p.add_argument("--plain", action="store_true",
+                   help="no TLS (a server started with --tls off, for the benchmark that compares the two; SCRAM "
+                        "only, the password never travels in clear)")
     p.add_argument("-v", "--verbose", action="store_true", help="log the XMPP traffic")
     sub = p.add_subparsers(dest="command", required=True)
     g = sub.add_parser("get", help="get a resource and print its fields")
@@ -353,8 +389,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                 args.password = f.readline().rstrip("\n")
         except OSError as e:
             p.error(f"--password-file: {e}")
-    if args.tls is None:
-        args.tls = "off" if args.server in ("127.0.0.1", "localhost", "::1") else "starttls"
+    if args.plain and args.ca_file:
+        p.error("--plain and --ca-file exclude each other")
+    if args.ca_file and not os.path.isfile(args.ca_file):
+        p.error(f"--ca-file {args.ca_file}: no such file")
     if args.password is None:
         p.error("give --password or --password-file")
     if args.command in ("get",) and not cm.is_resource(args.res):

@@ -114,8 +114,8 @@ class Answer:
 
 
 class Peer(tool.Client):
-    def __init__(self, jid: str, password: str):
-        super().__init__(jid, password, starttls=False)
+    def __init__(self, jid: str, password: str, ca_file: str):
+        super().__init__(jid, password, ca_file)
         for p in ("xep_0030", "xep_0060", "xep_0115", "xep_0163", "xep_0054", "xep_0199"):
             self.register_plugin(p)
         self.items: list[tuple[str, float]] = []  # (control-ml id, x) of every cm.position item as delivered
@@ -150,8 +150,8 @@ class Peer(tool.Client):
             return Answer(e.iq.xml)
 
 
-async def online(jid: str, password: str, server: str, port: int, interest: bool = False) -> Peer:
-    peer = Peer(jid, password)
+async def online(jid: str, password: str, server: str, port: int, ca_file: str, interest: bool = False) -> Peer:
+    peer = Peer(jid, password, ca_file)
     if interest:  # section 6 step 1: +notify in the caps of the initial presence
 
         async def add_interest(_event):
@@ -336,7 +336,7 @@ async def telemetry(args, robot: str) -> None:
     operator = f"{args.operator}@{args.domain}/interop"
     for session in (1, 2):
         print(f"... telemetry session {session}: logging in", flush=True)
-        peer = await online(operator, args.password, args.server, args.port, interest=True)
+        peer = await online(operator, args.password, args.server, args.port, args.ca_file, interest=True)
         print(f"... telemetry session {session}: online", flush=True)
         if session == 1:
             await asyncio.wait_for(peer.find_robot(robot_bare, TIMEOUT), TIMEOUT + 1)  # step 2: the presence subscription (the robot approves)
@@ -440,7 +440,7 @@ def base45(text: str) -> bytes:
     return bytes(out)
 
 
-def no_starttls(args) -> None:
+def starttls_required(args) -> None:
     with socket.create_connection((args.server, args.port), timeout=TIMEOUT) as s:
         s.sendall((f"<?xml version='1.0'?><stream:stream to='{args.domain}' version='1.0' xmlns='jabber:client' "
                    "xmlns:stream='http://etherx.jabber.org/streams'>").encode())
@@ -450,14 +450,19 @@ def no_starttls(args) -> None:
             if not chunk:
                 break
             buf += chunk
-    check("the private server offers no STARTTLS without a certificate", b"xmpp-tls" not in buf, buf.decode()[-300:])
+    features = buf.decode(errors="replace")
+    check("the server requires STARTTLS and offers no SASL mechanism before it",
+          "xmpp-tls" in features and "<required" in features and "mechanisms" not in features, features[-300:])
 
 
 async def main(args) -> None:
-    no_starttls(args)
-    op = await online(f"{args.operator}@{args.domain}/suite", args.password, args.server, args.port)
-    viewer = await online(f"{args.viewer}@{args.domain}/suite", args.password, args.server, args.port)
-    stranger = await online(f"{args.stranger}@{args.domain}/suite", args.password, args.server, args.port)
+    starttls_required(args)
+    op = await online(f"{args.operator}@{args.domain}/suite", args.password, args.server, args.port,
+                        args.ca_file)
+    viewer = await online(f"{args.viewer}@{args.domain}/suite", args.password, args.server, args.port,
+                        args.ca_file)
+    stranger = await online(f"{args.stranger}@{args.domain}/suite", args.password, args.server, args.port,
+                        args.ca_file)
     robot = args.robot
     await get_set(op, robot)
     await refusals(op, viewer, stranger, robot)
@@ -473,6 +478,7 @@ if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--server", default="127.0.0.1")
     p.add_argument("--port", type=int, required=True)
+    p.add_argument("--ca-file", required=True, help="the server's lab CA (PEM): the only CA the clients trust")
     p.add_argument("--domain", default="sabot.local")
     p.add_argument("--robot", required=True, help="the device's full JID")
     p.add_argument("--operator", required=True)

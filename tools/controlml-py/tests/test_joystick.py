@@ -41,7 +41,7 @@ class PayloadTest(unittest.TestCase):
         before = datetime.now(timezone.utc)
         payload = cm.encode_record("cm.velocity", cm.velocity(0.2, -0.5, cm.utc_time()))
         self.assertEqual("DataStream", cm.local(payload.tag))
-        iq = controlml.Client("operator@sabot.local", "secret", starttls=False).make_iq(
+        iq = controlml.Client("operator@sabot.local", "secret", plain=True).make_iq(
             ito="robot42@sabot.local/onboard", itype="set")
         iq.append(cm.control_ml("set", "20261121:7", "cm.velocity", payload))
         elem = cm.find_control_ml(ET.fromstring(str(iq)))  # as slixmpp writes it: xlink:href must survive

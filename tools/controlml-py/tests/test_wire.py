@@ -21,7 +21,7 @@ class WireTest(unittest.TestCase):
     def setUp(self):
         self.loop = asyncio.new_event_loop()
         asyncio.set_event_loop(self.loop)
-        self.client = controlml.Client("operator@sabot.local", "secret", starttls=False)
+        self.client = controlml.Client("operator@sabot.local", "secret", plain=True)
 
     def tearDown(self):
         self.loop.close()

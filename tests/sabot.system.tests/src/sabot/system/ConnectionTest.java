@@ -122,7 +122,8 @@ class ConnectionTest extends RigTest {
             rig.onboard.awaitCount(l -> l.contains("XMPP session online"), 2, "saying the session is back");
             // the server delivers the held goal on stream resumption; the robot judges it by its send time
             ControlMlElement answer = late.poll(30, TimeUnit.SECONDS);
-            assertTrue(answer != null && held.id().equals(answer.id()), "no answer to the held goal: " + answer);
+            assertTrue(answer != null && held.id().equals(answer.id()), () -> "no answer to the held goal: " + answer
+                    + "\n" + rig.onboard.output());
             assertEquals(ControlMlCondition.STALE_COMMAND, answer.failure().cmCondition(), answer.toString());
             MissionStatus mission = rig.get(Resources.MISSION);
             assertEquals(MissionState.FAILED, mission.state(), mission.toString());

@@ -81,7 +81,7 @@ final class RobotRig implements AutoCloseable {
         OnboardProcess onboard = null;
         try {
             onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, robotPort,
-                    OPERATOR + "@" + PrivateXmppServer.DOMAIN), "robot-pw", extraConfig);
+                    OPERATOR + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
             onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");

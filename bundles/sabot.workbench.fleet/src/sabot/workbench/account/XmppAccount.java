@@ -7,8 +7,15 @@ package sabot.workbench.account;
  * @param server host name or address of the XMPP server (may differ from the JID's domain)
  * @param port   client port, 1..65535 (XMPP's default is 5222)
  * @param jid    bare JID, {@code local@domain}
+ * @param caFile PEM file of the CA that signs the server's certificate (a lab CA); "" for the JVM's default trust
+ *               store. The connection always requires TLS.
  */
-public record XmppAccount(String server, int port, String jid) {
+public record XmppAccount(String server, int port, String jid, String caFile) {
+
+    /** An account whose server has a publicly signed certificate (the JVM's default trust store). */
+    public XmppAccount(String server, int port, String jid) {
+        this(server, port, jid, "");
+    }
 
     /** Default client port of XMPP (RFC 6120). */
     public static final int DEFAULT_PORT = 5222;
@@ -16,6 +23,7 @@ public record XmppAccount(String server, int port, String jid) {
     public XmppAccount {
         server = server == null ? "" : server.strip();
         jid = jid == null ? "" : jid.strip();
+        caFile = caFile == null ? "" : caFile.strip();
     }
 
     /**
@@ -35,6 +43,9 @@ public record XmppAccount(String server, int port, String jid) {
         if (at <= 0 || at == jid.length() - 1 || jid.indexOf('@', at + 1) >= 0 || jid.contains("/")
                 || jid.chars().anyMatch(Character::isWhitespace)) {
             return "JID must look like name@domain (no resource, no spaces)";
+        }
+        if (!caFile.isEmpty() && !java.nio.file.Files.isReadable(java.nio.file.Path.of(caFile))) {
+            return "CA file " + caFile + " cannot be read";
         }
         return null;
     }

@@ -20,7 +20,7 @@ import org.osgi.service.prefs.BackingStoreException;
 import org.osgi.service.prefs.Preferences;
 
 /**
- * Stores the XMPP account: server, port and JID in the workbench's preferences, the password in a separate file
+ * Stores the XMPP account: server, port, JID and CA file in the workbench's preferences, the password in a separate file
  * readable by its owner only (mode 0600, like an SSH key), never in the preferences. The file is replaced
  * atomically and refused when its permissions are looser than 0600.
  */
@@ -35,6 +35,7 @@ public final class XmppAccountStore {
     static final String KEY_SERVER = KEY_PREFIX + "server";
     static final String KEY_PORT = KEY_PREFIX + "port";
     static final String KEY_JID = KEY_PREFIX + "jid";
+    static final String KEY_CA_FILE = KEY_PREFIX + "caFile";
     /** The robots to follow besides those already in the roster (fleet rule 12): bare JIDs, comma-separated. */
     static final String KEY_ROBOTS = KEY_PREFIX + "robots";
     /**
@@ -148,7 +149,7 @@ public final class XmppAccountStore {
     /** @return the stored account; empty fields and the default port when nothing is stored */
     public XmppAccount load() {
         return new XmppAccount(preferences.get(KEY_SERVER, ""), preferences.getInt(KEY_PORT,
-                XmppAccount.DEFAULT_PORT), preferences.get(KEY_JID, ""));
+                XmppAccount.DEFAULT_PORT), preferences.get(KEY_JID, ""), preferences.get(KEY_CA_FILE, ""));
     }
 
     /**
@@ -169,6 +170,11 @@ public final class XmppAccountStore {
         preferences.put(KEY_SERVER, account.server());
         preferences.putInt(KEY_PORT, account.port());
         preferences.put(KEY_JID, account.jid());
+        if (account.caFile().isEmpty()) {
+            preferences.remove(KEY_CA_FILE);
+        } else {
+            preferences.put(KEY_CA_FILE, account.caFile());
+        }
         flush();
     }
 

@@ -13,13 +13,15 @@ import org.eclipse.swt.widgets.Text;
 import org.eclipse.ui.IWorkbench;
 import org.eclipse.ui.IWorkbenchPreferencePage;
 
+import sabot.fleet.ServerTrust;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
 
 /**
- * Window &gt; Preferences &gt; XMPP Account: server, port, JID and password of the operator's account. The
- * password goes to an owner-only (0600) file, never into the preferences; an empty password field keeps the
- * stored one.
+ * Window &gt; Preferences &gt; XMPP Account: server, port, JID and password of the operator's account, and the lab CA
+ * that signs the server's certificate (its SHA-256 fingerprint shown, to compare with the one the server's
+ * administrator gives). The password goes to an owner-only (0600) file, never into the preferences; an empty password
+ * field keeps the stored one. The connection always requires TLS.
  */
 public final class XmppAccountPreferencePage extends PreferencePage implements IWorkbenchPreferencePage {
 
@@ -29,6 +31,8 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
     private Text jid;
     private Text password;
     private Text lobby;
+    private Text caFile;
+    private Label fingerprint;
 
     /** @return the store the workbench uses for the operator's account */
     public static XmppAccountStore defaultStore() {
@@ -53,6 +57,10 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         password.setMessage(store.hasPassword() ? "(stored; type to replace)" : "(not stored)");
         lobby = field(c, "Fleet &lobby:", store.loadLobby(), SWT.BORDER);
         lobby.setMessage("(none) e.g. fleet@conference.sabot.local: online robots found there are followed");
+        caFile = field(c, "Lab &CA file:", account.caFile(), SWT.BORDER);
+        caFile.setMessage("(none: the authorities the JVM trusts) e.g. the ca/ca.pem of ./sabot xmpp start");
+        fingerprint = new Label(c, SWT.WRAP);
+        GridDataFactory.fillDefaults().span(2, 1).grab(true, false).hint(400, SWT.DEFAULT).applyTo(fingerprint);
         Label where = new Label(c, SWT.WRAP);
         where.setText("The password is kept in " + store.passwordFile() + ", readable by you only (mode 0600).");
         GridDataFactory.fillDefaults().span(2, 1).grab(true, false).hint(400, SWT.DEFAULT).applyTo(where);
@@ -77,8 +85,12 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         } catch (NumberFormatException e) {
             p = -1;
         }
-        XmppAccount account = new XmppAccount(server.getText(), p, jid.getText());
+        XmppAccount account = new XmppAccount(server.getText(), p, jid.getText(), caFile == null ? ""
+                : caFile.getText());
         String problem = account.problem();
+        if (problem == null && fingerprint != null) {
+            problem = showTrust(account.caFile());
+        }
         String room = lobby == null ? "" : lobby.getText().strip();
         if (problem == null && !room.isEmpty()) {
             String roomProblem = new XmppAccount(account.server(), account.port(), room).problem();
@@ -87,6 +99,19 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         setErrorMessage(problem);
         setValid(problem == null);
         return problem == null ? account : null;
+    }
+
+    /** Shows what the connection will trust; @return the CA file's problem, or null */
+    private String showTrust(String file) {
+        try {
+            ServerTrust trust = ServerTrust.of(file);
+            fingerprint.setText(file.isBlank() ? "TLS with the authorities the JVM trusts."
+                    : "TLS with this CA only, SHA-256 " + String.join(", ", trust.fingerprints()));
+            return null;
+        } catch (IOException e) {
+            fingerprint.setText("");
+            return "Lab CA file: " + e.getMessage();
+        }
     }
 
     @Override

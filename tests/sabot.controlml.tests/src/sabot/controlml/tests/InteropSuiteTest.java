@@ -110,7 +110,8 @@ abstract class InteropSuiteTest {
         int exit;
         try (TelemetryPublication telemetry = device.telemetry().publish(Resources.POSITION, () -> new PoseEstimate(
                 Samples.T, new Pose2D(tick.incrementAndGet(), 0, 0), Samples.POSE.covariance()), 20)) {
-            exit = runSuite(List.of("--port", Integer.toString(server().port()), "--domain", PrivateXmppServer.DOMAIN,
+            exit = runSuite(List.of("--port", Integer.toString(server().port()), "--ca-file", server().caFile()
+                    .toString(), "--domain", PrivateXmppServer.DOMAIN,
                     "--robot", robot.getUser().toString(), "--operator", "operator-" + suffix, "--viewer", "viewer-"
                             + suffix, "--stranger", "stranger-" + suffix, "--password",
                     PrivateXmppServer.DEFAULT_PASSWORD, "--serial", SERIAL, "--part", PART), output);

@@ -19,7 +19,6 @@ import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
-import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
 import org.jivesoftware.smack.roster.Roster;
@@ -81,7 +80,7 @@ abstract class FleetOnServerTest {
     void productionConnectionsUseTcpNoDelayAndStreamManagement() throws Exception {
         server().register("robot-nd", PrivateXmppServer.DOMAIN, "pw");
         XMPPTCPConnection c = server().connect(FleetConnections.builder(PrivateXmppServer.DOMAIN, InetAddress
-                .getLoopbackAddress(), server().port(), SecurityMode.disabled).setUsernameAndPassword("robot-nd",
+                .getLoopbackAddress(), server().port(), server().trust()).setUsernameAndPassword("robot-nd",
                         "pw").build());
         Field f = XMPPTCPConnection.class.getDeclaredField("socket");
         f.setAccessible(true);

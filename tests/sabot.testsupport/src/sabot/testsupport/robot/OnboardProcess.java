@@ -34,8 +34,12 @@ public final class OnboardProcess implements AutoCloseable {
         this.console = ProcessConsole.tail("onboard product", process, log);
     }
 
-    /** The settings of one robot's configuration file. */
-    public record Robot(String name, String pty, double[] start, int xmppPort, String operator) {
+    /**
+     * The settings of one robot's configuration file.
+     *
+     * @param caFile the lab CA of the XMPP server (a private server's {@code caFile()}); null: the JVM's trust store
+     */
+    public record Robot(String name, String pty, double[] start, int xmppPort, String operator, Path caFile) {
     }
 
     /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
@@ -52,12 +56,13 @@ public final class OnboardProcess implements AutoCloseable {
                 planner.map = %s
                 controlml.server = 127.0.0.1
                 controlml.port = %d
+                controlml.caFile = %s
                 controlml.jid = %s@%s
                 controlml.passwordFile = %s
                 controlml.operators = %s
                 remotefs.root = %s
                 %s
-                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, r.xmppPort(), r.name(),
+                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
                 PrivateXmppServer.DOMAIN, passwordFile, r.operator(), fsRoot, extra);
     }
 

@@ -17,7 +17,6 @@ import java.util.Objects;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
 
-import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
@@ -31,7 +30,9 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.jid.parts.Localpart;
 
+import sabot.fleet.FleetConnections;
 import sabot.fleet.NoDelaySocketFactory;
+import sabot.fleet.ServerTrust;
 
 /**
  * A private XMPP server (Prosody or ejabberd) on a free loopback port, with its own configuration and state
@@ -83,6 +84,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private long pid;
     private Path runDir;
     private int port;
+    /** The lab CA that signs the server's certificates (made by sabot-xmpp in the state directory). */
+    private Path caFile;
+    private ServerTrust trust;
     private Duration startupTime;
     private Thread shutdownHook;
 
@@ -193,9 +197,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         try {
             pid = Long.parseLong(ready.get("pid"));
             port = Integer.parseInt(ready.get("port"));
+            caFile = Path.of(ready.get("ca"));
         } catch (NumberFormatException | NullPointerException e) {
-            throw new IOException("sabot-xmpp start printed no 'pid=N port=N' line but '" + out + "'; see " + log, e);
+            throw new IOException("sabot-xmpp start printed no 'pid=N port=N ... ca=FILE' line but '" + out
+                    + "'; see " + log, e);
         }
+        trust = ServerTrust.labCa(caFile);
     }
 
     /** The script's {@code [sabot] error:} line, the reason it gives for a failure. */
@@ -261,31 +268,41 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return pid;
     }
 
+    /** @return the lab CA's certificate (PEM) that signs this server's certificates: what its clients trust */
+    public Path caFile() {
+        return caFile;
+    }
+
+    /** @return trust in this server's lab CA only */
+    public ServerTrust trust() {
+        return trust;
+    }
+
     /**
-     * A connection configuration for this server: loopback address (no DNS), plain TCP with TCP_NODELAY, no
-     * compression. Callers may change it before {@code build()}.
+     * A connection configuration for this server: loopback address (no DNS), TLS required with the server's lab CA
+     * and the domain checked (as every Sabot client), TCP_NODELAY, no compression. Callers may change it before
+     * {@code build()}.
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
-        return configuration(port, localpart, domain, password);
+        return configuration(port, trust, localpart, domain, password);
     }
 
     /**
      * As {@link #configuration(String, String, String)}, for a private server started by another process (its
-     * loopback port known).
+     * loopback port and its lab CA known).
      */
-    public static XMPPTCPConnectionConfiguration.Builder configuration(int port, String localpart, String domain,
-            String password) {
+    public static XMPPTCPConnectionConfiguration.Builder configuration(int port, ServerTrust trust, String localpart,
+            String domain, String password) {
         try {
-            return XMPPTCPConnectionConfiguration.builder()
+            return FleetConnections.secured(XMPPTCPConnectionConfiguration.builder()
                     .setXmppDomain(JidCreate.domainBareFrom(domain))
                     .setHostAddress(InetAddress.getLoopbackAddress())
                     .setPort(port)
                     .setUsernameAndPassword(localpart, password)
                     .setResource("test")
-                    .setSecurityMode(SecurityMode.disabled)
                     .setSocketFactory(new NoDelaySocketFactory())
                     .setSendPresence(true)
-                    .setConnectTimeout(10_000);
+                    .setConnectTimeout(10_000), trust);
         } catch (IOException e) {
             throw new UncheckedIOException(e);
         }
@@ -298,17 +315,17 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     public EntityBareJid register(String localpart, String domain, String password) throws IOException,
             InterruptedException, SmackException, XMPPException {
-        return register(port, localpart, domain, password);
+        return register(port, trust, localpart, domain, password);
     }
 
     /** As {@link #register(String, String, String)}, on a private server started by another process. */
-    public static EntityBareJid register(int port, String localpart, String domain, String password)
-            throws IOException, InterruptedException, SmackException, XMPPException {
-        XMPPTCPConnection anonymous = new XMPPTCPConnection(configuration(port, localpart, domain, password).build());
+    public static EntityBareJid register(int port, ServerTrust trust, String localpart, String domain,
+            String password) throws IOException, InterruptedException, SmackException, XMPPException {
+        XMPPTCPConnection anonymous = new XMPPTCPConnection(configuration(port, trust, localpart, domain, password)
+                .build());
         try {
             anonymous.connect();
             AccountManager accounts = AccountManager.getInstance(anonymous);
-            accounts.sensitiveOperationOverInsecureConnection(true); // loopback only
             accounts.createAccount(Localpart.from(localpart), password);
             return JidCreate.entityBareFrom(localpart + "@" + domain);
         } finally {

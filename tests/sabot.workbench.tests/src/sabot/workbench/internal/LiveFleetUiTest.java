@@ -102,7 +102,7 @@ class LiveFleetUiTest {
         Path dir = Files.createDirectories(Paths.get("target", "live-fleet").toAbsolutePath());
         sim = SimProcess.start(dir, START);
         onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
         // the lab map where a robot keeps it for workbenches: too large for one cm.map payload
         Path maps = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps");
         Files.copy(maps.resolve("lab.yaml"), dir.resolve("fs/map.yaml"), StandardCopyOption.REPLACE_EXISTING);
@@ -135,7 +135,7 @@ class LiveFleetUiTest {
         long t0 = System.nanoTime();
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         store.saveRobots(List.of(ROBOT_JID));
-        store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN), "operator-pw"
+        store.save(operatorAccount(xmpp.port()), "operator-pw"
                 .toCharArray());
         WorkspaceView workspace = workspace();
         waitFor(() -> live(robotRow()) && workspace.map() != null, 60, () -> "robot not live on the map: "
@@ -459,7 +459,7 @@ class LiveFleetUiTest {
         };
         fleet.addListener(watch);
         try (SilentRelay relay = new SilentRelay(xmpp.port())) {
-            store.save(new XmppAccount("127.0.0.1", relay.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+            store.save(operatorAccount(relay.port()),
                     "operator-pw".toCharArray());
             waitFor(() -> live(robotRow()) && statusLineText().contains(":" + relay.port()), 60,
                     () -> "robot not live through the relay: " + fleetView().rows() + "; " + statusLineText());
@@ -478,7 +478,7 @@ class LiveFleetUiTest {
         } finally {
             fleet.removeListener(watch);
             context.ungetService(ref);
-            store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+            store.save(operatorAccount(xmpp.port()),
                     "operator-pw".toCharArray());
         }
     }
@@ -697,5 +697,10 @@ class LiveFleetUiTest {
             Path docs = Files.createDirectories(Paths.get(root, "docs", "images"));
             Files.copy(png, docs.resolve(png.getFileName()), StandardCopyOption.REPLACE_EXISTING);
         }
+    }
+
+    /** @return the operator's account on 127.0.0.1:{@code port}, trusting the private server's lab CA */
+    private static XmppAccount operatorAccount(int port) {
+        return new XmppAccount("127.0.0.1", port, OPERATOR + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile().toString());
     }
 }

@@ -132,7 +132,7 @@ class WorkbenchUiTest {
         try {
             XmppAccountPreferencePage page = (XmppAccountPreferencePage) dialog.getSelectedPage();
             List<Text> fields = all(page.getControl(), Text.class);
-            assertEquals(5, fields.size());
+            assertEquals(6, fields.size());
             fields.get(0).setText("");
             assertFalse(page.isValid());
             assertEquals("Server is empty", page.getErrorMessage());
@@ -151,6 +151,17 @@ class WorkbenchUiTest {
                     .getErrorMessage());
             fields.get(4).setText("fleet@conference.sabot.local");
             assertTrue(page.isValid());
+            // the lab CA: a file that is not there is refused; a CA's certificate shows its fingerprint
+            java.nio.file.Path dir = Files.createTempDirectory("wb-ca");
+            fields.get(5).setText(dir.resolve("missing.pem").toString());
+            assertFalse(page.isValid());
+            assertEquals("CA file " + dir.resolve("missing.pem") + " cannot be read", page.getErrorMessage());
+            java.nio.file.Path ca = sabot.testsupport.xmpp.TestCertificates.anotherCa(dir, "lab-ca");
+            fields.get(5).setText(ca.toString());
+            assertTrue(page.isValid(), page.getErrorMessage());
+            String fingerprint = sabot.fleet.ServerTrust.labCa(ca).fingerprints().get(0);
+            assertTrue(all(page.getControl(), org.eclipse.swt.widgets.Label.class).stream().anyMatch(l -> l.getText()
+                    .equals("TLS with this CA only, SHA-256 " + fingerprint)), "no fingerprint shown");
             assertTrue(page.performOk());
         } finally {
             dialog.close();
@@ -159,6 +170,8 @@ class WorkbenchUiTest {
         Preferences prefs = InstanceScope.INSTANCE.getNode("sabot.workbench");
         assertEquals("operator@sabot.local", prefs.get("xmpp.jid", null));
         assertEquals(15222, prefs.getInt("xmpp.port", 0));
+        assertTrue(prefs.get("xmpp.caFile", "").endsWith("lab-ca.pem"), prefs.get("xmpp.caFile", ""));
+        assertTrue(store.load().caFile().endsWith("lab-ca.pem"));
         assertEquals("fleet@conference.sabot.local", store.loadLobby());
         store.saveLobby("");
         assertEquals("", store.loadLobby());

@@ -44,11 +44,13 @@ abstract class SmackSmokeTest {
     protected abstract PrivateXmppServer server();
 
     /**
-     * A private server has no certificate, so it must not offer STARTTLS: a standard client takes an offered
-     * STARTTLS, and the handshake then fails (Prosody's mod_tls advertised it without a certificate).
+     * TLS is required: before STARTTLS the server offers nothing else (no SASL mechanism, so no password can cross in
+     * clear); a client that trusts the server's lab CA gets an encrypted session authenticated with SCRAM-SHA-256,
+     * one that trusts another CA is refused with one line that says so.
      */
     @Test
-    void noStartTlsIsOfferedWithoutACertificate() throws Exception {
+    void clientsMustStartTlsAndTrustTheLabCa(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
         try (Socket s = new Socket(java.net.InetAddress.getLoopbackAddress(), server().port())) {
             s.setSoTimeout((int) TimeUnit.SECONDS.toMillis(TIMEOUT_S));
             s.getOutputStream().write(("<?xml version='1.0'?><stream:stream to='" + PrivateXmppServer.DOMAIN
@@ -60,9 +62,26 @@ abstract class SmackSmokeTest {
             while (reply.indexOf("</stream:features>") < 0 && (n = s.getInputStream().read(buf)) > 0) {
                 reply.append(new String(buf, 0, n, java.nio.charset.StandardCharsets.UTF_8));
             }
-            assertTrue(reply.indexOf("</stream:features>") >= 0, reply::toString);
-            assertFalse(reply.indexOf("urn:ietf:params:xml:ns:xmpp-tls") >= 0, reply::toString);
+            String features = reply.substring(reply.indexOf("<stream:features>"));
+            assertTrue(features.matches("(?s).*<starttls xmlns=.urn:ietf:params:xml:ns:xmpp-tls.>\\s*<required/>.*"),
+                    features);
+            assertFalse(features.contains("mechanisms"), "SASL offered before TLS: " + features);
         }
+        XMPPTCPConnection secured = server().login("tls-user");
+        assertTrue(secured.isSecureConnection(), "not encrypted");
+        // the accounts are stored as SHA-256 SCRAM keys: SCRAM-SHA-256 (sabot.fleet's, over the ongres library)
+        assertEquals("SCRAM-SHA-256", secured.getUsedSaslMechansism());
+
+        java.nio.file.Path other = sabot.testsupport.xmpp.TestCertificates.anotherCa(dir, "another-ca");
+        sabot.fleet.ServerTrust stranger = sabot.fleet.ServerTrust.labCa(other);
+        XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(server().port(), stranger,
+                "tls-user", PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD).build());
+        Exception refused = assertThrows(Exception.class, c::connect);
+        c.instantShutdown();
+        String line = stranger.explain(refused, PrivateXmppServer.DOMAIN);
+        assertEquals("the certificate for sabot.local is not signed by the CA of " + other + " (SHA-256 "
+                + stranger.fingerprints().get(0) + ")", line, () -> "refused as " + refused);
+        assertFalse(server().trust().fingerprints().equals(stranger.fingerprints()));
     }
 
     @Test

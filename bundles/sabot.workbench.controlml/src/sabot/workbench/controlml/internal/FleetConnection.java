@@ -9,7 +9,6 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
 
-import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.ConnectionListener;
 import org.jivesoftware.smack.ReconnectionManager;
 import org.jivesoftware.smack.roster.Roster;
@@ -21,6 +20,7 @@ import org.slf4j.LoggerFactory;
 
 import sabot.controlml.ControlMlManager;
 import sabot.fleet.FleetConnections;
+import sabot.fleet.ServerTrust;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.SubscriptionGate;
 import sabot.workbench.account.XmppAccount;
@@ -133,12 +133,19 @@ final class FleetConnection {
             registry.setStatus(State.NO_ACCOUNT, account.jid(), problem != null ? problem : "no password stored");
             return;
         }
+        ServerTrust trust;
+        try {
+            trust = ServerTrust.of(account.caFile());
+        } catch (IOException e) {
+            registry.setStatus(State.NO_ACCOUNT, account.jid(), e.getMessage());
+            return;
+        }
         registry.setStatus(State.CONNECTING, account.jid(), account.server() + ":" + account.port());
         XMPPTCPConnection c = null;
         try {
             EntityBareJid me = JidCreate.entityBareFrom(account.jid());
             c = new XMPPTCPConnection(FleetConnections.builder(me.getDomain().toString(), InetAddress.getByName(
-                    account.server()), account.port(), securityFor(account.server())).setUsernameAndPassword(me
+                    account.server()), account.port(), trust).setUsernameAndPassword(me
                             .getLocalpart().toString(), new String(password)).setResource(RESOURCE_PREFIX + Long
                                     .toHexString(System.nanoTime() & 0xffffff)).build());
             ReconnectionManager.getInstanceFor(c).disableAutomaticReconnection(); // our own back-off, below
@@ -195,7 +202,8 @@ final class FleetConnection {
                 linkWatch = null;
             }
             session = null;
-            retry(account.jid(), describe(e));
+            String certificate = trust.explain(e, account.jid().substring(account.jid().indexOf('@') + 1));
+            retry(account.jid(), certificate != null ? certificate : describe(e));
         }
     }
 
@@ -254,13 +262,6 @@ final class FleetConnection {
         for (String jid : registry.jids()) {
             registry.update(jid, r -> r.withPresence(Availability.OFFLINE, ""));
         }
-    }
-
-    static SecurityMode securityFor(String server) {
-        // as the robot's session: plain TCP only to a server on this machine, TLS required elsewhere
-        boolean loopback = server.equals("localhost") || server.startsWith("127.") || server.equals("::1")
-                || server.equals("[::1]");
-        return loopback ? SecurityMode.disabled : SecurityMode.required;
     }
 
     private static String describe(Throwable e) {

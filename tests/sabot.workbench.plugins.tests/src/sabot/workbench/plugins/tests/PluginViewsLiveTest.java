@@ -106,12 +106,12 @@ class PluginViewsLiveTest {
         dir = Files.createDirectories(Paths.get("target", "live-plugins").toAbsolutePath());
         sim = SimProcess.start(dir, START);
         onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN), "robot-pw", "");
+                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
         onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
         onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         store.saveRobots(List.of(ROBOT_JID));
-        store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN),
+        store.save(operatorAccount(xmpp.port()),
                 "operator-pw".toCharArray());
     }
 
@@ -481,5 +481,10 @@ class PluginViewsLiveTest {
             Files.copy(png, Files.createDirectories(Paths.get(root, "docs", "images")).resolve(name),
                     StandardCopyOption.REPLACE_EXISTING);
         }
+    }
+
+    /** @return the operator's account on 127.0.0.1:{@code port}, trusting the private server's lab CA */
+    private static XmppAccount operatorAccount(int port) {
+        return new XmppAccount("127.0.0.1", port, OPERATOR + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile().toString());
     }
 }

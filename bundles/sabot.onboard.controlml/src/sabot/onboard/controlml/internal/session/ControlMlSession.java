@@ -11,7 +11,6 @@ import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.TimeUnit;
 
-import org.jivesoftware.smack.ConnectionConfiguration.SecurityMode;
 import org.jivesoftware.smack.ConnectionListener;
 import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPConnection;
@@ -36,6 +35,7 @@ import org.slf4j.LoggerFactory;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.StaleCommandPolicy;
+import sabot.fleet.FleetConnections;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.NoDelaySocketFactory;
 import sabot.identity.DeviceIdentityManager;
@@ -77,6 +77,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final InventorySource inventorySource;
     private final String version;
     private final XMPPTCPConnection connection;
+    private final NoDelaySocketFactory sockets = new NoDelaySocketFactory();
     private final ControlMlManager controlMl;
     private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
             "sabot-session-connect"));
@@ -121,14 +122,13 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                     .setPort(settings.port())
                     .setUsernameAndPassword(settings.jid().getLocalpart(), settings.password())
                     .setResource(settings.resource())
-                    .setSecurityMode(securityFor(settings.server()))
-                    .setSocketFactory(new NoDelaySocketFactory())
+                    .setSocketFactory(sockets)
                     .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
                     .setSendPresence(false); // the session sends its own presence, with level and reason
         } catch (org.jxmpp.stringprep.XmppStringprepException e) {
             throw new IllegalArgumentException("resource '" + settings.resource() + "': " + e.getMessage(), e);
         }
-        connection = new XMPPTCPConnection(config.build());
+        connection = new XMPPTCPConnection(FleetConnections.secured(config, settings.trust()).build());
         connection.setUseStreamManagement(true);
         connection.setUseStreamManagementResumption(true);
         Roster roster = Roster.getInstanceFor(connection);
@@ -168,21 +168,12 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             }
         };
         tasks.open();
-        LOG.info("controlml task started: {} on {}:{} (resource {}), {}", settings.jid(), settings.server(),
-                settings.port(), settings.resource(), settings.operators().isEmpty()
+        LOG.info("controlml task started: {} on {}:{} (resource {}, TLS trusting {}), {}", settings.jid(),
+                settings.server(), settings.port(), settings.resource(), settings.trust().describe(),
+                settings.operators().isEmpty()
                         ? "operators: contacts with a mutual subscription"
                         : "operators: " + settings.operators());
         scheduleConnect(Duration.ZERO);
-    }
-
-    /**
-     * Plain TCP to a server on this machine (the private test and demo servers, which offer STARTTLS without a usable
-     * certificate); elsewhere TLS is required, so the password never crosses a network in clear.
-     */
-    static SecurityMode securityFor(String server) {
-        boolean loopback = server.equals("localhost") || server.startsWith("127.") || server.equals("::1")
-                || server.equals("[::1]");
-        return loopback ? SecurityMode.disabled : SecurityMode.required;
     }
 
     @Deactivate
@@ -260,7 +251,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                     connection.login();
                 }
             } catch (SmackException | XMPPException | java.io.IOException | RuntimeException e) {
-                failed(describe(e));
+                String certificate = settings.trust().explain(e, settings.jid().getDomain().toString());
+                failed(certificate != null ? certificate : describe(e));
                 return;
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt(); // deactivation
@@ -298,6 +290,9 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     }
 
     private void failed(String reason) {
+        synchronized (lock) {
+            lastLoss = reason; // the status says why the session is offline
+        }
         failures++;
         Duration delay = backoff(failures, settings.reconnectMin(), settings.reconnectMax());
         if (failures <= LOGGED_FAILURES) {
@@ -331,6 +326,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
      */
     private void silent(String reason) {
         lost(reason);
+        sockets.abandonLast(); // no TLS close: it would reach the server after a resumption and end that stream
         connection.instantShutdown();
     }
 

@@ -1,5 +1,6 @@
 package sabot.onboard.controlml.internal.session;
 
+import java.io.IOException;
 import java.nio.file.Path;
 import java.nio.file.Paths;
 import java.time.Duration;
@@ -18,6 +19,7 @@ import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.controlml.ControlMl;
 import sabot.fleet.LinkWatch;
+import sabot.fleet.ServerTrust;
 import sabot.onboard.task.InvalidSettings;
 import sabot.onboard.task.TaskProperties;
 import sabot.onboard.task.OnboardTask;
@@ -39,10 +41,11 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param staleCommandAfter sets that waited longer at the server are refused
  * @param liveness          silence from the server after which it is pinged; twice it, the link is taken as lost
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
+ * @param trust             whom the session trusts for the server's certificate (TLS is always required)
  */
 public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, String resource,
         Duration reconnectMin, Duration reconnectMax, Set<EntityBareJid> operators, Duration staleCommandAfter,
-        Duration liveness, String robotName) {
+        Duration liveness, String robotName, ServerTrust trust) {
 
     /** The task's name. */
     public static final String TASK = "controlml";
@@ -62,7 +65,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     /** Keys (setting ids) of the settings read here. */
     static final String SERVER = "server", PORT = "port", JID = "jid", PASSWORD_FILE = "passwordFile",
             RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
-            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness";
+            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness",
+            CA_FILE = "caFile";
 
     /**
      * The {@code controlml} task's settings: its Metatype description, generated from these annotations. The session
@@ -75,10 +79,16 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         /** Highest telemetry rate, Hz. */
         double MAX_RATE_HZ = 100;
 
-        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address. To this "
-                + "machine (127.x, ::1, localhost) the session uses plain TCP; to any other server it requires TLS "
-                + "(STARTTLS with a certificate the JVM trusts).")
+        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address. The "
+                + "session always requires TLS (STARTTLS), with a certificate that names the account's domain and is "
+                + "signed by the CA of caFile.")
         String server() default DEFAULT_SERVER;
+
+        @AttributeDefinition(name = "CA file", required = false, description = "PEM file of the certificate "
+                + "authority that signs the server's certificate: the lab CA that ./sabot xmpp start makes (its state "
+                + "folder's ca/ca.pem) or a lab's own. Empty: the JVM's default trust store (a server with a publicly "
+                + "signed certificate).")
+        String caFile() default "";
 
         @AttributeDefinition(name = "Port", description = "The server's client-to-server TCP port.", min = "1",
                 max = "65535")
@@ -164,7 +174,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     @Override
     public String toString() { // never the password
         return "ControlMlSettings[server=" + server + ", port=" + port + ", jid=" + jid + ", resource=" + resource
-                + ", reconnect " + reconnectMin + ".." + reconnectMax + ", operators=" + operators + "]";
+                + ", reconnect " + reconnectMin + ".." + reconnectMax + ", operators=" + operators + ", trust "
+                + trust.describe() + "]";
     }
 
     private static ControlMlSettings parse(Map<String, ?> properties, List<Problem> problems) {
@@ -221,6 +232,12 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         }
         Duration stale = seconds(p, STALE_COMMAND_AFTER, DEFAULT_STALE_COMMAND_AFTER_S, 0, problems);
         Duration liveness = seconds(p, LIVENESS, DEFAULT_LIVENESS_S, 0.1, problems);
+        ServerTrust trust = null;
+        try {
+            trust = ServerTrust.of(p.string(CA_FILE, ""));
+        } catch (IOException e) {
+            problems.add(new Problem(CA_FILE, e.getMessage()));
+        }
         String robotName = p.string(OnboardTask.ROBOT_NAME, "");
         if (robotName.isEmpty() && jid != null) {
             robotName = jid.getLocalpart().toString();
@@ -229,7 +246,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
             return null;
         }
         return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax, operators,
-                stale, liveness, robotName);
+                stale, liveness, robotName, trust);
     }
 
     private static EntityBareJid bareJid(String text, String key, String where, List<Problem> problems) {

@@ -39,11 +39,12 @@ final class LoadProcess implements AutoCloseable {
     /**
      * Starts the robots and waits until they are online.
      *
+     * @param caFile   the server's lab CA (PEM)
      * @param nice     the process's nice value, 0..19
      * @param log      where its standard error goes
-     * @param arguments {@link FleetLoad}'s options after {@code --attach PORT}
+     * @param arguments {@link FleetLoad}'s options after {@code --attach PORT --ca-file PEM}
      */
-    static LoadProcess start(int port, int nice, Path log, List<String> arguments) throws IOException {
+    static LoadProcess start(int port, Path caFile, int nice, Path log, List<String> arguments) throws IOException {
         // a session of its own: with Linux's autogroups (sched_autogroup_enabled) a session is one scheduling group,
         // whose nice value weighs all of its threads together (below)
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
@@ -52,7 +53,8 @@ final class LoadProcess implements AutoCloseable {
         if (System.getProperty("sabot.root") != null) {
             cmd.add("-Dsabot.root=" + System.getProperty("sabot.root"));
         }
-        cmd.addAll(List.of(FleetLoad.class.getName(), "--attach", Integer.toString(port)));
+        cmd.addAll(List.of(FleetLoad.class.getName(), "--attach", Integer.toString(port), "--ca-file", caFile
+                .toString()));
         cmd.addAll(arguments);
         Process p = new ProcessBuilder(cmd).redirectError(log.toFile()).start();
         BufferedReader out = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8));

@@ -195,7 +195,7 @@ public final class WorkbenchBench {
             String operatorPw = "operator-pw";
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, operatorPw);
             long l0 = System.nanoTime();
-            try (LoadProcess load = LoadProcess.start(server.port(), loadNice, dir.resolve("load.log"), List.of(
+            try (LoadProcess load = LoadProcess.start(server.port(), server.caFile(), loadNice, dir.resolve("load.log"), List.of(
                     "--robots", Integer.toString(robots), "--password", "robot-pw", "--operator", operator.toString(),
                     "--rate", Double.toString(rate), "--velocity-rate", Double.toString(velocityRate < 0 ? rate
                             : velocityRate), "--seed", Long.toString(seed)))) {

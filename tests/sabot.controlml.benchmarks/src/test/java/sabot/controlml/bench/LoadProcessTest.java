@@ -35,7 +35,7 @@ class LoadProcessTest {
         try (PrivateXmppServer server = PrivateXmppServer.prosody().start()) {
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, "operator-pw");
             long loadPid;
-            try (LoadProcess load = LoadProcess.start(server.port(), 19, dir.resolve("load.log"), List.of("--robots",
+            try (LoadProcess load = LoadProcess.start(server.port(), server.caFile(), 19, dir.resolve("load.log"), List.of("--robots",
                     "2", "--password", "robot-pw", "--operator", operator.toString(), "--rate", "10", "--seed", "1"))) {
                 loadPid = load.pid();
                 assertEquals(List.of("load-01@sabot.local", "load-02@sabot.local"), load.jids().stream().map(
@@ -96,9 +96,9 @@ class LoadProcessTest {
 
     @Test
     void aLoadThatCannotComeOnlineIsAnErrorWithItsLog(@TempDir Path dir) {
-        // nothing listens on the port: the process fails before it is ready
-        IOException e = assertThrows(IOException.class, () -> LoadProcess.start(1, 0, dir.resolve("load.log"), List
-                .of("--robots", "1", "--operator", "operator@sabot.local")));
+        // no such CA file, nothing listens on the port: the process fails before it is ready
+        IOException e = assertThrows(IOException.class, () -> LoadProcess.start(1, dir.resolve("no-ca.pem"), 0, dir
+                .resolve("load.log"), List.of("--robots", "1", "--operator", "operator@sabot.local")));
         assertTrue(e.getMessage().contains("before its robots were online") && e.getMessage().contains("load.log"), e
                 .getMessage());
     }

@@ -32,10 +32,11 @@ class ControlMlMetatypeTest {
     @Test
     void controlmlDeclaresExactlyItsSettingsWithTheSessionsDefaults() throws Exception {
         Map<String, String> d = defaults("sabot.task.controlml");
-        assertEquals(new TreeSet<>(Set.of("server", "port", "jid", "passwordFile", "resource", "reconnectMin",
+        assertEquals(new TreeSet<>(Set.of("server", "port", "caFile", "jid", "passwordFile", "resource", "reconnectMin",
                 "reconnectMax", "operators", "staleCommandAfter", "liveness", "positionRate", "velocityRate",
                 "missionRate", "obstaclesRate")), new TreeSet<>(d.keySet()));
         assertEquals(ControlMlSettings.DEFAULT_SERVER, d.get("server"));
+        assertEquals("", d.get("caFile"), "the JVM's default trust store unless a lab CA is given");
         assertEquals(ControlMlSettings.DEFAULT_PORT, Integer.parseInt(d.get("port")));
         assertEquals(ControlMlSettings.DEFAULT_RESOURCE, d.get("resource"));
         assertEquals(ControlMlSettings.DEFAULT_RECONNECT_MIN_S, Double.parseDouble(d.get("reconnectMin")));

@@ -48,6 +48,7 @@ import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;
 import sabot.testsupport.net.SilentRelay;
 import sabot.testsupport.xmpp.PrivateXmppServer;
+import sabot.testsupport.xmpp.TestCertificates;
 
 /**
  * The controlml and remotefs tasks configured through Config Admin, as the onboard application does, against a real
@@ -109,9 +110,14 @@ class ControlMlSessionOnProsodyTest {
     }
 
     RobotSession startControlMl(int port, double liveness) throws Exception {
+        return startControlMl(port, liveness, XMPP.caFile());
+    }
+
+    RobotSession startControlMl(int port, double liveness, Path caFile) throws Exception {
         Hashtable<String, Object> props = new Hashtable<>();
         props.put("server", "127.0.0.1");
         props.put("port", port);
+        props.put("caFile", caFile.toString());
         props.put("liveness", liveness);
         props.put("jid", robot.toString());
         props.put("passwordFile", passwordFile("robot-pw-" + accounts, "rw-------").toString());
@@ -194,6 +200,24 @@ class ControlMlSessionOnProsodyTest {
      * A link that goes silent — nothing passes, nothing is closed (a relay that stops forwarding) — is taken as a loss
      * within 2¼ liveness intervals, and the session is back online once traffic passes again.
      */
+    /**
+     * A server whose certificate is not signed by the configured CA: the session stays offline and says why in one
+     * line (its status and its log), retrying; it never falls back to a plain or unchecked connection.
+     */
+    @Test
+    void aServerCertificateFromAnotherCaIsRefusedWithOneLine() throws Exception {
+        Path other = TestCertificates.anotherCa(dir, "another-ca");
+        RobotSession session = startControlMl(XMPP.port(), ControlMlSettings.DEFAULT_LIVENESS_S, other);
+        OnboardTask task = (OnboardTask) session;
+        String expected = "the certificate for sabot.local is not signed by the CA of " + other + " (SHA-256 "
+                + sabot.fleet.ServerTrust.labCa(other).fingerprints().get(0) + ")";
+        // the status is updated after each attempt, with no event of its own: polled as the registry is
+        awaitCondition(() -> task.status().contains(expected), "the refusal in the session's status");
+        assertEquals("offline (" + expected + "), reconnecting", task.status());
+        assertFalse(session.isOnline());
+        assertTrue(events.isEmpty(), "no session event: " + events);
+    }
+
     @Test
     void aSilentLinkIsTakenAsALossAndTheSessionComesBackWhenItPassesAgain() throws Exception {
         double liveness = 0.4;

@@ -38,6 +38,7 @@ import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.PresenceLevels;
+import sabot.fleet.ServerTrust;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.MapServerFormat;
@@ -184,15 +185,16 @@ public final class FleetLoad implements AutoCloseable {
      */
     public static FleetLoad start(PrivateXmppServer server, int count, String prefix, String password,
             BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
-        return start(server.port(), count, prefix, password, operator, rateHz, velocityRateHz, seed, map);
+        return start(server.port(), server.trust(), count, prefix, password, operator, rateHz, velocityRateHz, seed,
+                map);
     }
 
     /**
      * As {@link #start(PrivateXmppServer, int, String, String, BareJid, double, double, long, Path)}, on a private
-     * server on the loopback port {@code port}, started by another process.
+     * server on the loopback port {@code port}, started by another process, whose certificate {@code trust} checks.
      */
-    public static FleetLoad start(int port, int count, String prefix, String password, BareJid operator,
-            double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
+    public static FleetLoad start(int port, ServerTrust trust, int count, String prefix, String password,
+            BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
         if (count < 1 || count > 1000) {
             throw new IllegalArgumentException("robots: " + count + " is outside 1..1000");
         }
@@ -204,8 +206,8 @@ public final class FleetLoad implements AutoCloseable {
         try {
             for (int i = 0; i < count; i++) {
                 String name = String.format(Locale.ROOT, "%s%02d", prefix, i + 1);
-                PrivateXmppServer.register(port, name, PrivateXmppServer.DOMAIN, password);
-                XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(port, name,
+                PrivateXmppServer.register(port, trust, name, PrivateXmppServer.DOMAIN, password);
+                XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(port, trust, name,
                         PrivateXmppServer.DOMAIN, password).setResource("onboard").setSendPresence(false).build());
                 // no stream management (as ./sabot bench controlml): with it, a server that lags behind 2,000
                 // publications a second leaves Smack's queue of 1,024 unacknowledged stanzas full, and the robot's
@@ -326,6 +328,7 @@ public final class FleetLoad implements AutoCloseable {
         long seconds = 0;
         int attach = 0;
         String operatorJid = null;
+        String caFile = null;
         String password = "sabot";
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
@@ -336,13 +339,14 @@ public final class FleetLoad implements AutoCloseable {
                 case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
                 case "--seconds" -> seconds = Long.parseLong(value(args, ++i, "--seconds"));
                 case "--attach" -> attach = Integer.parseInt(value(args, ++i, "--attach"));
+                case "--ca-file" -> caFile = value(args, ++i, "--ca-file");
                 case "--operator" -> operatorJid = value(args, ++i, "--operator");
                 case "--password" -> password = value(args, ++i, "--password");
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot load [--robots N (10)] [--server prosody|ejabberd] [--rate HZ "
                             + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]"
-                            + " [--attach PORT --operator JID [--password PW (sabot)]: on a running private server, "
-                            + "driven on standard input]");
+                            + " [--attach PORT --ca-file PEM --operator JID [--password PW (sabot)]: on a running "
+                            + "private server whose lab CA is PEM, driven on standard input]");
                     return;
                 }
                 default -> throw new IllegalArgumentException("unknown option " + args[i] + " (--help)");
@@ -356,14 +360,16 @@ public final class FleetLoad implements AutoCloseable {
                     + "100 Hz");
         }
         if (attach > 0) {
-            if (operatorJid == null) {
-                throw new IllegalArgumentException("--attach needs --operator JID");
+            if (operatorJid == null || caFile == null) {
+                throw new IllegalArgumentException("--attach needs --operator JID and --ca-file PEM (the server's lab "
+                        + "CA)");
             }
+            ServerTrust trust = ServerTrust.labCa(Path.of(caFile));
             // standard output is the protocol's alone: everything else (the log) goes to standard error
             PrintStream protocol = System.out;
             System.setOut(System.err);
             setUpSmack();
-            attached(protocol, attach, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid),
+            attached(protocol, attach, trust, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid),
                     rate, velocityRate < 0 ? rate : velocityRate, seed);
             return;
         }
@@ -397,10 +403,10 @@ public final class FleetLoad implements AutoCloseable {
      * line {@value #COUNTS} read on standard input, {@value #COUNTS} with the publications acknowledged and failed so
      * far. The end of standard input stops the robots and the process.
      */
-    private static void attached(PrintStream protocol, int port, int robots, String password, EntityBareJid operator,
-            double rate, double velocityRate, long seed) throws Exception {
+    private static void attached(PrintStream protocol, int port, ServerTrust trust, int robots, String password,
+            EntityBareJid operator, double rate, double velocityRate, long seed) throws Exception {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
-        try (FleetLoad load = start(port, robots, "load-", password, operator, rate, velocityRate, seed, map)) {
+        try (FleetLoad load = start(port, trust, robots, "load-", password, operator, rate, velocityRate, seed, map)) {
             protocol.println(READY + " " + load.jids().stream().map(Object::toString).collect(java.util.stream
                     .Collectors.joining(",")));
             protocol.flush();
