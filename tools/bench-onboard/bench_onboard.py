@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The operator's side of ./sabot bench onboard (product/bin/sabot-bench-onboard), in controlml.py's venv.
 
-  bench_onboard.py drive --minutes N --pid PID --log onboard.log --events drive.json --port P --jid J --password W
-                         --robot R --controlml tools/controlml-py/controlml.py
+  bench_onboard.py drive --minutes N --pid PID --log onboard.log --events drive.json --port P --ca-file CA.pem
+                         --jid J --password W --robot R --controlml tools/controlml-py/controlml.py --sim-control C
       drives the running onboard product over ControlML for N minutes: goal 1, one joystick session (controlml.py
       joystick, a separate process and session), then a loop of goals between free points of the lab; samples the
-      onboard's /proc/PID (RSS, CPU) once a second meanwhile. Writes what it did to drive.json.
+      onboard's /proc/PID (RSS, CPU) once a second meanwhile. Writes what it did to drive.json. Both sessions use
+      STARTTLS and trust only CA.pem, the private server's lab CA (the ca= of sabot-xmpp start's line: RIG_CA of
+      product/bin/lib.sh); a refused certificate ends the drive (exit 1, controlml.py's line on stderr).
   bench_onboard.py report --minutes N --events drive.json --log onboard.log --truth truth.csv --out bench.json
       after the onboard product stopped: reads its log (the motion task's stop line, the goals' lines) and the drive's
       record, prints the table of figures and writes it as JSON.
@@ -459,7 +461,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         s.add_argument("--log", required=True, help="the onboard product's console log")
     d.add_argument("--pid", type=int, required=True, help="the onboard product's JVM")
     d.add_argument("--port", type=int, required=True)
-    d.add_argument("--ca-file", required=True, help="the private server's lab CA (PEM)")
+    d.add_argument("--ca-file", required=True, metavar="PEM",
+                   help="the private server's lab CA (ca= of sabot-xmpp start's line): the only CA trusted")
     d.add_argument("--jid", required=True)
     d.add_argument("--password", required=True)
     d.add_argument("--robot", required=True)

@@ -10,6 +10,14 @@
 A robot given as a bare JID is reached at the full JID of its presence (resource 'onboard' preferred): the client
 subscribes to the robot's presence and waits for it. Exit status: 0 done, 1 the robot refused (its condition,
 reason and text on stderr), 2 bad usage, 3 no connection, no login, robot offline or no answer in time.
+
+The session always uses STARTTLS on the server's port (--server, --port) and checks the server's certificate
+against --ca-file only (the lab CA of `sabot-xmpp start`, DIR/ca/ca.pem; default $SABOT_XMPP_CA) or, without it,
+the system's trusted CAs, and its name against the JID's domain. A refusal is one line on stderr and exit 3:
+
+  controlml: the certificate for sabot.local is not signed by the CA of /path/ca.pem (SHA-256 ...) (JID on HOST:PORT)
+
+--plain (no TLS) is only for a server started with --tls off; it is never a fallback.
 """
 
 from __future__ import annotations
@@ -50,8 +58,36 @@ def ssl_context(ca_file: str | None) -> ssl.SSLContext:
     against the system's trusted CAs when it is None."""
     try:
         return ssl.create_default_context(cafile=ca_file)
-    except (OSError, ssl.SSLError) as e:
-        raise Failure(EXIT_USAGE, f"--ca-file {ca_file}: {e}") from None
+    except ssl.SSLError as e:  # (an OSError too)
+        raise Failure(EXIT_USAGE, f"--ca-file {ca_file}: not a PEM file of CA certificates ({e.reason or e})") \
+            from None
+    except OSError as e:
+        raise Failure(EXIT_USAGE, f"--ca-file {ca_file}: {e.strerror or e}") from None
+
+
+# OpenSSL's verify codes (X509_V_ERR_*) that say the chain does not end at a trusted CA
+NOT_SIGNED = {2, 7, 18, 19, 20, 21}  # issuer not found, bad signature, self-signed, self-signed in chain, no local
+#                                      issuer, leaf signature unverifiable
+NOT_YET_VALID, EXPIRED, HOSTNAME_MISMATCH = 9, 10, 62
+TLS_NS = "urn:ietf:params:xml:ns:xmpp-tls"
+
+
+def tls_refusal(error: BaseException, domain: str, trust: str) -> str:
+    """The one line saying why the TLS handshake for ``domain`` failed: ``error`` is what ssl raised (the certificate
+    refused, with OpenSSL's verify code, or another failure of the handshake); ``trust``: trust_description()."""
+    if isinstance(error, ssl.SSLCertVerificationError):
+        code = error.verify_code
+        if code in NOT_SIGNED:
+            return f"the certificate for {domain} is not signed by {trust}"
+        if code == HOSTNAME_MISMATCH:
+            return f"the server's certificate does not name {domain} (trusted: {trust})"
+        if code == EXPIRED:
+            return f"the certificate for {domain} or its CA has expired (trusted: {trust})"
+        if code == NOT_YET_VALID:
+            return f"the certificate for {domain} or its CA is not valid yet (is this machine's clock right?)"
+        return f"the certificate for {domain} was refused: {error.verify_message} (trusted: {trust})"
+    reason = getattr(error, "reason", None) or str(error) or type(error).__name__
+    return f"the TLS handshake for {domain} failed: {reason}"
 
 
 def trust_description(ca_file: str | None) -> str:
@@ -65,6 +101,17 @@ def trust_description(ca_file: str | None) -> str:
         return f"the CA of {ca_file} (SHA-256 " + ":".join(fingerprint[i:i + 2] for i in range(0, 64, 2)) + ")"
     except (OSError, ValueError):
         return f"the CA of {ca_file}"
+
+
+class _SlixmppTlsLine(logging.Filter):
+    """Drops slixmpp's own line for a failed STARTTLS handshake ("CERT: Invalid certificate trust chain.", also said
+    of a wrong name or a failure that is no certificate's): the client says what failed in its own one line."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return not str(record.msg).startswith("CERT: Invalid certificate trust chain")
+
+
+logging.getLogger("slixmpp.xmlstream.xmlstream").addFilter(_SlixmppTlsLine())
 
 
 def time_answer(iq, now: dt.datetime | None = None):
@@ -95,14 +142,16 @@ class Client(slixmpp.ClientXMPP):
         self.enable_plaintext = plain
         # on a plain stream only SCRAM, which never sends the password (PLAIN stays refused)
         self.plugin["feature_mechanisms"].unencrypted_scram = plain
+        self.plain = plain
         self.trust = trust_description(ca_file)
         if not plain:
-            # the lab CA only (not added to the system's store), the certificate must name the XMPP domain
+            # the lab CA only (not added to the system's store, as slixmpp's ca_certs would), and the certificate must
+            # name the XMPP domain: slixmpp's STARTTLS gives the JID's domain as the server name to check
             self.ssl_context = ssl_context(ca_file)
-        self.add_event_handler("ssl_invalid_chain", lambda _: self._fail(
-            f"the certificate for {self.boundjid.domain} is not signed by {self.trust}"))
-        self.add_event_handler("ssl_invalid_cert", lambda _: self._fail(
-            f"the certificate for {self.boundjid.domain} was refused (trusted: {self.trust})"))
+        # slixmpp 1.17 raises every failed STARTTLS handshake (a certificate refused, or not) as this event, with the
+        # ssl error; without a handler it would disconnect silently
+        self.add_event_handler("ssl_invalid_chain", lambda e: self._fail(
+            tls_refusal(e, self.boundjid.domain, self.trust)))
         # XEP-0202: a robot measures its requesters' clocks to judge their commands' send times (spec section 5).
         # The plugin announces the feature; its own answer is replaced: slixmpp 1.17 fails while writing the answer's
         # zone offset (it parses a time without a date: ValueError), so the robot would never measure this clock.
@@ -122,8 +171,23 @@ class Client(slixmpp.ClientXMPP):
         self.add_event_handler("presence", self._on_presence)
 
     def _fail(self, why: str) -> None:
-        self.failed = why
+        if self.failed is None:  # the first reason: what follows it (a disconnection) is its consequence
+            self.failed = why
         self.started.set()
+
+    async def _handle_stream_features(self, features):
+        """slixmpp's negotiation, after the check that it cannot fall back to a plain stream: without STARTTLS done,
+        a server that does not offer it is refused (slixmpp would go on with SASL); with ``plain``, a server that
+        requires STARTTLS is said so (slixmpp would wait for mechanisms that never come)."""
+        starttls = features.xml.find(f"{{{TLS_NS}}}starttls")
+        if not self.plain and "starttls" not in self.features and starttls is None:
+            self._fail("the server offers no STARTTLS, and this client never logs in without TLS (a server started "
+                       "with --tls off takes --plain)")
+            return True
+        if self.plain and starttls is not None and starttls.find(f"{{{TLS_NS}}}required") is not None:
+            self._fail("the server requires STARTTLS (--plain is only for a server started with --tls off)")
+            return True
+        return await super()._handle_stream_features(features)
 
     async def _on_start(self, _event) -> None:
         self.send_presence()
@@ -350,13 +414,14 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--server", default=os.environ.get("CONTROLML_SERVER", "127.0.0.1"))
     p.add_argument("--port", type=int, default=int(os.environ.get("SABOT_XMPP_PORT", "15222")))
     p.add_argument("--timeout", type=float, default=10.0, help="seconds for login, presence and each answer")
-    p.add_argument("--ca-file", default=os.environ.get("SABOT_XMPP_CA") or None,
-                   help="PEM of the CA that signs the server's certificate: the lab CA of ./sabot xmpp start "
-                        "(DIR/ca/ca.pem; default $SABOT_XMPP_CA); without it, the system's trusted CAs. The connection "
-                        "always uses STARTTLS and checks that the certificate names the JID's domain")
+    p.add_argument("--ca-file", metavar="PEM",
+                   help="the CA that must sign the server's certificate, and the only one trusted: the lab CA of "
+                        "./sabot xmpp start (DIR/ca/ca.pem; default $SABOT_XMPP_CA); without it (or given empty), the "
+                        "system's trusted CAs. The connection always uses STARTTLS and checks that the certificate names the JID's "
+                        "domain; a refused certificate ends the command (exit 3)")
     p.add_argument("--plain", action="store_true",
-                   help="no TLS (a server started with --tls off, for the benchmark that compares the two; SCRAM "
-                        "only, the password never travels in clear)")
+                   help="no TLS: only for a server started with --tls off (the benchmark that compares the two); "
+                        "SCRAM only, the password never travels in clear. Ignores $SABOT_XMPP_CA")
     p.add_argument("-v", "--verbose", action="store_true", help="log the XMPP traffic")
     sub = p.add_subparsers(dest="command", required=True)
     g = sub.add_parser("get", help="get a resource and print its fields")
@@ -391,6 +456,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
             p.error(f"--password-file: {e}")
     if args.plain and args.ca_file:
         p.error("--plain and --ca-file exclude each other")
+    if args.ca_file == "":  # given empty, like an empty $SABOT_XMPP_CA: the system's trusted CAs
+        args.ca_file = None
+    elif args.ca_file is None and not args.plain:
+        args.ca_file = os.environ.get("SABOT_XMPP_CA") or None
     if args.ca_file and not os.path.isfile(args.ca_file):
         p.error(f"--ca-file {args.ca_file}: no such file")
     if args.password is None:
@@ -429,6 +498,17 @@ def main(argv: list[str]) -> int:
         return loop.run_until_complete(task)
     except asyncio.CancelledError:
         return 0
+    finally:
+        # what slixmpp leaves running (its filter of the outgoing stream) ends before the loop closes: a client
+        # collected later must not cancel it on a closed loop (an "Exception ignored" on stderr)
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.remove_signal_handler(sig)
+        pending = asyncio.all_tasks(loop)
+        for t in pending:
+            t.cancel()
+        if pending:
+            loop.run_until_complete(asyncio.wait(pending, timeout=1.0))
+        loop.close()
 
 
 if __name__ == "__main__":

@@ -457,12 +457,10 @@ def starttls_required(args) -> None:
 
 async def main(args) -> None:
     starttls_required(args)
-    op = await online(f"{args.operator}@{args.domain}/suite", args.password, args.server, args.port,
-                        args.ca_file)
-    viewer = await online(f"{args.viewer}@{args.domain}/suite", args.password, args.server, args.port,
-                        args.ca_file)
+    op = await online(f"{args.operator}@{args.domain}/suite", args.password, args.server, args.port, args.ca_file)
+    viewer = await online(f"{args.viewer}@{args.domain}/suite", args.password, args.server, args.port, args.ca_file)
     stranger = await online(f"{args.stranger}@{args.domain}/suite", args.password, args.server, args.port,
-                        args.ca_file)
+                            args.ca_file)
     robot = args.robot
     await get_set(op, robot)
     await refusals(op, viewer, stranger, robot)
@@ -478,7 +476,9 @@ if __name__ == "__main__":
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--server", default="127.0.0.1")
     p.add_argument("--port", type=int, required=True)
-    p.add_argument("--ca-file", required=True, help="the server's lab CA (PEM): the only CA the clients trust")
+    p.add_argument("--ca-file", metavar="PEM", default=os.environ.get("SABOT_XMPP_CA") or None,
+                   help="the server's lab CA (DIR/ca/ca.pem of sabot-xmpp start): the only CA the clients trust, "
+                        "the certificate must name --domain (default $SABOT_XMPP_CA; one of the two is required)")
     p.add_argument("--domain", default="sabot.local")
     p.add_argument("--robot", required=True, help="the device's full JID")
     p.add_argument("--operator", required=True)
@@ -488,12 +488,19 @@ if __name__ == "__main__":
     p.add_argument("--serial", required=True, help="the serial on the device's label")
     p.add_argument("--part", required=True, help="a non-ASCII PART VALUE of the inventory")
     a = p.parse_args()
+    if not a.ca_file:
+        p.error("give --ca-file (or $SABOT_XMPP_CA): the suite only talks to a server through TLS")
+    try:
+        tool.ssl_context(a.ca_file)
+    except tool.Failure as f:
+        p.error(str(f))
     import faulthandler
     faulthandler.dump_traceback_later(110, exit=True)  # a hang shows where it is, and ends
     try:
         asyncio.run(asyncio.wait_for(main(a), 120))
     except Exception as e:  # a crash is a failed check, reported like the others
-        check("suite ran to its end", False, repr(e))
+        # a refused certificate or login: its one line (controlml.py's words)
+        check("suite ran to its end", False, str(e) if isinstance(e, tool.Failure) else repr(e))
     failed = sum(1 for ok, _ in results if not ok)
     print(f"interop: {len(results) - failed} passed, {failed} failed", flush=True)
     # not sys.exit: a slixmpp task that ignores cancellation must not keep the process (and the build) waiting

@@ -1,11 +1,13 @@
 """bench_onboard.py's report: the onboard's log lines as its Java sources format them (read from the sources, so a
-changed log format is noticed here), the goals' timing, the trapezoid ideal, the verdicts and the JSON. No processes."""
+changed log format is noticed here), the goals' timing, the trapezoid ideal, the verdicts and the JSON; the drive's
+lab CA option. No processes but openssl (a throw-away CA), no network."""
 
 import io
 import json
 import math
 import os
 import re
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -15,13 +17,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 import bench_onboard as bench  # noqa: E402
 
-MOTION = os.path.join(HERE, "..", "..", "..", "bundles", "sabot.onboard", "src", "sabot", "onboard", "internal",
-                      "motion")
+# the motion bundle's sources: its tasks (MotionTask) and its control loop (ControlLoop, LoopTiming, MicrosHistogram)
+MOTION = os.path.join(HERE, "..", "..", "..", "bundles", "sabot.onboard.motion", "src", "sabot", "onboard", "motion")
+SOURCES = {"MotionTask.java": "internal", "ControlLoop.java": "loop", "LoopTiming.java": "loop",
+           "MicrosHistogram.java": "loop"}
 
 
 def java_format(file: str, marker: str) -> str:
     """The Java string literal(s) of ``file`` concatenated in the statement that contains ``marker``."""
-    with open(os.path.join(MOTION, file), encoding="utf-8") as f:
+    with open(os.path.join(MOTION, SOURCES[file], file), encoding="utf-8") as f:
         text = f.read()
     start = text.index(marker)
     statement = text[text.rfind("(", 0, start):text.index(";", start)] if ";" in marker else \
@@ -149,6 +153,29 @@ class ReportTest(unittest.TestCase):
         jitter = r["figures"][0]
         self.assertEqual((False, True, False), (jitter["saturated"], jitter["suspect"], jitter["met"]))
         self.assertIn("skip offset", jitter["shown"])
+
+
+class DriveArgsTest(unittest.TestCase):
+    """drive's session trusts the private server's lab CA only (--ca-file, required)."""
+
+    def test_the_drive_trusts_the_lab_ca_only(self):
+        drive = ["drive", "--minutes", "1", "--events", "e.json", "--log", "o.log", "--pid", "1", "--port", "5222",
+                 "--jid", "operator@sabot.local", "--password", "pw", "--robot", "sabot-01@sabot.local",
+                 "--controlml", "controlml.py", "--sim-control", "1"]
+        with self.assertRaises(SystemExit) as e, redirect_stderr(io.StringIO()):
+            bench.parse_args(drive)
+        self.assertEqual(2, e.exception.code)
+        with tempfile.TemporaryDirectory() as d:
+            ca = os.path.join(d, "ca.pem")
+            subprocess.run(["openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1",
+                            "-nodes", "-days", "1", "-subj", "/CN=bench lab CA", "-addext",
+                            "basicConstraints=critical,CA:TRUE", "-keyout", os.path.join(d, "ca.key"), "-out", ca],
+                           check=True, capture_output=True)
+            args = bench.parse_args(drive + ["--ca-file", ca])
+            client = bench.Drive(args).client
+            self.assertEqual(["bench lab CA"], [dict(x[0] for x in c["subject"])["commonName"]
+                                                for c in client.get_ssl_context().get_ca_certs()])
+            self.assertEqual((True, False), (client.enable_starttls, client.enable_plaintext))
 
 
 if __name__ == "__main__":
