@@ -173,8 +173,9 @@ public final class Bus implements ModbusBus {
         for (int i = 0; i < writes.length; i++) {
             counts[i] = writes[i].values().length;
         }
-        transact(board, req, BusTiming.writeBytes(counts), r -> r instanceof WriteFileRecordResponse wr && wr.getRequestCount() == writes.length
-                ? null : "not the echo of a write of " + writes.length + " sub-requests");
+        transact(board, req, BusTiming.writeBytes(counts), r -> r instanceof WriteFileRecordResponse wr
+                && wr.getRequestCount() == writes.length ? null : "not the echo of a write of " + writes.length
+                        + " sub-requests");
     }
 
     private interface Check {
