@@ -38,6 +38,7 @@ import org.eclipse.ui.IWorkbenchPage;
 import org.eclipse.ui.PlatformUI;
 import org.jivesoftware.smack.AbstractXMPPConnection;
 import org.jivesoftware.smack.ConnectionCreationListener;
+import org.jivesoftware.smack.ConnectionListener;
 import org.jivesoftware.smack.StanzaListener;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.XMPPConnectionRegistry;
@@ -132,11 +133,16 @@ class LiveFleetUiTest {
     @Test
     @Order(1)
     void workbenchConnectsAndShowsTheRobotAtItsTruePose() throws Exception {
-        long t0 = System.nanoTime();
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         store.saveRobots(List.of(ROBOT_JID));
-        store.save(operatorAccount(xmpp.port()), "operator-pw"
-                .toCharArray());
+        // first without the lab CA: the server's certificate is refused in one line, and attempts follow
+        store.save(new XmppAccount("127.0.0.1", xmpp.port(), OPERATOR + "@" + PrivateXmppServer.DOMAIN, ""),
+                "operator-pw".toCharArray());
+        waitFor(() -> statusLineText().contains("certificate for sabot.local is not signed by"), 20,
+                () -> "no certificate refusal: " + statusLineText());
+        assertEquals(0, HOLD.logins(), "logged in without trusting the server");
+        long t0 = System.nanoTime();
+        store.save(operatorAccount(xmpp.port()), "operator-pw".toCharArray());
         WorkspaceView workspace = workspace();
         waitFor(() -> live(robotRow()) && workspace.map() != null, 60, () -> "robot not live on the map: "
                 + fleetView().rows() + ", map " + workspace.map() + ", " + workspace.lastMessage());
@@ -187,6 +193,9 @@ class LiveFleetUiTest {
 
         screenshot("workbench.png");
         capture(fleetView().table(), "fleet.png");
+        // the attempt the refusal had scheduled is not made after the account changed: it would replace the session
+        waitFor(() -> System.nanoTime() - t0 > TimeUnit.SECONDS.toNanos(3), 10, () -> "three seconds");
+        assertEquals(1, HOLD.logins(), "logins since the lab CA was set");
 
         // the filter above the table: on the robot's name, presence and mission, ignoring case
         FleetView fleet = fleetView();
@@ -490,12 +499,19 @@ class LiveFleetUiTest {
      */
     private static final class IngestHold implements ConnectionCreationListener, StanzaListener {
         private final AtomicBoolean armed = new AtomicBoolean();
+        private final AtomicInteger logins = new AtomicInteger();
         private volatile CountDownLatch release = new CountDownLatch(0);
         private volatile boolean holding;
 
         @Override
         public void connectionCreated(XMPPConnection c) {
             if (OPERATOR.equals(String.valueOf(((AbstractXMPPConnection) c).getConfiguration().getUsername()))) {
+                c.addConnectionListener(new ConnectionListener() {
+                    @Override
+                    public void authenticated(XMPPConnection connection, boolean resumed) {
+                        logins.incrementAndGet();
+                    }
+                });
                 c.addSyncStanzaListener(this, s -> s instanceof Message && s.getFrom() != null && s.getFrom()
                         .asBareJid().toString().equals(ROBOT_JID));
             }
@@ -505,6 +521,11 @@ class LiveFleetUiTest {
         void arm() {
             release = new CountDownLatch(1);
             armed.set(true);
+        }
+
+        /** @return how many times the workbench's connections logged in */
+        int logins() {
+            return logins.get();
         }
 
         boolean holding() {

@@ -4,6 +4,7 @@ import java.io.IOException;
 import java.net.InetAddress;
 import java.time.Duration;
 import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
@@ -60,6 +61,11 @@ final class FleetConnection {
     private volatile Thread connectorThread;
     /** The current session's watch on a silent link; connection thread only. */
     private LinkWatch linkWatch;
+    /**
+     * The attempt {@link #retry} scheduled; connection thread only. Each attempt cancels it: a reconnection for a
+     * changed account must not be followed by the older account's retry, which would replace the new session.
+     */
+    private ScheduledFuture<?> pendingRetry;
 
     /**
      * @param watchThreads makes the thread of each session's {@link LinkWatch}
@@ -116,6 +122,10 @@ final class FleetConnection {
     /** Connection thread: connects with the stored account, or schedules the next attempt. */
     private void connect() {
         connectorThread = Thread.currentThread();
+        if (pendingRetry != null) {
+            pendingRetry.cancel(false); // this attempt replaces it (or is it)
+            pendingRetry = null;
+        }
         closeSession();
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         XmppAccount account = store.load();
@@ -244,7 +254,7 @@ final class FleetConnection {
         Duration wait = backoff.next();
         registry.setStatus(State.RETRYING, account, why + "; next attempt in " + wait.toMillis() / 1000.0 + " s");
         LOG.warn("XMPP connection of {}: {}; next attempt in {} ms", account, why, wait.toMillis());
-        connector.schedule(this::connect, wait.toMillis(), TimeUnit.MILLISECONDS);
+        pendingRetry = connector.schedule(this::connect, wait.toMillis(), TimeUnit.MILLISECONDS);
     }
 
     private void closeSession() {
