@@ -8,14 +8,18 @@ import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.util.List;
+import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.LinkedBlockingQueue;
 
 /**
  * A TCP relay on loopback between a client and a server that can go silent: while silenced it passes nothing in
  * either direction on the connections it carries and closes none of them (no FIN, no RST), as a Wi-Fi dead spot or a
  * broken switch does; a new connection's handshake fails meanwhile (the port is closed). Resumed, it passes again
- * what it held and takes new connections on the same port. Daemon threads, one pair per
- * connection; {@link #close()} ends them all.
+ * what it held (TCP's retransmissions, once the link is back) and takes new connections on the same port. A side that
+ * closes or resets its connection during the silence has given up on what it had in flight: that is never delivered,
+ * and the other side's connection is reset at the resumption (the closed socket's answer to its next segment). Daemon
+ * threads, a reader and a writer per direction of each connection; {@link #close()} ends them all.
  */
 public final class SilentRelay implements AutoCloseable {
 
@@ -95,20 +99,46 @@ public final class SilentRelay implements AutoCloseable {
         }
     }
 
+    /** What a reader hands its writer: bytes, or the end of the sender's stream. */
+    private record Chunk(byte[] bytes, int length, boolean end, boolean endDuringSilence) {
+    }
+
     private void pump(Socket from, Socket to, String direction) {
-        Thread t = new Thread(() -> {
-            byte[] buffer = new byte[8192];
+        BlockingQueue<Chunk> queue = new LinkedBlockingQueue<>();
+        Thread reader = new Thread(() -> {
             try {
                 InputStream in = from.getInputStream();
-                OutputStream out = to.getOutputStream();
                 while (true) {
-                    awaitPassing();
+                    byte[] buffer = new byte[8192];
                     int n = in.read(buffer);
                     if (n < 0) {
                         break;
                     }
-                    awaitPassing(); // read just before the silence: held until it ends
-                    out.write(buffer, 0, n);
+                    queue.add(new Chunk(buffer, n, false, false));
+                }
+            } catch (IOException e) {
+                // reset by the sender, or closed by the relay
+            }
+            boolean duringSilence;
+            synchronized (gate) {
+                duringSilence = silent;
+            }
+            queue.add(new Chunk(null, 0, true, duringSilence));
+        }, "silent-relay-" + direction + "-read");
+        Thread writer = new Thread(() -> {
+            try {
+                OutputStream out = to.getOutputStream();
+                while (true) {
+                    Chunk c = queue.take();
+                    awaitPassing();
+                    if (queue.stream().anyMatch(Chunk::endDuringSilence) || c.endDuringSilence()) {
+                        abort(to); // the sender gave up in the silence: what it had in flight is lost
+                        break;
+                    }
+                    if (c.end()) {
+                        break;
+                    }
+                    out.write(c.bytes(), 0, c.length());
                     out.flush();
                 }
             } catch (IOException | InterruptedException e) {
@@ -116,9 +146,21 @@ public final class SilentRelay implements AutoCloseable {
             }
             closeQuietly(to);
             closeQuietly(from);
-        }, "silent-relay-" + direction);
-        t.setDaemon(true);
-        t.start();
+        }, "silent-relay-" + direction + "-write");
+        reader.setDaemon(true);
+        writer.setDaemon(true);
+        reader.start();
+        writer.start();
+    }
+
+    /** Closes with a reset (SO_LINGER 0), as a host answers a segment of a connection it no longer has. */
+    private static void abort(Socket s) {
+        try {
+            s.setSoLinger(true, 0);
+        } catch (IOException ignored) {
+            // closed already
+        }
+        closeQuietly(s);
     }
 
     private void awaitPassing() throws InterruptedException {
