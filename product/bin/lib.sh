@@ -153,10 +153,10 @@ sabot_products() {
 
 # The configuration of an onboard product driving a simulated robot over serial link $2 on map $3, starting at pose
 # $4 (X,Y,THETA in m, m, rad), with XMPP account $1 (full JID) on 127.0.0.1:$5 whose certificate is signed by the CA
-# of file $9, its password in file $6, commanded by operator $7 (bare JID), its remote files under folder $8
-# (./sabot demo's robots, ./sabot bench onboard's).
+# of file $8, its password in file $6, its remote files under folder $7 (./sabot demo's robots, ./sabot bench
+# onboard's). Who commands it is the server's business: the lab's groups (sabot_grant).
 sabot_onboard_conf() {
-    local jid=$1 link=$2 map=$3 pose=$4 port=$5 pwfile=$6 operator=$7 files=$8 ca=$9
+    local jid=$1 link=$2 map=$3 pose=$4 port=$5 pwfile=$6 files=$7 ca=$8
     local x y theta
     IFS=, read -r x y theta <<<"$pose"
     cat <<EOF
@@ -174,7 +174,6 @@ controlml.port = $port
 controlml.caFile = $ca
 controlml.jid = $jid
 controlml.passwordFile = $pwfile
-controlml.operators = $operator
 remotefs.root = $files
 EOF
 }
@@ -209,6 +208,12 @@ sabot_onboard_exec() {
 SABOT_RIG_MAP="$SABOT_ROOT/onboard-bridge/maps/lab.yaml"
 SABOT_RIG_DOMAIN=sabot.local
 SABOT_RIG_OPERATOR=operator SABOT_RIG_OPERATOR_PASSWORD=sabot
+SABOT_RIG_OBSERVER=observer SABOT_RIG_OBSERVER_PASSWORD=sabot-observer
+SABOT_RIG_MAINTAINER=maintainer SABOT_RIG_MAINTAINER_PASSWORD=sabot-maintainer
+# The lab's shared groups: the robots', and one per role. The same names as sabot.fleet.AccessRules (ROBOTS_GROUP,
+# LAB_GROUPS), which a robot's configuration takes by default; AccessRulesTest holds the two together.
+SABOT_GROUP_ROBOTS=sabot-robots
+declare -A SABOT_ROLE_GROUPS=([observer]=sabot-observers [operator]=sabot-operators [maintainer]=sabot-maintainers)
 # sabot-sim puts robot i (1-based) at +0.8 (i - 1) m in y from robot 1 (its --help)
 SABOT_RIG_ROBOT_SPACING_Y=0.8
 
@@ -242,6 +247,15 @@ sabot_rig_start() {
         sabot_rig_register "sabot-0$i@$SABOT_RIG_DOMAIN" "$(cat "$dir/robot$i/password")"
     done
     sabot_rig_register "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$SABOT_RIG_OPERATOR_PASSWORD"
+    sabot_rig_register "$SABOT_RIG_OBSERVER@$SABOT_RIG_DOMAIN" "$SABOT_RIG_OBSERVER_PASSWORD"
+    sabot_rig_register "$SABOT_RIG_MAINTAINER@$SABOT_RIG_DOMAIN" "$SABOT_RIG_MAINTAINER_PASSWORD"
+    # as the lab's administrator: the robots in the robots' group, one account per role
+    for ((i = 1; i <= robots; i++)); do
+        sabot_group add "$dir/xmpp" "$SABOT_GROUP_ROBOTS" "sabot-0$i@$SABOT_RIG_DOMAIN"
+    done
+    sabot_grant "$dir/xmpp" "$SABOT_RIG_OBSERVER@$SABOT_RIG_DOMAIN" observer
+    sabot_grant "$dir/xmpp" "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" operator
+    sabot_grant "$dir/xmpp" "$SABOT_RIG_MAINTAINER@$SABOT_RIG_DOMAIN" maintainer
 
     # one simulator process, one pty per robot; its first stdout line (JSON) says they are ready
     "$SABOT_ROOT/onboard-bridge/build/sabot-sim" --map "$SABOT_RIG_MAP" --robots "$robots" --seed 1 --start "$start" \
@@ -262,12 +276,25 @@ for r in j["robots"]: print(r["link"])')
     for ((i = 1; i <= robots; i++)); do
         sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" \
             "$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta" \
-            "$RIG_PORT" "$dir/robot$i/password" "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$dir/robot$i/files" \
-            "$RIG_CA" >"$dir/robot$i/onboard.conf"
+            "$RIG_PORT" "$dir/robot$i/password" "$dir/robot$i/files" "$RIG_CA" >"$dir/robot$i/onboard.conf"
         (sabot_onboard_exec "$dir/robot$i/onboard.conf" "$@") >"$dir/robot$i/onboard.log" 2>&1 &
         RIG_ROBOT_PIDS+=($!)
         sabot_log "robot sabot-0$i@$SABOT_RIG_DOMAIN (pid $!): config $dir/robot$i/onboard.conf, log $dir/robot$i/onboard.log"
     done
+}
+
+# sabot_group add|remove RUN GROUP JID: a change of a shared group of the private server of state folder RUN.
+sabot_group() {
+    "$SABOT_ROOT/product/bin/sabot-xmpp" group "$1" --run "$2" "$3" "$4" >&2 \
+        || sabot_die "could not $1 $4 $([ "$1" = add ] && echo to || echo from) group $3 (see $2)"
+}
+
+# sabot_grant RUN JID ROLE [remove]: gives JID the role (observer, operator, maintainer) on the lab's robots, or takes
+# it away: the role's shared group on the private server of state folder RUN.
+sabot_grant() {
+    local group=${SABOT_ROLE_GROUPS[$3]:-}
+    [ -n "$group" ] || sabot_die "'$3' is not a role: observer, operator or maintainer"
+    sabot_group "${4:-add}" "$1" "$group" "$2"
 }
 
 sabot_rig_register() { # JID PASSWORD

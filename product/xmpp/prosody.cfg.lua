@@ -62,6 +62,10 @@ max_archive_query_results = 250
 -- XEP-0198 stream management: sessions survive a dropped socket this long
 smacks_hibernation_time = 60
 
+-- The lab's shared groups (sabot-xmpp group add|remove): public groups, so that every account's roster holds their
+-- members under the group's name; a robot reads its requesters' roles there (docs/SECURITY.md), a workbench its robots.
+groups_file = run .. "/groups.txt"
+
 -- built in a local and assigned once: a Prosody config file cannot read back an option it has set
 local modules = {
     "roster"; "saslauth"; "disco"; "ping"; "time"; "version"; "uptime";
@@ -73,6 +77,8 @@ local modules = {
     "mam";           -- XEP-0313
     "smacks";        -- XEP-0198
     "offline";       -- XEP-0160 offline storage with XEP-0203 delay stamps
+    "groups";        -- the lab's shared groups (roles, robots) from groups_file, written into every roster
+    "admin_shell";   -- prosodyctl shell on data_path/prosody.sock: sabot-xmpp group applies group changes live
 }
 if tls then table.insert(modules, "tls") end
 modules_enabled = modules

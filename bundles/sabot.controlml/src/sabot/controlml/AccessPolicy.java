@@ -11,14 +11,14 @@ import org.osgi.annotation.versioning.ConsumerType;
 @ConsumerType
 public interface AccessPolicy {
 
-    /** Everyone may get and set: for tests and closed labs only. */
-    AccessPolicy OPEN = requester -> AccessLevel.SET;
+    /** Everyone is a maintainer: for tests of the protocol itself only (a robot never runs with it by default). */
+    AccessPolicy OPEN = requester -> Role.MAINTAINER;
     /** Nobody may do anything: the endpoint's default until a policy is configured. */
-    AccessPolicy CLOSED = requester -> AccessLevel.NONE;
+    AccessPolicy CLOSED = requester -> Role.NONE;
 
     /**
      * @param requester the requester's full JID as the server stamped it (never null)
-     * @return its access level; never null
+     * @return its role on this device; never null
      */
-    AccessLevel levelOf(Jid requester);
+    Role roleOf(Jid requester);
 }

@@ -30,9 +30,9 @@ public enum ControlMlCondition {
     WRONG_UNIT("wrong-unit", StanzaError.Condition.not_acceptable),
     /** the command waited longer than the robot's stale-command limit */
     STALE_COMMAND("stale-command", StanzaError.Condition.not_acceptable),
-    /** the requester may not use ControlML on this device at all */
+    /** the requester has no role on this device: it may not use ControlML there at all */
     ACCESS_DENIED("access-denied", StanzaError.Condition.forbidden),
-    /** the requester may read but not write */
+    /** the requester's role does not include this set (an observer's set; an operator's set of PID gains) */
     SET_NOT_PERMITTED("set-not-permitted", StanzaError.Condition.forbidden),
     /** the device is in maintenance mode and takes commands from its maintainers only */
     MAINTENANCE_LOCK("maintenance-lock", StanzaError.Condition.not_authorized),

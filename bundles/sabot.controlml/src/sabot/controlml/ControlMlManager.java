@@ -414,7 +414,7 @@ public final class ControlMlManager extends Manager {
             return;
         }
         if (((Presence) stanza).isAvailable()) {
-            if (endpoint.accessPolicy().levelOf(from) != AccessLevel.SET) {
+            if (!endpoint.accessPolicy().roleOf(from).includes(Role.OPERATOR)) {
                 return; // only those who may command: not every contact or room occupant
             }
             clocks.measure(from);

@@ -18,8 +18,11 @@ import org.jxmpp.jid.Jid;
  *                 earlier, else the time it arrived; never null
  * @param age      how long ago it was sent (zero when it carried neither stamp; negative when its send time is
  *                 ahead of the device's clock); never null
+ * @param role     the requester's role on the device when the request arrived (a handler whose command needs more
+ *                 than the resource's role, e.g. a maintenance switch, judges by it); never null
  */
-public record Request(Jid from, RequestId id, String resource, Carrier carrier, Instant sent, Duration age) {
+public record Request(Jid from, RequestId id, String resource, Carrier carrier, Instant sent, Duration age,
+        Role role) {
     public Request {
         Objects.requireNonNull(from, "from");
         Objects.requireNonNull(id, "id");
@@ -27,5 +30,6 @@ public record Request(Jid from, RequestId id, String resource, Carrier carrier, 
         Objects.requireNonNull(carrier, "carrier");
         Objects.requireNonNull(sent, "sent");
         Objects.requireNonNull(age, "age");
+        Objects.requireNonNull(role, "role");
     }
 }

@@ -25,6 +25,8 @@ public final class Resource<T, Q> {
     private final String description;
     private final String recordHref;
     private boolean moving;
+    /** Who may set it; the strictest until told otherwise (deny by default). */
+    private Role setRole = Role.MAINTAINER;
     private T recordPrototype;
     private volatile RecordTemplate recordTemplate;
 
@@ -74,6 +76,7 @@ public final class Resource<T, Q> {
         private boolean set;
         private String description = "";
         private boolean moving;
+        private Role setRole = Role.MAINTAINER;
 
         private Builder(String name, PayloadCodec<T> codec, PayloadCodec<Q> queryCodec) {
             this.name = name;
@@ -103,6 +106,7 @@ public final class Resource<T, Q> {
             b.set = set;
             b.description = description;
             b.moving = moving;
+            b.setRole = setRole;
             return b;
         }
 
@@ -112,6 +116,16 @@ public final class Resource<T, Q> {
          */
         public Builder<T, Q> movesTheRobot() {
             this.moving = true;
+            return this;
+        }
+
+        /**
+         * @param role the least role whose holders may set the resource (default {@link Role#MAINTAINER}: a
+         *             bundle's resource changes the robot unless it says otherwise); not {@link Role#NONE}
+         * @return this builder
+         */
+        public Builder<T, Q> setBy(Role role) {
+            this.setRole = checkedSetRole(name, role);
             return this;
         }
 
@@ -131,6 +145,7 @@ public final class Resource<T, Q> {
             }
             Resource<T, Q> r = new Resource<>(name, codec, queryCodec, get, set, description);
             r.moving = moving;
+            r.setRole = setRole;
             return r;
         }
     }
@@ -167,6 +182,25 @@ public final class Resource<T, Q> {
      */
     public boolean isMotionCommand() {
         return moving;
+    }
+
+    /** @return the least role that may set the resource (a get needs {@link Role#OBSERVER}) */
+    public Role setRole() {
+        return setRole;
+    }
+
+    /** Gives a resource of section 4 the role its sets need (section 9's table). */
+    Resource<T, Q> setBy(Role role) {
+        this.setRole = checkedSetRole(name, role);
+        return this;
+    }
+
+    private static Role checkedSetRole(String name, Role role) {
+        if (role == null || role == Role.NONE || role == Role.OBSERVER) {
+            throw new IllegalArgumentException(name + ": a set needs the operator or the maintainer role, not "
+                    + role);
+        }
+        return role;
     }
 
     /** Marks a resource of section 4 whose set can start motion (see {@link #isMotionCommand()}). */

@@ -36,19 +36,21 @@ public final class Resources {
     /** {@code cm.position} (get; set re-localises): pose estimate with covariance. */
     public static final Resource<PoseEstimate, NoQuery> POSITION = new Resource<PoseEstimate, NoQuery>(
             "cm.position", PoseEstimate.CODEC, null, true, true, "pose estimate (x, y, theta) with covariance")
-                    .withRecordStructure(new PoseEstimate(Instant.EPOCH, new Pose2D(0, 0, 0), PoseCovariance.ZERO));
+                    .withRecordStructure(new PoseEstimate(Instant.EPOCH, new Pose2D(0, 0, 0), PoseCovariance.ZERO))
+                    .setBy(Role.OPERATOR);
     /** {@code cm.velocity} (set: joystick twist; get: the twist being executed). */
     public static final Resource<VelocityCommand, NoQuery> VELOCITY = new Resource<VelocityCommand, NoQuery>(
             "cm.velocity", VelocityCommand.CODEC, null, true, true, "joystick twist (linear m/s, angular rad/s)")
-                    .withRecordStructure(new VelocityCommand(Instant.EPOCH, Twist2D.ZERO)).movingTheRobot();
+                    .withRecordStructure(new VelocityCommand(Instant.EPOCH, Twist2D.ZERO)).movingTheRobot()
+                    .setBy(Role.OPERATOR);
     /** {@code cm.goal} (get/set): the mission's target pose. */
     public static final Resource<Goal, NoQuery> GOAL = new Resource<Goal, NoQuery>("cm.goal", Goal.CODEC, null,
             true, true, "mission goal pose with tolerances").withRecordStructure(new Goal(new Pose2D(0, 0, 0), 1, 1))
-                    .movingTheRobot();
+                    .movingTheRobot().setBy(Role.OPERATOR);
     /** {@code cm.trajectory} (get/set): timed path. */
     public static final Resource<TrajectoryPayload, NoQuery> TRAJECTORY = new Resource<TrajectoryPayload, NoQuery>(
             "cm.trajectory", TrajectoryPayload.CODEC, null, true, true, "timed trajectory (t, x, y, theta, v, omega)")
-                    .movingTheRobot();
+                    .movingTheRobot().setBy(Role.OPERATOR);
     /** {@code cm.map} (get/set): occupancy grid. */
     public static final Resource<GridMap, NoQuery> MAP = new Resource<>("cm.map", GridMap.CODEC, null, true, true,
             "occupancy grid (at most 64 KiB of payload; larger maps via cm.fs)");
@@ -64,7 +66,8 @@ public final class Resources {
                     new LimitsPayload(1, 1, 1, 1));
     /** {@code cm.mission} (get: state; set: pause/resume/abort/maintenance). */
     public static final Resource<MissionStatus, NoQuery> MISSION = new Resource<MissionStatus, NoQuery>("cm.mission",
-            MissionStatus.CODEC, null, true, true, "mission state and maintenance mode").movingTheRobot();
+            MissionStatus.CODEC, null, true, true, "mission state and maintenance mode").movingTheRobot()
+                    .setBy(Role.OPERATOR); // a maintenance switch needs the maintainer: the device judges it
     /** {@code cm.tasks} (get): loaded tasks. */
     public static final Resource<TaskList, NoQuery> TASKS = new Resource<>("cm.tasks", TaskList.CODEC, null, true,
             false, "tasks loaded on the robot");

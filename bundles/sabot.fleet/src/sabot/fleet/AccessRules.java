@@ -1,7 +1,14 @@
 package sabot.fleet;
 
+import java.util.Collection;
+import java.util.EnumMap;
+import java.util.HashSet;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
+import java.util.stream.Collectors;
 
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.roster.Roster;
@@ -10,63 +17,143 @@ import org.jivesoftware.smack.roster.RosterGroup;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.AccessLevel;
 import sabot.controlml.AccessPolicy;
+import sabot.controlml.Role;
 
 /**
- * Who may command a device: configured workbench JIDs or members of configured roster groups may {@code set}; other
- * configured JIDs, groups or whole domains may only {@code get}; everyone else is answered {@code forbidden}.
- * Group membership is read from the device's roster at each request, so moving a workbench between groups takes
- * effect at once.
- *
- * @param setters      bare JIDs that may set (and get)
- * @param setterGroups roster groups whose members may set
- * @param getters      bare JIDs that may get
- * @param getterGroups roster groups whose members may get
- * @param getterDomains domains whose accounts may get (e.g. the lab's own domain)
+ * Who has which {@link Role} on a device (docs/CONTROLML.md section 9). Roles are granted where the lab administers
+ * its accounts: its XMPP server's <b>shared groups</b> (Prosody's {@code mod_groups}, ejabberd's shared roster
+ * groups), which the server writes into the device's roster with the group's name, and which no other account can
+ * write there. The rules name, per role, the groups whose members hold it (and, for fleet tools and tests, bare JIDs
+ * and whole domains); a requester holds the highest role it is granted, and nothing when it is granted none (deny by
+ * default). The roster is read at each request, so a change of the server's groups takes effect on a running device
+ * as soon as the server's roster push arrives.
  */
-public record AccessRules(Set<BareJid> setters, Set<String> setterGroups, Set<BareJid> getters,
-        Set<String> getterGroups, Set<String> getterDomains) {
+public final class AccessRules {
 
-    public AccessRules {
-        setters = Set.copyOf(setters);
-        setterGroups = Set.copyOf(setterGroups);
-        getters = Set.copyOf(getters);
-        getterGroups = Set.copyOf(getterGroups);
-        getterDomains = Set.copyOf(getterDomains);
+    /** The shared group of the lab's robots: how a workbench tells a robot from an account that claims to be one. */
+    public static final String ROBOTS_GROUP = "sabot-robots";
+    /** The lab's shared groups of the roles, a device's defaults: the role's name, plural, after "sabot-". */
+    public static final String OBSERVERS_GROUP = "sabot-observers", OPERATORS_GROUP = "sabot-operators",
+            MAINTAINERS_GROUP = "sabot-maintainers";
+    /** The lab's shared group of each role. */
+    public static final Map<Role, String> LAB_GROUPS = Map.of(Role.OBSERVER, OBSERVERS_GROUP, Role.OPERATOR,
+            OPERATORS_GROUP, Role.MAINTAINER, MAINTAINERS_GROUP);
+    private static final List<Role> GRANTABLE = List.of(Role.MAINTAINER, Role.OPERATOR, Role.OBSERVER);
+
+    private final Map<Role, Set<String>> groups;
+    private final Map<Role, Set<BareJid>> jids;
+    private final Map<Role, Set<String>> domains;
+
+    private AccessRules(Map<Role, Set<String>> groups, Map<Role, Set<BareJid>> jids, Map<Role, Set<String>> domains) {
+        this.groups = groups;
+        this.jids = jids;
+        this.domains = domains;
+    }
+
+    /** @return rules that grant nothing: every requester is refused */
+    public static AccessRules none() {
+        return new AccessRules(empty(), empty(), empty());
+    }
+
+    /** @return the lab's groups of {@link #LAB_GROUPS}, one per role */
+    public static AccessRules labGroups() {
+        AccessRules r = none();
+        for (Role role : GRANTABLE) {
+            r = r.withGroups(role, Set.of(LAB_GROUPS.get(role)));
+        }
+        return r;
+    }
+
+    /** @return these rules, and the members of {@code names} (roster group names) hold {@code role} */
+    public AccessRules withGroups(Role role, Collection<String> names) {
+        return new AccessRules(adding(groups, role, names), jids, domains);
+    }
+
+    /** @return these rules, and {@code jid} holds {@code role} */
+    public AccessRules withJid(Role role, BareJid jid) {
+        return new AccessRules(groups, adding(jids, role, Set.of(Objects.requireNonNull(jid))), domains);
+    }
+
+    /** @return these rules, and every account of {@code names} (domains) holds {@code role} */
+    public AccessRules withDomains(Role role, Collection<String> names) {
+        return new AccessRules(groups, jids, adding(domains, role, names));
+    }
+
+    /** @return the groups granting {@code role}; empty when none */
+    public Set<String> groupsOf(Role role) {
+        return groups.getOrDefault(role, Set.of());
+    }
+
+    /** @return true when no rule grants anything */
+    public boolean grantsNothing() {
+        return groups.values().stream().allMatch(Set::isEmpty) && jids.values().stream().allMatch(Set::isEmpty)
+                && domains.values().stream().allMatch(Set::isEmpty);
     }
 
     /** @return the policy these rules define on a device's connection (its roster supplies the groups) */
     public AccessPolicy on(XMPPConnection device) {
         Roster roster = Roster.getInstanceFor(Objects.requireNonNull(device));
-        return requester -> levelOf(requester, roster);
+        return requester -> roleOf(requester.asBareJid(), groupsIn(roster, requester));
     }
 
-    AccessLevel levelOf(Jid requester, Roster roster) {
-        BareJid bare = requester.asBareJid();
-        if (setters.contains(bare) || inGroup(roster, bare, setterGroups)) {
-            return AccessLevel.SET;
-        }
-        if (getters.contains(bare) || inGroup(roster, bare, getterGroups) || getterDomains.contains(bare.getDomain()
-                .toString())) {
-            return AccessLevel.GET;
-        }
-        return AccessLevel.NONE;
-    }
-
-    private static boolean inGroup(Roster roster, BareJid jid, Set<String> groups) {
-        if (groups.isEmpty()) {
-            return false;
-        }
-        RosterEntry entry = roster.getEntry(jid);
-        if (entry == null) {
-            return false;
-        }
-        for (RosterGroup g : entry.getGroups()) {
-            if (groups.contains(g.getName())) {
-                return true;
+    /**
+     * @param requester    a requester's bare JID
+     * @param rosterGroups the groups the device's roster puts it in
+     * @return its highest role, {@link Role#NONE} when granted none
+     */
+    public Role roleOf(BareJid requester, Collection<String> rosterGroups) {
+        for (Role role : GRANTABLE) {
+            if (jids.getOrDefault(role, Set.of()).contains(requester) || domains.getOrDefault(role, Set.of())
+                    .contains(requester.getDomain().toString()) || rosterGroups.stream().anyMatch(groupsOf(
+                            role)::contains)) {
+                return role;
             }
         }
-        return false;
+        return Role.NONE;
+    }
+
+    /** @return the groups {@code requester} is in on {@code roster} (empty when it is not there) */
+    public static Set<String> groupsIn(Roster roster, Jid requester) {
+        RosterEntry entry = roster.getEntry(requester.asBareJid());
+        if (entry == null) {
+            return Set.of();
+        }
+        Set<String> names = new HashSet<>();
+        for (RosterGroup g : entry.getGroups()) {
+            names.add(g.getName());
+        }
+        return names;
+    }
+
+    /** @return one line for a log, e.g. {@code maintainer: groups [sabot-maintainers]; operator: ...} */
+    public String describe() {
+        if (grantsNothing()) {
+            return "nobody has a role";
+        }
+        return GRANTABLE.stream().map(role -> role.label() + ": " + String.join(", ", java.util.stream.Stream.of(
+                part("groups", groups.get(role)), part("accounts", jids.get(role)), part("domains", domains.get(
+                        role))).filter(p -> !p.isEmpty()).toList())).collect(Collectors.joining("; "));
+    }
+
+    private static String part(String what, Set<?> names) {
+        return names == null || names.isEmpty() ? "" : what + " " + names.stream().map(Object::toString).sorted()
+                .toList();
+    }
+
+    private static <T> Map<Role, Set<T>> empty() {
+        return new EnumMap<>(Role.class);
+    }
+
+    private static <T> Map<Role, Set<T>> adding(Map<Role, Set<T>> map, Role role, Collection<T> more) {
+        if (role == null || role == Role.NONE) {
+            throw new IllegalArgumentException("a grant names a role: observer, operator or maintainer");
+        }
+        Map<Role, Set<T>> copy = new EnumMap<>(Role.class);
+        copy.putAll(map);
+        Set<T> set = new LinkedHashSet<>(copy.getOrDefault(role, Set.of()));
+        set.addAll(more);
+        copy.put(role, Set.copyOf(set));
+        return copy;
     }
 }

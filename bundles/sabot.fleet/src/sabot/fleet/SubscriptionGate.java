@@ -13,12 +13,12 @@ import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.AccessLevel;
 import sabot.controlml.AccessPolicy;
+import sabot.controlml.Role;
 
 /**
  * Who may see a device's presence (and so its PEP telemetry). A device approves a subscription request from anyone
- * its access policy lets at least {@code get}, and subscribes back (its server must see the subscriber's presence and
+ * its access policy gives a role (at least observer), and subscribes back (its server must see the subscriber's presence and
  * entity caps to send PEP notifications); it denies everyone else. A workbench approves the subscriptions of the
  * devices it follows itself.
  */
@@ -29,7 +29,7 @@ public final class SubscriptionGate {
 
     /** Installs the device-side rule on a device's connection. */
     public static void onDevice(XMPPConnection device, AccessPolicy policy) {
-        Roster.getInstanceFor(device).addSubscribeListener((from, request) -> policy.levelOf(from) != AccessLevel.NONE
+        Roster.getInstanceFor(device).addSubscribeListener((from, request) -> policy.roleOf(from) != Role.NONE
                 ? SubscribeAnswer.ApproveAndAlsoRequestIfRequired : SubscribeAnswer.Deny);
     }
 

@@ -44,7 +44,7 @@ class ConfigurationTest {
         Files.writeString(passwordFile, "pw\n");
         Files.setPosixFilePermissions(passwordFile, PosixFilePermissions.fromString(passwordMode));
         String text = OnboardProcess.configuration(new OnboardProcess.Robot("r1", port == null ? device.toString()
-                : port, START, 5222, "operator@sabot.local", null), passwordFile, Files.createDirectories(dir.resolve("fs")),
+                : port, START, 5222, null), passwordFile, Files.createDirectories(dir.resolve("fs")),
                 "");
         if (map != null) {
             text = text.replaceFirst("(?m)^planner\\.map = .*$", "planner.map = " + map);

@@ -12,6 +12,7 @@ import org.jxmpp.jid.impl.JidCreate;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resource;
+import sabot.controlml.Role;
 import sabot.controlml.payload.NoQuery;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.testsupport.robot.SimProcess;
@@ -76,12 +77,15 @@ final class RobotRig implements AutoCloseable {
     static RobotRig start(PrivateXmppServer xmpp, int robotPort, Path dir, double[] start, double[] believed,
             String[] simOptions, String extraConfig) throws Exception {
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
+        // as a lab's administrator: the robot in the robots' group, the operator's account a maintainer of them
+        xmpp.enrolRobot(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
+        xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.MAINTAINER);
         Files.createDirectories(dir);
         SimProcess sim = SimProcess.start(dir, start, simOptions);
         OnboardProcess onboard = null;
         try {
             onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, robotPort,
-                    OPERATOR + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", extraConfig);
+                    xmpp.caFile()), "robot-pw", extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
             onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");

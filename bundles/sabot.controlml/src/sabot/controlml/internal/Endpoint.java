@@ -16,7 +16,6 @@ import org.jivesoftware.smack.util.PacketParserUtils;
 import org.jivesoftware.smack.xml.XmlPullParser;
 import org.jivesoftware.smack.xml.XmlPullParserException;
 
-import sabot.controlml.AccessLevel;
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMl;
@@ -30,6 +29,7 @@ import sabot.controlml.Request;
 import sabot.controlml.Resource;
 import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.SetHandler;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.payload.NoQuery;
@@ -209,22 +209,24 @@ public final class Endpoint {
         if (defect != null && (!request.hasValidAttributes() || isAttributeDefect(defect))) {
             return refuse(request, defect);
         }
-        AccessLevel level = accessPolicy.levelOf(from);
-        if (level == null || level == AccessLevel.NONE) {
+        Role role = accessPolicy.roleOf(from);
+        if (role == null || role == Role.NONE) {
             return refuse(request, ControlMlError.of(ControlMlCondition.ACCESS_DENIED, from.asBareJid()
-                    + " may not use ControlML on this device"));
+                    + " has no role on this device"));
         }
         if (request.type() != carrierType) {
             return refuse(request, ControlMlError.of(ControlMlCondition.TYPE_MISMATCH, "control-ml type '" + request
                     .type().attribute() + "' in a " + carrier.name().toLowerCase(java.util.Locale.ROOT)
                     + " carrying a " + carrierType.attribute()));
         }
-        if (!level.allows(request.type())) {
-            return refuse(request, ControlMlError.of(ControlMlCondition.SET_NOT_PERMITTED, from.asBareJid()
-                    + " may get but not set"));
-        }
         if (request.type() == ControlMlType.GET) {
-            return serveGet(request, from, delayStamp, carrier);
+            return serveGet(request, from, delayStamp, carrier, role);
+        }
+        Role needed = setRoleOf(request.res());
+        if (!role.includes(needed)) {
+            return refuse(request, ControlMlError.of(ControlMlCondition.SET_NOT_PERMITTED, from.asBareJid()
+                    + " is " + role.withArticle() + " on this device; a set of " + request.res() + " needs the "
+                    + needed.label() + " role"));
         }
         synchronized (setLock) {
             // The duplicate check and the application are atomic: a retransmitted set is never applied twice. The
@@ -235,12 +237,21 @@ public final class Endpoint {
                 duplicatesReplayed.incrementAndGet();
                 return Answer.of(earlier);
             }
-            Answer answer = serveSet(request, from, delayStamp, carrier);
+            Answer answer = serveSet(request, from, delayStamp, carrier, role);
             if (isRemembered(answer.element())) {
                 replayCache.put(from, request.id(), answer.element());
             }
             return answer;
         }
+    }
+
+    /**
+     * @return the least role a set of the named resource needs; for a name this device does not know, the operator's
+     *         (the least of any set), so that an operator learns the name is unknown and an observer that it may not set
+     */
+    private Role setRoleOf(String res) {
+        Resource<?, ?> resource = resources.byName(res);
+        return resource == null ? Role.OPERATOR : resource.setRole();
     }
 
     /** @return true for a defect of the attributes (checked first), false for one of the content (checked late) */
@@ -268,7 +279,7 @@ public final class Endpoint {
      * measured clock offset) and the server's delay stamp; the arrival when it carries neither. The age may be
      * negative: a send time ahead of this clock.
      */
-    private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+    private Request requestOf(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier, Role role) {
         Instant now = clock.instant();
         Instant sent = now;
         if (request.sent() != null) {
@@ -278,11 +289,11 @@ public final class Endpoint {
         if (delayStamp != null && (request.sent() == null || delayStamp.isBefore(sent))) {
             sent = delayStamp;
         }
-        return new Request(from, request.id(), request.res(), carrier, sent, Duration.between(sent, now));
+        return new Request(from, request.id(), request.res(), carrier, sent, Duration.between(sent, now), role);
     }
 
     @SuppressWarnings("unchecked")
-    private Answer serveGet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+    private Answer serveGet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier, Role role) {
         Resource<Object, Object> resource = (Resource<Object, Object>) resources.byName(request.res());
         if (resource == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
@@ -318,12 +329,12 @@ public final class Endpoint {
                 return refuse(request, e.error());
             }
         }
-        Outcome<Object> outcome = handler.get(requestOf(request, from, delayStamp, carrier), query);
+        Outcome<Object> outcome = handler.get(requestOf(request, from, delayStamp, carrier, role), query);
         return answerFor(request, resource, outcome, true);
     }
 
     @SuppressWarnings("unchecked")
-    private Answer serveSet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier) {
+    private Answer serveSet(ControlMlElement request, Jid from, Instant delayStamp, Carrier carrier, Role role) {
         Resource<Object, Object> resource = (Resource<Object, Object>) resources.byName(request.res());
         if (resource == null) {
             return refuse(request, ControlMlError.of(ControlMlCondition.UNKNOWN_RESOURCE, "no resource "
@@ -359,7 +370,7 @@ public final class Endpoint {
         if (offsets != null && request.sent() != null) {
             offsets.measure(from); // known from the requester's presence, as a rule; else for its next command
         }
-        Request r = requestOf(request, from, delayStamp, carrier);
+        Request r = requestOf(request, from, delayStamp, carrier, role);
         StaleCommandPolicy policy = stalePolicy;
         if (policy.isStale(r.age())) {
             return refuse(request, ControlMlError.of(ControlMlCondition.STALE_COMMAND, "command sent " + r.sent()

@@ -22,7 +22,7 @@ import org.w3c.dom.NamedNodeMap;
 import org.w3c.dom.Node;
 import org.xml.sax.InputSource;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
@@ -56,7 +56,7 @@ class ConformanceTest {
         device = new RecordingDevice();
         endpoint = RecordingDevice.endpoint(Clock.fixed(Instant.parse("2026-11-21T12:00:00Z"), ZoneOffset.UTC),
                 device);
-        endpoint.setAccessPolicy(j -> AccessLevel.SET);
+        endpoint.setAccessPolicy(j -> Role.MAINTAINER);
     }
 
     private Endpoint.Answer serve(String xml, ControlMlType carrierType) throws Exception {

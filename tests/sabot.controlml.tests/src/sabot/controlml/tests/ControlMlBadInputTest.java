@@ -20,7 +20,7 @@ import org.junit.jupiter.params.provider.CsvSource;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -59,16 +59,16 @@ class ControlMlBadInputTest {
     private Jid operator;
     private RecordingDevice device;
     private Endpoint endpoint;
-    private final Map<Jid, AccessLevel> access = new HashMap<>();
+    private final Map<Jid, Role> access = new HashMap<>();
 
     @BeforeEach
     void setUp() throws Exception {
         operator = JidCreate.from("operator@sabot.local/wb");
         device = new RecordingDevice();
         endpoint = RecordingDevice.endpoint(Clock.fixed(now, ZoneOffset.UTC), device);
-        access.put(operator, AccessLevel.SET);
-        access.put(JidCreate.from("viewer@sabot.local/wb"), AccessLevel.GET);
-        endpoint.setAccessPolicy(j -> access.getOrDefault(j, AccessLevel.NONE));
+        access.put(operator, Role.MAINTAINER);
+        access.put(JidCreate.from("viewer@sabot.local/wb"), Role.OBSERVER);
+        endpoint.setAccessPolicy(j -> access.getOrDefault(j, Role.NONE));
     }
 
     private Endpoint.Answer serve(String xml) throws Exception {

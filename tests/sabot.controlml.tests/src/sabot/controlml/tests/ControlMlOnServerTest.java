@@ -38,7 +38,7 @@ import org.junit.jupiter.api.TestInfo;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -89,18 +89,18 @@ abstract class ControlMlOnServerTest {
         return role + "-" + Integer.toHexString(info.getDisplayName().hashCode() & 0xffffff);
     }
 
-    Robot robot(XMPPTCPConnection connection, Map<Jid, AccessLevel> rights) {
+    Robot robot(XMPPTCPConnection connection, Map<Jid, Role> rights) {
         RecordingDevice device = new RecordingDevice();
         ControlMlManager m = ControlMlManager.getInstanceFor(connection);
         device.registerOn(m);
-        m.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), AccessLevel.NONE));
+        m.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), Role.NONE));
         return new Robot(connection, device, m);
     }
 
     @Test
     void workbenchGetsAndSetsEveryResourceThroughTheServer(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         ControlMlManager client = ControlMlManager.getInstanceFor(wb);
 
         for (Resource<?, ?> r : Resources.all()) {
@@ -123,7 +123,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void aRegisteredResourceOfAnotherBundleTravels(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         ControlMlManager client = ControlMlManager.getInstanceFor(wb);
         ResourceRegistryTest.Counter seven = new ResourceRegistryTest.Counter(7);
         assertEquals(sabot.controlml.ControlMlCondition.UNKNOWN_RESOURCE, client.set(robot.jid(),
@@ -158,7 +158,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void errorsArriveAsValuesWithTheirConditions(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         ControlMlManager client = ControlMlManager.getInstanceFor(wb);
         robot.manager().removeHandlers(Resources.MAP);
         robot.manager().onSet(Resources.GOAL, (r, g) -> Outcome.failure(ControlMlCondition.INVALID_STATE,
@@ -197,7 +197,7 @@ abstract class ControlMlOnServerTest {
         XMPPTCPConnection viewer = server().login(unique(info, "viewer"));
         XMPPTCPConnection stranger = server().login(unique(info, "stranger"));
         Robot robot = robot(server().login(unique(info, "robot")), Map.of(viewer.getUser().asBareJid(),
-                AccessLevel.GET));
+                Role.OBSERVER));
 
         ControlMlError setByViewer = ControlMlManager.getInstanceFor(viewer).set(robot.jid(), Resources.GOAL,
                 NEW_GOAL).errorOrNull();
@@ -216,7 +216,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void badInputOverTheWireIsRefusedAndTheConnectionSurvives(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         String goal = ControlMlBadInputTest.goal("NaN", "m");
         String goalContent = goal.substring(goal.indexOf("<DataRecord"), goal.lastIndexOf("</control-ml>"));
         record Case(String attributes, String content, Condition condition, ControlMlCondition cm) {
@@ -270,7 +270,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void unreadableAttributesAreAnsweredWithTheErrorAlone(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         record Case(String attributes, ControlMlCondition cm) {
         }
         List<Case> cases = List.of(
@@ -312,7 +312,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void stanzaErrorsCarryTheirDescriptiveText(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         String why = "a mission is running <since 10:15> & 'cannot' stop";
         robot.manager().onSet(Resources.GOAL, (r, g) -> Outcome.failure(ControlMlCondition.INVALID_STATE, why));
 
@@ -385,7 +385,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void unsolicitedAnswersAreLoggedAndDropped(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         CountDownLatch drops = new CountDownLatch(2);
         robot.manager().addUnsolicitedAnswerListener((from, element) -> drops.countDown());
         ControlMlElement result = ControlMlElement.result(new RequestId(LocalDate.now(), 99), "cm.goal",
@@ -407,7 +407,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void workbenchOnAnotherDomainCommandsTheRobot(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"), PrivateXmppServer.SECOND_DOMAIN);
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         ControlMlManager client = ControlMlManager.getInstanceFor(wb);
 
         assertEquals(Samples.POSE, client.get(robot.jid(), Resources.POSITION).orElseThrow());
@@ -470,7 +470,7 @@ abstract class ControlMlOnServerTest {
             throws Exception {
         XMPPTCPConnection c = new XMPPTCPConnection(server().configuration(localpart, PrivateXmppServer.DOMAIN,
                 PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
-        Robot robot = robot(c, Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(c, Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         robot.manager().setStaleCommandPolicy(policy);
         c.connect().login();
         closeAfterClass.add(c);
@@ -493,7 +493,7 @@ abstract class ControlMlOnServerTest {
     @Test
     void aSetHeldDuringALinkDropIsRefusedAsStaleOnResumption(TestInfo info) throws Exception {
         XMPPTCPConnection wb = server().login(unique(info, "wb"));
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         Duration limit = Duration.ofSeconds(1);
         robot.manager().setStaleCommandPolicy(StaleCommandPolicy.refuseOlderThan(limit));
         assertTrue(robot.connection().isSmResumptionPossible(), "server did not offer resumption");
@@ -550,7 +550,7 @@ abstract class ControlMlOnServerTest {
                 return t;
             }
         });
-        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), AccessLevel.SET));
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of(wb.getUser().asBareJid(), Role.MAINTAINER));
         Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
         Duration measured;

@@ -23,7 +23,7 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
@@ -72,13 +72,13 @@ abstract class InteropSuiteTest {
         }
         Jid operator = JidCreate.bareFrom("operator-" + suffix + "@" + PrivateXmppServer.DOMAIN);
         Jid viewer = JidCreate.bareFrom("viewer-" + suffix + "@" + PrivateXmppServer.DOMAIN);
-        Map<Jid, AccessLevel> rights = Map.of(operator, AccessLevel.SET, viewer, AccessLevel.GET);
+        Map<Jid, Role> rights = Map.of(operator, Role.MAINTAINER, viewer, Role.OBSERVER);
 
         XMPPTCPConnection robot = server().login("robot-" + suffix);
         Roster roster = Roster.getInstanceFor(robot);
         // section 9: approve whoever may get, and subscribe back (mutual, the recipe of section 6)
-        roster.addSubscribeListener((from, request) -> rights.getOrDefault(from.asBareJid(), AccessLevel.NONE)
-                == AccessLevel.NONE ? SubscribeAnswer.Deny : SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
+        roster.addSubscribeListener((from, request) -> rights.getOrDefault(from.asBareJid(), Role.NONE)
+                == Role.NONE ? SubscribeAnswer.Deny : SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
         ControlMlManager device = ControlMlManager.getInstanceFor(robot);
         RecordingDevice recording = new RecordingDevice();
         recording.registerOn(device);
@@ -94,7 +94,7 @@ abstract class InteropSuiteTest {
             case "throw" -> throw new IllegalStateException("a handler bug");
             default -> Outcome.done();
         });
-        device.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), AccessLevel.NONE));
+        device.setAccessPolicy(j -> rights.getOrDefault(j.asBareJid(), Role.NONE));
 
         Inventory inventory = Inventories.of(new HardwareDescription(SERIAL, new Inventory.Mechanic("S1", List.of(
                 new Inventory.Part("wheels", PART))), "main board", List.of()), null, List.of(new Inventory.Item(

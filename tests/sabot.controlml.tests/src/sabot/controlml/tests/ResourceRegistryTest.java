@@ -17,7 +17,7 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -71,7 +71,7 @@ class ResourceRegistryTest {
         operator = JidCreate.from("operator@sabot.local/wb");
         registry = new ResourceRegistry();
         endpoint = new Endpoint(Clock.fixed(Instant.parse("2026-11-21T12:00:00Z"), ZoneOffset.UTC), registry);
-        endpoint.setAccessPolicy(j -> AccessLevel.SET);
+        endpoint.setAccessPolicy(j -> Role.MAINTAINER);
     }
 
     private static String setCounter(int id, String value) {

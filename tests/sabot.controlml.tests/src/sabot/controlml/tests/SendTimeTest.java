@@ -18,7 +18,7 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -57,7 +57,7 @@ class SendTimeTest {
         operator = JidCreate.from("operator@sabot.local/wb");
         device = new RecordingDevice();
         endpoint = RecordingDevice.endpoint(Clock.fixed(NOW, ZoneOffset.UTC), device);
-        endpoint.setAccessPolicy(j -> AccessLevel.SET);
+        endpoint.setAccessPolicy(j -> Role.MAINTAINER);
         endpoint.onSet(Resources.GOAL, (request, goal) -> {
             requests.add(request);
             return Outcome.done();

@@ -10,7 +10,9 @@ import java.net.InetAddress;
 import java.net.Socket;
 import java.net.URI;
 import java.time.LocalDate;
+import java.util.Collection;
 import java.util.List;
+import java.util.Locale;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.BlockingQueue;
@@ -21,6 +23,7 @@ import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
+import org.jivesoftware.smack.roster.AbstractRosterListener;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
@@ -28,6 +31,7 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
+import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.AccessPolicy;
@@ -36,7 +40,10 @@ import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MotorGains;
+import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.MissionState;
 import sabot.fleet.AccessRules;
 import sabot.fleet.DeviceRegistration;
@@ -92,8 +99,7 @@ abstract class FleetOnServerTest {
     void presenceLevelChangesAreSeenByASubscriber() throws Exception {
         XMPPTCPConnection robot = server().login("robot-pl");
         XMPPTCPConnection wb = server().login("wb-pl");
-        AccessPolicy policy = new AccessRules(Set.of(wb.getUser().asBareJid()), Set.of(), Set.of(), Set.of(), Set.of())
-                .on(robot);
+        AccessPolicy policy = AccessRules.none().withJid(Role.MAINTAINER, wb.getUser().asBareJid()).on(robot);
         SubscriptionGate.onDevice(robot, policy);
         SubscriptionGate.onWorkbench(wb);
         BlockingQueue<PresenceLevel> seen = new LinkedBlockingQueue<>();
@@ -141,7 +147,7 @@ abstract class FleetOnServerTest {
     private XMPPTCPConnection device(String name, String domain, String manufacturer, String role,
             Set<String> readerDomains) throws Exception {
         XMPPTCPConnection c = server().login(name, domain);
-        SubscriptionGate.onDevice(c, new AccessRules(Set.of(), Set.of(), Set.of(), Set.of(), readerDomains).on(c));
+        SubscriptionGate.onDevice(c, AccessRules.none().withDomains(Role.OBSERVER, readerDomains).on(c));
         if (manufacturer != null) {
             DeviceProfile p = new DeviceProfile("mobile robot", manufacturer, "R2", name, URI.create("http://" + name
                     + ".lab.example/"), 45.764043, 4.835659, DeviceUrn.urnOf("SN-" + name), c.getUser()
@@ -203,39 +209,128 @@ abstract class FleetOnServerTest {
         assertTrue(roster.getEntry(other.getUser().asBareJid()) == null);
     }
 
+    /**
+     * Roles as a lab grants them: the server's shared groups ({@code sabot-xmpp group add|remove}), which the server
+     * writes into the device's roster; the device reads them at each request. Granted and revoked while everyone is
+     * online: the change reaches the running device by the server's roster push.
+     */
     @Test
-    void onlyConfiguredWorkbenchesMaySetOthersMayGetEveryoneElseIsForbidden() throws Exception {
-        XMPPTCPConnection robot = server().login("robot-auth");
+    void rolesAreTheServersSharedGroupsAndAChangeReachesARunningDevice() throws Exception {
+        XMPPTCPConnection robot = server().login("robot-roles");
+        XMPPTCPConnection observer = server().login("wb-observer");
         XMPPTCPConnection operator = server().login("wb-operator");
-        XMPPTCPConnection viewer = server().login("wb-viewer");
-        XMPPTCPConnection stranger = server().login("stranger", PrivateXmppServer.SECOND_DOMAIN);
-        // the operator is a member of the robot's "operators" roster group
-        Roster.getInstanceFor(robot).createItem(operator.getUser().asBareJid(), "operator", new String[] {
-            "operators" });
+        XMPPTCPConnection maintainer = server().login("wb-maintainer");
+        XMPPTCPConnection stranger = server().login("wb-stranger");
+        Roster roster = Roster.getInstanceFor(robot);
+        AccessRules rules = AccessRules.labGroups();
+        AccessPolicy policy = rules.on(robot);
         ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
-        cm.setAccessPolicy(new AccessRules(Set.of(), Set.of("operators"), Set.of(viewer.getUser().asBareJid()), Set
-                .of(), Set.of()).on(robot));
-        Goal[] goal = { null };
+        cm.setAccessPolicy(policy);
+        Goal[] goal = { new Goal(Pose2D.ORIGIN, 0.1, 0.1) };
+        PidGains[] gains = { new PidGains(List.of(new MotorGains(0, 1, 0, 0))) };
         cm.onSet(Resources.GOAL, (r, g) -> {
             goal[0] = g;
             return Outcome.done();
         });
-        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0] == null ? new Goal(Pose2D.ORIGIN, 0.1, 0.1)
-                : goal[0]));
-        Goal target = new Goal(new Pose2D(3, 4, 0), 0.1, 0.1);
+        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0]));
+        cm.onSet(Resources.PID, (r, g) -> {
+            gains[0] = g;
+            return Outcome.done();
+        });
+        assertEquals(Role.NONE, policy.roleOf(operator.getUser()), "a role before any grant");
 
-        assertTrue(ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, target).isSuccess());
-        var viewerSet = ControlMlManager.getInstanceFor(viewer).set(robot.getUser(), Resources.GOAL, new Goal(
-                Pose2D.ORIGIN, 1, 1)).errorOrNull();
-        var viewerGet = ControlMlManager.getInstanceFor(viewer).get(robot.getUser(), Resources.GOAL);
+        long t0 = System.nanoTime();
+        server().enrolRobot(robot.getUser().asBareJid());
+        server().grant(observer.getUser().asBareJid(), Role.OBSERVER);
+        server().grant(operator.getUser().asBareJid(), Role.OPERATOR);
+        server().grant(maintainer.getUser().asBareJid(), Role.MAINTAINER);
+        awaitRole(roster, policy, maintainer, Role.MAINTAINER);
+        awaitRole(roster, policy, operator, Role.OPERATOR);
+        awaitRole(roster, policy, observer, Role.OBSERVER);
+        System.out.printf(Locale.ROOT, "[figure] %s: four grants (sabot-xmpp group add) to roles on the "
+                + "running device: %d ms%n", server().kind(), TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
+
+        Goal target = new Goal(new Pose2D(3, 4, 0), 0.1, 0.1);
+        PidGains newGains = new PidGains(List.of(new MotorGains(0, 7, 1, 0)));
+        // observer: gets; no set
+        assertEquals(goal[0], ControlMlManager.getInstanceFor(observer).get(robot.getUser(), Resources.GOAL)
+                .orElseThrow());
+        var observerSet = ControlMlManager.getInstanceFor(observer).set(robot.getUser(), Resources.GOAL, target)
+                .errorOrNull();
+        assertEquals(Condition.forbidden, observerSet.condition());
+        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, observerSet.cmCondition());
+        assertTrue(observerSet.text().contains("is an observer on this device; a set of cm.goal needs the operator "
+                + "role"), observerSet.text());
+        // operator: goals; not the gains
+        assertTrue(ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, target)
+                .isSuccess());
+        var operatorPid = ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.PID, newGains)
+                .errorOrNull();
+        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, operatorPid.cmCondition());
+        assertTrue(operatorPid.text().contains("a set of cm.pid needs the maintainer role"), operatorPid.text());
+        // maintainer: the gains too
+        assertTrue(ControlMlManager.getInstanceFor(maintainer).set(robot.getUser(), Resources.PID, newGains)
+                .isSuccess());
+        // a stranger: not even a get
         var strangerGet = ControlMlManager.getInstanceFor(stranger).get(robot.getUser(), Resources.GOAL)
                 .errorOrNull();
-
-        assertEquals(Condition.forbidden, viewerSet.condition());
-        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, viewerSet.cmCondition());
-        assertEquals(target, viewerGet.orElseThrow());
         assertEquals(Condition.forbidden, strangerGet.condition());
         assertEquals(ControlMlCondition.ACCESS_DENIED, strangerGet.cmCondition());
+        assertEquals(target, goal[0], "only the operator's goal");
+        assertEquals(newGains, gains[0], "only the maintainer's gains");
+
+        // revoked while online: the operator's next goal is refused
+        long t1 = System.nanoTime();
+        server().revoke(operator.getUser().asBareJid(), Role.OPERATOR);
+        awaitRole(roster, policy, operator, Role.NONE);
+        System.out.printf(Locale.ROOT, "[figure] %s: revocation to no role on the running device: %d ms%n",
+                server().kind(), TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t1));
+        var revoked = ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, new Goal(
+                Pose2D.ORIGIN, 1, 1)).errorOrNull();
+        assertEquals(ControlMlCondition.ACCESS_DENIED, revoked.cmCondition());
         assertEquals(target, goal[0], "the refused set changed nothing");
+    }
+
+    /** Waits, on the device's roster changes, until {@code who} holds {@code role} there (at most 10 s). */
+    private static void awaitRole(Roster roster, AccessPolicy policy, XMPPTCPConnection who, Role role)
+            throws InterruptedException {
+        Object changed = new Object();
+        var listener = new AbstractRosterListener() {
+            @Override
+            public void entriesAdded(Collection<Jid> addresses) {
+                wake();
+            }
+
+            @Override
+            public void entriesUpdated(Collection<Jid> addresses) {
+                wake();
+            }
+
+            @Override
+            public void entriesDeleted(Collection<Jid> addresses) {
+                wake();
+            }
+
+            private void wake() {
+                synchronized (changed) {
+                    changed.notifyAll();
+                }
+            }
+        };
+        roster.addRosterListener(listener);
+        try {
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+            synchronized (changed) {
+                while (policy.roleOf(who.getUser()) != role) {
+                    long left = deadline - System.nanoTime();
+                    assertTrue(left > 0, who.getUser().asBareJid() + " is not " + role.withArticle() + " on the device "
+                            + "after " + TIMEOUT_S + " s (its groups there: " + AccessRules.groupsIn(roster, who
+                                    .getUser()) + ")");
+                    changed.wait(Math.max(1, TimeUnit.NANOSECONDS.toMillis(left)));
+                }
+            }
+        } finally {
+            roster.removeRosterListener(listener);
+        }
     }
 }

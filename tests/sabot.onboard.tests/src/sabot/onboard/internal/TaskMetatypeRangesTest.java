@@ -49,7 +49,7 @@ class TaskMetatypeRangesTest {
     void mandatorySettingsAreThoseWithoutDefault() {
         assertTrue(catalog.get("remotefs").get("root").mandatory());
         assertTrue(catalog.get("controlml").get("jid").mandatory());
-        assertTrue(!catalog.get("controlml").get("operators").mandatory());
+        assertTrue(!catalog.get("controlml").get("operatorGroups").mandatory());
     }
 
     @Test

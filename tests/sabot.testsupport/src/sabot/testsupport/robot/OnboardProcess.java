@@ -37,9 +37,12 @@ public final class OnboardProcess implements AutoCloseable {
     /**
      * The settings of one robot's configuration file.
      *
+     * The robot's roles come from its server's shared groups (the configuration's defaults): a test grants them with
+     * {@code PrivateXmppServer.grant}.
+     *
      * @param caFile the lab CA of the XMPP server (a private server's {@code caFile()}); null: the JVM's trust store
      */
-    public record Robot(String name, String pty, double[] start, int xmppPort, String operator, Path caFile) {
+    public record Robot(String name, String pty, double[] start, int xmppPort, Path caFile) {
     }
 
     /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
@@ -59,11 +62,10 @@ public final class OnboardProcess implements AutoCloseable {
                 controlml.caFile = %s
                 controlml.jid = %s@%s
                 controlml.passwordFile = %s
-                controlml.operators = %s
                 remotefs.root = %s
                 %s
                 """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
-                PrivateXmppServer.DOMAIN, passwordFile, r.operator(), fsRoot, extra);
+                PrivateXmppServer.DOMAIN, passwordFile, fsRoot, extra);
     }
 
     /** Writes the password file (mode 0600) and the configuration into {@code dir}, then starts the product. */

@@ -25,11 +25,14 @@ import org.jivesoftware.smackx.iqregister.AccountManager;
 import org.junit.jupiter.api.extension.AfterAllCallback;
 import org.junit.jupiter.api.extension.BeforeAllCallback;
 import org.junit.jupiter.api.extension.ExtensionContext;
+import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.DomainBareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.jid.parts.Localpart;
 
+import sabot.controlml.Role;
+import sabot.fleet.AccessRules;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.NoDelaySocketFactory;
 import sabot.fleet.ServerTrust;
@@ -330,6 +333,37 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             return JidCreate.entityBareFrom(localpart + "@" + domain);
         } finally {
             anonymous.disconnect();
+        }
+    }
+
+    /**
+     * Grants a role on the lab's robots: puts {@code jid} into the role's shared group of the server
+     * ({@link AccessRules#LAB_GROUPS}), with {@code sabot-xmpp group add}, as a lab administrator does.
+     */
+    public void grant(BareJid jid, Role role) throws IOException, InterruptedException {
+        group("add", AccessRules.LAB_GROUPS.get(role), jid);
+    }
+
+    /** Takes a role away: {@code sabot-xmpp group remove} of the role's shared group. */
+    public void revoke(BareJid jid, Role role) throws IOException, InterruptedException {
+        group("remove", AccessRules.LAB_GROUPS.get(role), jid);
+    }
+
+    /** Makes {@code jid} one of the lab's robots: the shared group {@link AccessRules#ROBOTS_GROUP}. */
+    public void enrolRobot(BareJid jid) throws IOException, InterruptedException {
+        group("add", AccessRules.ROBOTS_GROUP, jid);
+    }
+
+    /** {@code sabot-xmpp group add|remove}: a shared group's change, applied to the online accounts' rosters. */
+    public void group(String op, String group, BareJid jid) throws IOException, InterruptedException {
+        Path log = runDir.resolve(SCRIPT_LOG);
+        Process script = script("group", op, "--run", runDir.toString(), group, jid.toString()).redirectErrorStream(
+                true).redirectOutput(Redirect.appendTo(log.toFile())).start();
+        script.getOutputStream().close();
+        int status = awaitScript(script);
+        if (status != 0) {
+            throw new IOException("sabot-xmpp group " + op + " " + group + " " + jid + " failed: " + failure(log)
+                    + "\n" + tail(log));
         }
     }
 

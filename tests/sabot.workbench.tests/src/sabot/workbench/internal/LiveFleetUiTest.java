@@ -52,8 +52,10 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestMethodOrder;
 import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
+import org.jxmpp.jid.impl.JidCreate;
 import org.osgi.framework.ServiceReference;
 
+import sabot.controlml.Role;
 import sabot.controlml.payload.MissionState;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
@@ -100,10 +102,13 @@ class LiveFleetUiTest {
         xmpp = PrivateXmppServer.prosody().start();
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
+        // goals and stops: the operator's role. The robot is not in the server's robots' group: the lobby test needs a
+        // robot that the operator's roster does not show by itself
+        xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.OPERATOR);
         Path dir = Files.createDirectories(Paths.get("target", "live-fleet").toAbsolutePath());
         sim = SimProcess.start(dir, START);
-        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
+        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), xmpp
+                .caFile()), "robot-pw", "");
         // the lab map where a robot keeps it for workbenches: too large for one cm.map payload
         Path maps = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps");
         Files.copy(maps.resolve("lab.yaml"), dir.resolve("fs/map.yaml"), StandardCopyOption.REPLACE_EXISTING);

@@ -2,6 +2,7 @@ package sabot.workbench.controlml.internal;
 
 import java.util.Collection;
 import java.util.LinkedHashSet;
+import java.util.List;
 import java.util.Set;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.TimeUnit;
@@ -20,6 +21,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import sabot.controlml.PresenceLevel;
+import sabot.fleet.AccessRules;
 import sabot.fleet.FleetException;
 import sabot.fleet.FleetLobby;
 import sabot.fleet.PresenceLevels;
@@ -94,14 +96,22 @@ final class FleetRoster {
         connector.schedule(() -> reconcile(s), RECONCILE_MS, TimeUnit.MILLISECONDS);
     }
 
-    /** The robots: the roster's entries in {@link ControlMlFleet#ROBOTS_GROUP}. */
+    /**
+     * The robots: the roster's entries in {@link ControlMlFleet#ROBOTS_GROUP} (the robots this workbench follows) and
+     * in the server's shared group of the lab's robots ({@link AccessRules#ROBOTS_GROUP}, which the server writes).
+     */
     private void refresh(FleetSession s) {
         Set<String> now = new LinkedHashSet<>();
-        RosterGroup group = s.roster().getGroup(ControlMlFleet.ROBOTS_GROUP);
-        if (group != null) {
+        for (String groupName : List.of(ControlMlFleet.ROBOTS_GROUP, AccessRules.ROBOTS_GROUP)) {
+            RosterGroup group = s.roster().getGroup(groupName);
+            if (group == null) {
+                continue;
+            }
             for (RosterEntry e : group.getEntries()) {
                 String jid = e.getJid().toString();
-                now.add(jid);
+                if (!now.add(jid)) {
+                    continue; // in both groups
+                }
                 String name = e.getName() != null && !e.getName().isBlank() ? e.getName() : e.getJid().getLocalpartOrNull()
                         == null ? jid : e.getJid().getLocalpartOrNull().toString();
                 RobotState known = registry.robot(jid);

@@ -32,7 +32,7 @@ import org.junit.jupiter.params.provider.Arguments;
 import org.junit.jupiter.params.provider.MethodSource;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
@@ -71,7 +71,7 @@ abstract class RemoteFsOnServerTest {
         XMPPTCPConnection robotConnection = server().login("fs-robot-" + n);
         robotManager = ControlMlManager.getInstanceFor(robotConnection);
         Jid allowed = wb.getUser().asBareJid();
-        robotManager.setAccessPolicy(j -> j.asBareJid().equals(allowed) ? AccessLevel.SET : AccessLevel.NONE);
+        robotManager.setAccessPolicy(j -> j.asBareJid().equals(allowed) ? Role.MAINTAINER : Role.NONE);
         robot = robotConnection.getUser();
         workbench = ControlMlManager.getInstanceFor(wb);
     }
@@ -180,8 +180,8 @@ abstract class RemoteFsOnServerTest {
         XMPPTCPConnection otherWb = server().login("fs-wb-" + n);
         XMPPTCPConnection otherRobotConnection = server().login("fs-robot-" + n);
         ControlMlManager otherRobot = ControlMlManager.getInstanceFor(otherRobotConnection);
-        otherRobot.setAccessPolicy(j -> j.asBareJid().equals(otherWb.getUser().asBareJid()) ? AccessLevel.SET
-                : AccessLevel.NONE);
+        otherRobot.setAccessPolicy(j -> j.asBareJid().equals(otherWb.getUser().asBareJid()) ? Role.MAINTAINER
+                : Role.NONE);
         fs.register(otherRobot);
         ControlMlManager other = ControlMlManager.getInstanceFor(otherWb);
         Jid otherRobotJid = otherRobotConnection.getUser();

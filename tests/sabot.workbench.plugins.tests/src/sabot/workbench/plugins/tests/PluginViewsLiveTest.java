@@ -46,6 +46,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestMethodOrder;
 
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.FileEntry;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
@@ -103,10 +104,13 @@ class PluginViewsLiveTest {
         xmpp = PrivateXmppServer.prosody().start();
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
+        // the plug-ins change gains, files and run step tests: the maintainer's role (the robot in the robots' group)
+        xmpp.enrolRobot(JidCreate.bareFrom(ROBOT_JID));
+        xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.MAINTAINER);
         dir = Files.createDirectories(Paths.get("target", "live-plugins").toAbsolutePath());
         sim = SimProcess.start(dir, START);
-        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), OPERATOR
-                + "@" + PrivateXmppServer.DOMAIN, xmpp.caFile()), "robot-pw", "");
+        onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), START, xmpp.port(), xmpp
+                .caFile()), "robot-pw", "");
         onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
         onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
         XmppAccountStore store = XmppAccountStore.workbenchStore();

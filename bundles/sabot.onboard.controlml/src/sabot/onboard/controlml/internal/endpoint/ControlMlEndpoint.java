@@ -26,10 +26,12 @@ import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlError;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
+import sabot.controlml.Request;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.Resource;
 import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.pidstep.controlml.PidStep;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.Goal;
@@ -179,7 +181,7 @@ public final class ControlMlEndpoint {
         m.onGet(Resources.LIMITS, (request, none) -> Outcome.success(motion.limits()));
         m.onSet(Resources.LIMITS, (request, limits) -> apply(() -> motion.setLimits(limits)));
         m.onGet(Resources.MISSION, (request, none) -> Outcome.success(motion.mission()));
-        m.onSet(Resources.MISSION, (request, command) -> commandMission(command));
+        m.onSet(Resources.MISSION, (request, command) -> commandMission(request, command));
         m.onGet(Resources.TASKS, (request, none) -> Outcome.success(taskList()));
         m.onSet(PidStep.RESOURCE, (request, test) -> read(() -> motion.stepTest(test.motor(), test.step())));
     }
@@ -230,10 +232,16 @@ public final class ControlMlEndpoint {
     /**
      * A set is one command: when {@code maintenance} differs from the robot's mode it switches maintenance mode (and
      * {@code state} is not looked at); otherwise {@code state} must be a transition (paused, running, aborted). The
-     * robot decides whether the transition fits its state.
+     * robot decides whether the transition fits its state. A maintenance switch needs the maintainer role (the
+     * resource's other commands the operator's).
      */
-    private Outcome<MissionStatus> commandMission(MissionStatus command) {
+    private Outcome<MissionStatus> commandMission(Request request, MissionStatus command) {
         boolean maintenanceSwitch = command.maintenance() != motion.mission().maintenance();
+        if (maintenanceSwitch && !request.role().includes(Role.MAINTAINER)) {
+            return Outcome.failure(ControlMlCondition.SET_NOT_PERMITTED, request.from().asBareJid() + " is "
+                    + request.role().withArticle() + " on this device; switching maintenance " + (command.maintenance()
+                            ? "on" : "off") + " needs the maintainer role");
+        }
         if (!maintenanceSwitch && !MISSION_COMMANDS.contains(command.state())) {
             return Outcome.failure(ControlMlCondition.INVALID_VALUE, "state '" + command.state().code()
                     + "' is not a command: send paused, running or aborted, or switch maintenance");

@@ -16,8 +16,6 @@ import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.packet.Presence;
-import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.SubscribeListener.SubscribeAnswer;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
 import org.osgi.framework.BundleContext;
@@ -32,12 +30,14 @@ import org.osgi.util.tracker.ServiceTracker;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.controlml.AccessPolicy;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.NoDelaySocketFactory;
+import sabot.fleet.SubscriptionGate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
 import sabot.identity.InventorySource;
@@ -131,10 +131,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         connection = new XMPPTCPConnection(FleetConnections.secured(config, settings.trust()).build());
         connection.setUseStreamManagement(true);
         connection.setUseStreamManagementResumption(true);
-        Roster roster = Roster.getInstanceFor(connection);
-        OperatorPolicy policy = new OperatorPolicy(settings.operators(), roster);
-        roster.addSubscribeListener((from, request) -> policy.approvesSubscription(from)
-                ? SubscribeAnswer.ApproveAndAlsoRequestIfRequired : SubscribeAnswer.Deny);
+        AccessPolicy policy = settings.open() ? AccessPolicy.OPEN : settings.access().on(connection);
+        SubscriptionGate.onDevice(connection, policy);
         controlMl = ControlMlManager.getInstanceFor(connection);
         controlMl.setAccessPolicy(policy);
         controlMl.setStaleCommandPolicy(StaleCommandPolicy.refuseOlderThan(settings.staleCommandAfter()));
@@ -170,9 +168,12 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         tasks.open();
         LOG.info("controlml task started: {} on {}:{} (resource {}, TLS trusting {}), {}", settings.jid(),
                 settings.server(), settings.port(), settings.resource(), settings.trust().describe(),
-                settings.operators().isEmpty()
-                        ? "operators: contacts with a mutual subscription"
-                        : "operators: " + settings.operators());
+                settings.open() ? "roles: none, the policy is open" : "roles from the server's groups: " + settings
+                        .access().describe());
+        if (settings.open()) {
+            LOG.warn("controlml.openPolicy = true: everyone who reaches this robot through its server is its "
+                    + "maintainer (goals, gains, limits, files)");
+        }
         scheduleConnect(Duration.ZERO);
     }
 

@@ -18,6 +18,8 @@ import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.controlml.ControlMl;
+import sabot.controlml.Role;
+import sabot.fleet.AccessRules;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.ServerTrust;
 import sabot.onboard.task.InvalidSettings;
@@ -37,14 +39,16 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param resource          the resource the session binds
  * @param reconnectMin      first delay after a loss or failed attempt; doubles up to {@code reconnectMax}
  * @param reconnectMax      longest delay between two attempts
- * @param operators         who may set; empty: contacts with a mutual subscription (see {@link OperatorPolicy})
+ * @param access            who holds which role: the lab's server groups of the configuration, or everyone a
+ *                          maintainer when {@code openPolicy} says so
+ * @param open              whether {@code access} is the open policy (everyone a maintainer), said so explicitly
  * @param staleCommandAfter sets that waited longer at the server are refused
  * @param liveness          silence from the server after which it is pinged; twice it, the link is taken as lost
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
  * @param trust             whom the session trusts for the server's certificate (TLS is always required)
  */
 public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, String resource,
-        Duration reconnectMin, Duration reconnectMax, Set<EntityBareJid> operators, Duration staleCommandAfter,
+        Duration reconnectMin, Duration reconnectMax, AccessRules access, boolean open, Duration staleCommandAfter,
         Duration liveness, String robotName, ServerTrust trust) {
 
     /** The task's name. */
@@ -59,13 +63,17 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     static final double DEFAULT_STALE_COMMAND_AFTER_S = ControlMl.DEFAULT_STALE_COMMAND_S;
     /** Default liveness interval, s: a silent link is noticed within 2¼ of it, so that a moving robot brakes. */
     static final double DEFAULT_LIVENESS_S = LinkWatch.DEFAULT_INTERVAL_S;
+    /** The lab's groups, the defaults of the group settings (one source: {@link AccessRules#LAB_GROUPS}). */
+    static final String LAB_OBSERVERS = AccessRules.OBSERVERS_GROUP, LAB_OPERATORS = AccessRules.OPERATORS_GROUP,
+            LAB_MAINTAINERS = AccessRules.MAINTAINERS_GROUP;
     /** Shortest reconnection delay, s. */
     static final double MIN_RECONNECT_S = 0.001;
 
     /** Keys (setting ids) of the settings read here. */
     static final String SERVER = "server", PORT = "port", JID = "jid", PASSWORD_FILE = "passwordFile",
             RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
-            OPERATORS = "operators", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness",
+            OBSERVER_GROUPS = "observerGroups", OPERATOR_GROUPS = "operatorGroups",
+            MAINTAINER_GROUPS = "maintainerGroups", OPEN_POLICY = "openPolicy", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness",
             CA_FILE = "caFile";
 
     /**
@@ -113,10 +121,25 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
                 + "most; at least reconnectMin.", min = "" + MIN_RECONNECT_S, max = "3600")
         double reconnectMax() default DEFAULT_RECONNECT_MAX_S;
 
-        @AttributeDefinition(name = "Operators", required = false, description = "Comma-separated bare JIDs that may "
-                + "send set requests (the robot's other contacts with a mutual subscription may only get). Empty: "
-                + "every contact with a mutual subscription in the robot's roster may set.")
-        String operators() default "";
+        @AttributeDefinition(name = "Observer groups", required = false, description = "Comma-separated shared "
+                + "groups of the lab's XMPP server whose members are observers of this robot: every get, its "
+                + "presence and telemetry (docs/SECURITY.md: roles).")
+        String observerGroups() default LAB_OBSERVERS;
+
+        @AttributeDefinition(name = "Operator groups", required = false, description = "Comma-separated shared "
+                + "groups whose members are operators: also goals, trajectories, the joystick, re-localisation, "
+                + "mission commands (stop, pause, resume).")
+        String operatorGroups() default LAB_OPERATORS;
+
+        @AttributeDefinition(name = "Maintainer groups", required = false, description = "Comma-separated shared "
+                + "groups whose members are maintainers: also PID gains and the step test, limits, the map, file "
+                + "writes and deletes, maintenance mode. At least one group must hold a role (or openPolicy).")
+        String maintainerGroups() default LAB_MAINTAINERS;
+
+        @AttributeDefinition(name = "Open policy", description = "true: everyone who can reach the robot is its "
+                + "maintainer, whatever the groups say. For a lab whose server admits only its own people; the robot "
+                + "warns of it at each start.")
+        boolean openPolicy() default false;
 
         @AttributeDefinition(name = "Stale command age", description = "Seconds since a set was sent (its send "
                 + "time, on the sender's clock as measured by XEP-0202, or the server's delay stamp of an offline "
@@ -147,9 +170,6 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         double obstaclesRate() default 2;
     }
 
-    public ControlMlSettings {
-        operators = Set.copyOf(operators);
-    }
 
     /**
      * @param properties the task's configuration
@@ -174,7 +194,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
     @Override
     public String toString() { // never the password
         return "ControlMlSettings[server=" + server + ", port=" + port + ", jid=" + jid + ", resource=" + resource
-                + ", reconnect " + reconnectMin + ".." + reconnectMax + ", operators=" + operators + ", trust "
+                + ", reconnect " + reconnectMin + ".." + reconnectMax + ", roles " + (open ? "open" : access.describe())
+                + ", trust "
                 + trust.describe() + "]";
     }
 
@@ -221,14 +242,15 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
             problems.add(new Problem(RECONNECT_MAX, "reconnectMax (" + seconds(reconnectMax)
                     + " s) is below reconnectMin (" + seconds(reconnectMin) + " s)"));
         }
-        Set<EntityBareJid> operators = new LinkedHashSet<>();
-        for (String item : p.string(OPERATORS, "").split(",")) {
-            if (!item.isBlank()) {
-                EntityBareJid op = bareJid(item.strip(), OPERATORS, " in the operator list", problems);
-                if (op != null) {
-                    operators.add(op);
-                }
-            }
+        boolean open = p.bool(OPEN_POLICY, false);
+        AccessRules access = AccessRules.none();
+        access = access.withGroups(Role.OBSERVER, groups(p, OBSERVER_GROUPS, LAB_OBSERVERS, problems));
+        access = access.withGroups(Role.OPERATOR, groups(p, OPERATOR_GROUPS, LAB_OPERATORS, problems));
+        access = access.withGroups(Role.MAINTAINER, groups(p, MAINTAINER_GROUPS, LAB_MAINTAINERS, problems));
+        if (!open && access.grantsNothing()) {
+            problems.add(new Problem(MAINTAINER_GROUPS, "no group holds a role, so nobody could command this robot: "
+                    + "name the lab's maintainer group (or set openPolicy = true, for a lab whose server admits only "
+                    + "its own people)"));
         }
         Duration stale = seconds(p, STALE_COMMAND_AFTER, DEFAULT_STALE_COMMAND_AFTER_S, 0, problems);
         Duration liveness = seconds(p, LIVENESS, DEFAULT_LIVENESS_S, 0.1, problems);
@@ -245,8 +267,23 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         if (!problems.isEmpty()) {
             return null;
         }
-        return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax, operators,
-                stale, liveness, robotName, trust);
+        return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax,
+                open ? AccessRules.none() : access, open, stale, liveness, robotName, trust);
+    }
+
+    /** @return the comma-separated group names of {@code key}; a name with a control character is a problem */
+    private static Set<String> groups(TaskProperties p, String key, String fallback, List<Problem> problems) {
+        Set<String> names = new LinkedHashSet<>();
+        for (String item : p.string(key, fallback).split(",")) {
+            String name = item.strip();
+            if (name.chars().anyMatch(Character::isISOControl)) {
+                problems.add(new Problem(key, "group name '" + name.replaceAll("\\p{Cntrl}", "?") + "' has a control "
+                        + "character"));
+            } else if (!name.isEmpty()) {
+                names.add(name);
+            }
+        }
+        return names;
     }
 
     private static EntityBareJid bareJid(String text, String key, String where, List<Problem> problems) {

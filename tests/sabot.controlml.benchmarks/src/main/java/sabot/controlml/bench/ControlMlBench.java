@@ -35,7 +35,7 @@ import org.jivesoftware.smack.xml.XmlPullParserException;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlManager;
@@ -247,8 +247,8 @@ public final class ControlMlBench {
             }
         });
         ControlMlManager robotCm = ControlMlManager.getInstanceFor(robot);
-        robotCm.setAccessPolicy(j -> j.asBareJid().equals(workbench.getUser().asBareJid()) ? AccessLevel.SET
-                : AccessLevel.NONE);
+        robotCm.setAccessPolicy(j -> j.asBareJid().equals(workbench.getUser().asBareJid()) ? Role.MAINTAINER
+                : Role.NONE);
         robotCm.setTextForm(textForm);
         robotCm.onGet(Resources.POSITION, (r, q) -> Outcome.success(pose));
         ControlMlManager client = ControlMlManager.getInstanceFor(workbench);

@@ -44,7 +44,7 @@ import org.osgi.service.component.runtime.ServiceComponentRuntime;
 import org.osgi.service.component.runtime.dto.ComponentDescriptionDTO;
 import org.osgi.util.tracker.ServiceTracker;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -174,7 +174,7 @@ class ControlMlEndpointOnProsodyTest {
         robotJid = robotConnection.getUser();
         robotManager = ControlMlManager.getInstanceFor(robotConnection);
         Jid wb = wbConnection.getUser().asBareJid();
-        robotManager.setAccessPolicy(j -> j.asBareJid().equals(wb) ? AccessLevel.SET : AccessLevel.NONE);
+        robotManager.setAccessPolicy(j -> j.asBareJid().equals(wb) ? Role.MAINTAINER : Role.NONE);
 
         robot = new RecordedRobot();
         session = new SmackRobotSession(robotConnection);

@@ -14,6 +14,7 @@ import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
 
 import sabot.controlml.StaleCommandPolicy;
+import sabot.fleet.AccessRules;
 import sabot.onboard.task.TaskSettingsCheck;
 import sabot.testsupport.osgi.TaskMetatype;
 
@@ -33,8 +34,14 @@ class ControlMlMetatypeTest {
     void controlmlDeclaresExactlyItsSettingsWithTheSessionsDefaults() throws Exception {
         Map<String, String> d = defaults("sabot.task.controlml");
         assertEquals(new TreeSet<>(Set.of("server", "port", "caFile", "jid", "passwordFile", "resource", "reconnectMin",
-                "reconnectMax", "operators", "staleCommandAfter", "liveness", "positionRate", "velocityRate",
-                "missionRate", "obstaclesRate")), new TreeSet<>(d.keySet()));
+                "reconnectMax", "observerGroups", "operatorGroups", "maintainerGroups", "openPolicy",
+                "staleCommandAfter", "liveness", "positionRate", "velocityRate", "missionRate", "obstaclesRate")),
+                new TreeSet<>(d.keySet()));
+        // deny by default: the lab's group of each role (the server grants them), no open policy
+        assertEquals(AccessRules.OBSERVERS_GROUP, d.get("observerGroups"));
+        assertEquals(AccessRules.OPERATORS_GROUP, d.get("operatorGroups"));
+        assertEquals(AccessRules.MAINTAINERS_GROUP, d.get("maintainerGroups"));
+        assertEquals("false", d.get("openPolicy"));
         assertEquals(ControlMlSettings.DEFAULT_SERVER, d.get("server"));
         assertEquals("", d.get("caFile"), "the JVM's default trust store unless a lab CA is given");
         assertEquals(ControlMlSettings.DEFAULT_PORT, Integer.parseInt(d.get("port")));

@@ -37,6 +37,7 @@ import org.osgi.util.tracker.ServiceTracker;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileQuery;
 import sabot.identity.DeviceCard;
@@ -82,6 +83,9 @@ class ControlMlSessionOnProsodyTest {
         String robotName = "robot-" + n;
         robot = XMPP.register(robotName, PrivateXmppServer.DOMAIN, "robot-pw-" + n);
         operator = JidCreate.entityBareFrom("op-" + n + "@" + PrivateXmppServer.DOMAIN);
+        // as a lab's administrator: the robot in the robots' group, the operator's account a maintainer of them
+        XMPP.enrolRobot(robot);
+        XMPP.grant(operator, Role.MAINTAINER);
     }
 
     @AfterEach
@@ -123,7 +127,6 @@ class ControlMlSessionOnProsodyTest {
         props.put("passwordFile", passwordFile("robot-pw-" + accounts, "rw-------").toString());
         props.put("reconnectMin", 0.05);
         props.put("reconnectMax", 0.4);
-        props.put("operators", operator.toString());
         props.put(OnboardTask.ROBOT_NAME, "sabot-test");
         controlml = service(ConfigurationAdmin.class).getConfiguration("sabot.task.controlml", "?");
         controlml.update(props);

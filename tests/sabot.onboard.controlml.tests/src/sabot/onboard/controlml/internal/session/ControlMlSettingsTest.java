@@ -18,6 +18,8 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 import org.jxmpp.jid.impl.JidCreate;
 
+import sabot.controlml.Role;
+import sabot.fleet.AccessRules;
 import sabot.onboard.task.InvalidSettings;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
 
@@ -59,17 +61,43 @@ class ControlMlSettingsTest {
         assertEquals("onboard", s.resource());
         assertEquals(Duration.ofSeconds(1), s.reconnectMin());
         assertEquals(Duration.ofSeconds(30), s.reconnectMax());
-        assertEquals(Set.of(), s.operators());
+        // deny by default: roles only from the lab's server groups, one per role
+        assertEquals(false, s.open());
+        for (Role role : List.of(Role.OBSERVER, Role.OPERATOR, Role.MAINTAINER)) {
+            assertEquals(Set.of(AccessRules.LAB_GROUPS.get(role)), s.access().groupsOf(role), role.label());
+        }
+        assertEquals(Role.NONE, s.access().roleOf(JidCreate.bareFrom("alice@sabot.local"), Set.of("friends")));
         assertEquals(Duration.ofSeconds(5), s.staleCommandAfter()); // below the workbench's 10 s request timeout
         assertEquals("sabot-01", s.robotName(), "without robot.name, the JID's local part");
         assertTrue(!s.toString().contains("s3cret"), "the password is never printed");
     }
 
     @Test
-    void operatorsAreACommaSeparatedListOfBareJids() throws Exception {
-        settings.put("operators", " alice@sabot.local, bob@lab.example ,");
-        assertEquals(Set.of(JidCreate.entityBareFrom("alice@sabot.local"), JidCreate.entityBareFrom(
-                "bob@lab.example")), ControlMlSettings.of(settings).operators());
+    void roleGroupsAreCommaSeparatedListsAndTheHighestGrantedRoleCounts() throws Exception {
+        settings.put("operatorGroups", " lab-ops, night shift ,");
+        settings.put("maintainerGroups", "sabot-01-maintainers");
+        settings.put("observerGroups", "");
+        ControlMlSettings s = ControlMlSettings.of(settings);
+        assertEquals(Set.of("lab-ops", "night shift"), s.access().groupsOf(Role.OPERATOR));
+        assertEquals(Set.of(), s.access().groupsOf(Role.OBSERVER));
+        var alice = JidCreate.bareFrom("alice@sabot.local");
+        assertEquals(Role.OPERATOR, s.access().roleOf(alice, Set.of("night shift")));
+        assertEquals(Role.MAINTAINER, s.access().roleOf(alice, Set.of("lab-ops", "sabot-01-maintainers")));
+        assertEquals(Role.NONE, s.access().roleOf(alice, Set.of("sabot-maintainers")), "not a group of this robot");
+    }
+
+    @Test
+    void noGroupAtAllIsRefusedUnlessThePolicyIsOpenExplicitly() {
+        settings.put("observerGroups", "");
+        settings.put("operatorGroups", " ");
+        settings.put("maintainerGroups", "");
+        assertOneProblem("maintainerGroups", "no group holds a role, so nobody could command this robot: name the "
+                + "lab's maintainer group (or set openPolicy = true, for a lab whose server admits only its own "
+                + "people)");
+        settings.put("openPolicy", "true");
+        ControlMlSettings s = ControlMlSettings.of(settings);
+        assertTrue(s.open());
+        assertTrue(s.toString().contains("roles open"), s.toString());
     }
 
     @Test
@@ -122,10 +150,9 @@ class ControlMlSettingsTest {
     }
 
     @Test
-    void badOperatorIsRefusedNamingIt() {
-        settings.put("operators", "alice@sabot.local, bob");
-        assertOneProblem("operators", "'bob' in the operator list is not a bare JID (local@domain without a "
-                + "resource, e.g. sabot-01@sabot.local)");
+    void aGroupNameWithAControlCharacterIsRefusedNamingIt() {
+        settings.put("operatorGroups", "lab-ops, bad\u0007name");
+        assertOneProblem("operatorGroups", "group name 'bad?name' has a control character");
     }
 
     @Test

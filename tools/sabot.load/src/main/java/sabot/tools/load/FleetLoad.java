@@ -20,7 +20,7 @@ import org.jivesoftware.smack.xml.SmackXmlParser;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
 
-import sabot.controlml.AccessLevel;
+import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
@@ -246,7 +246,7 @@ public final class FleetLoad implements AutoCloseable {
         roster.addSubscribeListener((from, request) -> from.asBareJid().equals(operator)
                 ? SubscribeAnswer.ApproveAndAlsoRequestIfRequired : SubscribeAnswer.Deny);
         ControlMlManager m = r.manager;
-        m.setAccessPolicy(j -> j.asBareJid().equals(operator) ? AccessLevel.SET : AccessLevel.NONE);
+        m.setAccessPolicy(j -> j.asBareJid().equals(operator) ? Role.MAINTAINER : Role.NONE);
         m.onGet(Resources.POSITION, (q, n) -> Outcome.success(r.pose(Instant.now())));
         m.onGet(Resources.VELOCITY, (q, n) -> Outcome.success(r.velocity(Instant.now())));
         m.onGet(Resources.MISSION, (q, n) -> Outcome.success(r.mission(Instant.now())));
