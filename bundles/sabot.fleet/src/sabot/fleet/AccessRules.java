@@ -8,12 +8,17 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
+import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.stream.Collectors;
+import java.util.stream.Stream;
 
+import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.roster.AbstractRosterListener;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
+import org.jivesoftware.smack.roster.RosterLoadedListener;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.Jid;
 
@@ -91,10 +96,80 @@ public final class AccessRules {
                 && domains.values().stream().allMatch(Set::isEmpty);
     }
 
-    /** @return the policy these rules define on a device's connection (its roster supplies the groups) */
+    /**
+     * @return the policy these rules define on a device's connection (its roster supplies the groups). The device's
+     *         roster is reloaded after each change the server pushes: ejabberd 23.01 pushes a shared group's change as
+     *         an item carrying only that group, and a removal from one group as the item's removal, although the
+     *         account may be in other groups; the reloaded roster has each item with all its groups.
+     */
     public AccessPolicy on(XMPPConnection device) {
         Roster roster = Roster.getInstanceFor(Objects.requireNonNull(device));
+        roster.addRosterListener(new ReloadAfterPush(roster));
         return requester -> roleOf(requester.asBareJid(), groupsIn(roster, requester));
+    }
+
+    /**
+     * Reloads a roster after the server pushed a change; one reload at a time, and one more when pushes arrived
+     * during it. A reload that changes nothing ends the chain (it fires no event).
+     */
+    private static final class ReloadAfterPush extends AbstractRosterListener {
+        private final Roster roster;
+        private final AtomicBoolean reloading = new AtomicBoolean();
+        private final AtomicBoolean again = new AtomicBoolean();
+
+        ReloadAfterPush(Roster roster) {
+            this.roster = roster;
+        }
+
+        @Override
+        public void entriesAdded(Collection<Jid> addresses) {
+            changed();
+        }
+
+        @Override
+        public void entriesUpdated(Collection<Jid> addresses) {
+            changed();
+        }
+
+        @Override
+        public void entriesDeleted(Collection<Jid> addresses) {
+            changed();
+        }
+
+        private void changed() {
+            if (!reloading.compareAndSet(false, true)) {
+                again.set(true);
+                return;
+            }
+            RosterLoadedListener loaded = new RosterLoadedListener() {
+                @Override
+                public void onRosterLoaded(Roster r) {
+                    done(this);
+                }
+
+                @Override
+                public void onRosterLoadingFailed(Exception exception) {
+                    done(this);
+                }
+            };
+            roster.addRosterLoadedListener(loaded); // before the reload, which may end before the next line
+            try {
+                roster.reload();
+            } catch (SmackException.NotLoggedInException | SmackException.NotConnectedException e) {
+                done(loaded); // the next login loads it whole
+            } catch (InterruptedException e) {
+                done(loaded);
+                Thread.currentThread().interrupt();
+            }
+        }
+
+        private void done(RosterLoadedListener loaded) {
+            roster.removeRosterLoadedListener(loaded);
+            reloading.set(false);
+            if (again.getAndSet(false)) {
+                changed();
+            }
+        }
     }
 
     /**
@@ -131,7 +206,7 @@ public final class AccessRules {
         if (grantsNothing()) {
             return "nobody has a role";
         }
-        return GRANTABLE.stream().map(role -> role.label() + ": " + String.join(", ", java.util.stream.Stream.of(
+        return GRANTABLE.stream().map(role -> role.label() + ": " + String.join(", ", Stream.of(
                 part("groups", groups.get(role)), part("accounts", jids.get(role)), part("domains", domains.get(
                         role))).filter(p -> !p.isEmpty()).toList())).collect(Collectors.joining("; "));
     }

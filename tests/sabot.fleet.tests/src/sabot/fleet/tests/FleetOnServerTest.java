@@ -250,6 +250,13 @@ abstract class FleetOnServerTest {
         System.out.printf(Locale.ROOT, "[figure] %s: four grants (sabot-xmpp group add) to roles on the "
                 + "running device: %d ms%n", server().kind(), TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
 
+        // in two groups: the higher role; out of one of them, the other's (ejabberd pushes the item with the one
+        // group that changed, or its removal: the device reloads its roster to see the item whole)
+        server().grant(observer.getUser().asBareJid(), Role.MAINTAINER);
+        awaitRole(roster, policy, observer, Role.MAINTAINER);
+        server().revoke(observer.getUser().asBareJid(), Role.MAINTAINER);
+        awaitRole(roster, policy, observer, Role.OBSERVER);
+
         Goal target = new Goal(new Pose2D(3, 4, 0), 0.1, 0.1);
         PidGains newGains = new PidGains(List.of(new MotorGains(0, 7, 1, 0)));
         // observer: gets; no set
