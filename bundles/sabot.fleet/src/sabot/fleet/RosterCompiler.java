@@ -32,15 +32,25 @@ import sabot.identity.IdentityResult;
 public final class RosterCompiler {
 
     /**
-     * @param accept         rule 11's predicate on device profiles
+     * @param accept         rule 11's predicate on device profiles (what a device says of itself, in its vCard)
+     * @param vouched        rule 11's predicate on a lobby member's JID, checked before its vCard: whether someone
+     *                       other than the device vouches for it (e.g. the server's robots' group); a device's own
+     *                       vCard is not proof, anyone can write one
      * @param foreignDevices rule 12's JIDs (other domains), subscribed unconditionally
      * @param group          roster group the compiled entries go into
      */
-    public record Rules(Predicate<DeviceProfile> accept, Set<EntityBareJid> foreignDevices, String group) {
+    public record Rules(Predicate<DeviceProfile> accept, Predicate<EntityBareJid> vouched,
+            Set<EntityBareJid> foreignDevices, String group) {
         public Rules {
             Objects.requireNonNull(accept, "accept");
+            Objects.requireNonNull(vouched, "vouched");
             foreignDevices = Set.copyOf(foreignDevices);
             Objects.requireNonNull(group, "group");
+        }
+
+        /** Rules that take each device's vCard at its word (a lab where every account is trusted). */
+        public Rules(Predicate<DeviceProfile> accept, Set<EntityBareJid> foreignDevices, String group) {
+            this(accept, jid -> true, foreignDevices, group);
         }
 
         /** @return a predicate matching a manufacturer (N/FAMILY) and a role (ROLE) exactly */
@@ -78,6 +88,10 @@ public final class RosterCompiler {
             EntityBareJid device = member.asEntityBareJidIfPossible();
             if (device == null || device.equals(workbench.getUser().asEntityBareJid()) || roster.getEntry(device)
                     != null) {
+                continue;
+            }
+            if (!rules.vouched().test(device)) {
+                rejected.put(device, "not vouched for (its own vCard is not proof)");
                 continue;
             }
             IdentityResult<DeviceCard> card = identities.fetch(device);

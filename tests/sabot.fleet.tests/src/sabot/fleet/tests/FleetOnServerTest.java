@@ -160,6 +160,40 @@ abstract class FleetOnServerTest {
         return c;
     }
 
+    /**
+     * A lobby impostor: an account whose own vCard says it is one of the lab's robots. A workbench that asks the
+     * server (its robots' shared group) does not follow it; the robot the server vouches for is in its roster already.
+     */
+    @Test
+    void anOccupantWhoseOwnVCardSaysRobotIsNotFollowedWithoutTheServersWord() throws Exception {
+        Set<String> lab = Set.of(PrivateXmppServer.DOMAIN);
+        EntityBareJid lobbyRoom = JidCreate.entityBareFrom("fleet-imp@conference." + PrivateXmppServer.DOMAIN);
+        XMPPTCPConnection robot = device("imp-robot", PrivateXmppServer.DOMAIN, "Sabot Robotics", "robot", lab);
+        XMPPTCPConnection impostor = device("imp-impostor", PrivateXmppServer.DOMAIN, "Sabot Robotics", "robot", lab);
+        XMPPTCPConnection wb = server().login("imp-wb");
+        server().enrolRobot(robot.getUser().asBareJid());
+        server().grant(wb.getUser().asBareJid(), Role.OBSERVER); // ejabberd shows a group to the groups' members
+        Roster roster = Roster.getInstanceFor(wb);
+        // (the robot's entry in the robots' group, seen through a policy that says so)
+        awaitRole(roster, j -> AccessRules.groupsIn(roster, j).contains(AccessRules.ROBOTS_GROUP) ? Role.OBSERVER
+                : Role.NONE, robot, Role.OBSERVER);
+        for (XMPPTCPConnection d : List.of(robot, impostor)) {
+            new FleetLobby(d, lobbyRoom).join();
+        }
+        FleetLobby lobby = new FleetLobby(wb, lobbyRoom);
+        lobby.join();
+
+        RosterCompiler.Report report = new RosterCompiler(wb, lobby, new RosterCompiler.Rules(RosterCompiler.Rules
+                .manufacturerAndRole("Sabot Robotics", "robot"), jid -> AccessRules.groupsIn(roster, jid).contains(
+                        AccessRules.ROBOTS_GROUP), Set.of(), "fleet")).compile();
+
+        assertEquals(List.of(), report.subscribed());
+        assertEquals("not vouched for (its own vCard is not proof)", report.rejected().get(impostor.getUser()
+                .asEntityBareJid()));
+        assertTrue(roster.getEntry(impostor.getUser().asBareJid()) == null, "the impostor is in the roster");
+        assertTrue(AccessRules.groupsIn(roster, robot.getUser()).contains(AccessRules.ROBOTS_GROUP));
+    }
+
     @Test
     void rosterCompilationSubscribesMatchingOnlineDevicesAndTheListedForeignOnes() throws Exception {
         Set<String> lab = Set.of(PrivateXmppServer.DOMAIN, PrivateXmppServer.SECOND_DOMAIN);

@@ -11,6 +11,7 @@ import java.nio.file.Paths;
 import java.nio.file.StandardCopyOption;
 import java.time.Duration;
 import java.time.Instant;
+import java.time.LocalDate;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
@@ -56,6 +57,10 @@ import org.jxmpp.jid.impl.JidCreate;
 import org.osgi.framework.ServiceReference;
 
 import sabot.controlml.Role;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.DeviceProfile;
+import sabot.identity.DeviceUrn;
+import sabot.identity.Inventory;
 import sabot.controlml.payload.MissionState;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
@@ -102,8 +107,8 @@ class LiveFleetUiTest {
         xmpp = PrivateXmppServer.prosody().start();
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, "operator-pw");
-        // goals and stops: the operator's role. The robot is not in the server's robots' group: the lobby test needs a
-        // robot that the operator's roster does not show by itself
+        // goals and stops: the operator's role. The robot is not in the server's robots' group yet: the lobby test puts
+        // it there
         xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.OPERATOR);
         Path dir = Files.createDirectories(Paths.get("target", "live-fleet").toAbsolutePath());
         sim = SimProcess.start(dir, START);
@@ -343,7 +348,7 @@ class LiveFleetUiTest {
 
     @Test
     @Order(5)
-    void theFleetLobbyBringsAnOnlineRobotIntoTheFleet() throws Exception {
+    void theServersRobotsGroupBringsARobotIntoTheFleetAndALobbyImpostorNever() throws Exception {
         String room = "fleet@conference." + PrivateXmppServer.DOMAIN;
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         // forget the robot: not configured (rule 12), not in the operator's roster
@@ -352,26 +357,41 @@ class LiveFleetUiTest {
                 PrivateXmppServer.DOMAIN, "operator-pw").setResource("admin").setSendPresence(false).build());
         org.jivesoftware.smack.roster.Roster roster = org.jivesoftware.smack.roster.Roster.getInstanceFor(admin);
         roster.reloadAndWait();
-        roster.removeEntry(roster.getEntry(org.jxmpp.jid.impl.JidCreate.entityBareFrom(ROBOT_JID)));
+        roster.removeEntry(roster.getEntry(JidCreate.entityBareFrom(ROBOT_JID)));
         waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "robot still in the fleet: " + fleetView().rows());
-        // The onboard product does not join the lobby yet: the robot's account joins it with a second resource that
-        // sends no presence of its own (the robot's presence stays the onboard product's)
+        // in the lobby: the robot (its account's second resource, which sends no presence of its own) and an
+        // impostor, an account whose own vCard says it is one of the lab's robots
         org.jivesoftware.smack.tcp.XMPPTCPConnection robotInLobby = xmpp.connect(xmpp.configuration(ROBOT,
                 PrivateXmppServer.DOMAIN, "robot-pw").setResource("lobby").setSendPresence(false).build());
-        new sabot.fleet.FleetLobby(robotInLobby, org.jxmpp.jid.impl.JidCreate.entityBareFrom(room)).join();
+        org.jivesoftware.smack.tcp.XMPPTCPConnection impostor = xmpp.login("impostor");
+        DeviceProfile claim = new DeviceProfile("mobile robot", "Sabot", "SabotOne", "sabot-99", null, 45.76, 4.83,
+                DeviceUrn.urnOf("SN-impostor"), impostor.getUser().asBareJid().toString(), "robot", LocalDate.of(
+                        2026, 11, 29), null, null);
+        DeviceIdentityManager.getInstanceFor(impostor).publish(claim, new Inventory(1, claim.uid(),
+                new Inventory.Mechanic("chassis", List.of()), List.of(), List.of())).orElseThrow();
+        for (var c : List.of(robotInLobby, impostor)) {
+            new sabot.fleet.FleetLobby(c, JidCreate.entityBareFrom(room)).join();
+        }
         try {
-            long t0 = System.nanoTime();
+            int logins = HOLD.logins();
             store.saveLobby(room);
-            waitFor(() -> live(robotRow()), 30, () -> "robot not discovered in the lobby: " + fleetView().rows());
-            System.out.printf(Locale.ROOT, "[figure] lobby configured to robot live in Fleet: %d ms%n",
-                    TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
-            assertTrue(roster.getGroup(sabot.workbench.controlml.internal.ControlMlFleet.ROBOTS_GROUP) != null
-                    && roster.getGroup(sabot.workbench.controlml.internal.ControlMlFleet.ROBOTS_GROUP).getEntries()
-                            .stream().anyMatch(e -> e.getJid().toString().equals(ROBOT_JID)), "not in the group");
+            // the new session compiles the lobby before its status says online
+            waitFor(() -> HOLD.logins() > logins && statusLineText().contains("online"), 30, () -> "not online "
+                    + "again with the lobby: " + statusLineText());
+            assertTrue(fleetView().rows().isEmpty(), "followed on its own vCard: " + fleetView().rows());
+            // the server's word: the lab's administrator puts the robot into the robots' group
+            long t0 = System.nanoTime();
+            xmpp.enrolRobot(JidCreate.bareFrom(ROBOT_JID));
+            waitFor(() -> live(robotRow()), 30, () -> "robot not in the fleet: " + fleetView().rows());
+            System.out.printf(Locale.ROOT, "[figure] robot put into the server's robots' group to live in Fleet: %d "
+                    + "ms%n", TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
+            assertEquals(List.of(ROBOT_JID), fleetView().rows().stream().map(RobotState::jid).toList(),
+                    "only the server's robot");
         } finally {
             store.saveLobby("");
             store.saveRobots(List.of(ROBOT_JID)); // as before: the class's end empties it, and the fleet with it
             robotInLobby.instantShutdown();
+            impostor.instantShutdown();
             admin.instantShutdown();
         }
     }

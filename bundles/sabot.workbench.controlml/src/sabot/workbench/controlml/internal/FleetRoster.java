@@ -132,8 +132,9 @@ final class FleetRoster {
 
     /**
      * Connection thread: roster rule 11. Joins the fleet lobby (a XEP-0045 room every online device joins) and
-     * subscribes to the occupants whose vCard says they are robots ({@link #ROBOT_ROLE}), now and whenever an occupant
-     * comes in. A lobby that cannot be joined leaves the workbench with its roster (rule 12); the reason is logged.
+     * subscribes to the occupants that the server says are robots (its robots' group) and whose vCard says so too
+     * ({@link #ROBOT_ROLE}), now and whenever an occupant comes in; an occupant that only says it is a robot is logged
+     * and not followed. A lobby that cannot be joined leaves the workbench with its roster (rule 12); the reason is logged.
      */
     private void joinLobby(FleetSession s, String room) {
         try {
@@ -158,12 +159,15 @@ final class FleetRoster {
             return;
         }
         try {
+            // a robot is one the server says is: in its robots' group (those are in the roster already, and in the
+            // fleet); an occupant whose own vCard says "robot" is not followed on that word
             RosterCompiler.Report report = new RosterCompiler(s.connection(), lobby, new RosterCompiler.Rules(
-                    p -> ROBOT_ROLE.equals(p.role()), Set.of(), ControlMlFleet.ROBOTS_GROUP)).compile();
+                    p -> ROBOT_ROLE.equals(p.role()), jid -> AccessRules.groupsIn(s.roster(), jid).contains(
+                            AccessRules.ROBOTS_GROUP), Set.of(), ControlMlFleet.ROBOTS_GROUP)).compile();
             if (!report.subscribed().isEmpty()) {
                 LOG.info("fleet lobby: subscribed to {}", report.subscribed());
             }
-            report.rejected().forEach((jid, why) -> LOG.debug("fleet lobby: {} not followed: {}", jid, why));
+            report.rejected().forEach((jid, why) -> LOG.info("fleet lobby: {} not followed: {}", jid, why));
         } catch (FleetException e) {
             LOG.warn("fleet lobby: {}", e.getMessage());
         }

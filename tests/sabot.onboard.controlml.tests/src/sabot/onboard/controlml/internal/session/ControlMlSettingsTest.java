@@ -53,7 +53,7 @@ class ControlMlSettingsTest {
     }
 
     @Test
-    void defaultsApplyToEverySettingLeftOut() {
+    void defaultsApplyToEverySettingLeftOut() throws Exception {
         ControlMlSettings s = ControlMlSettings.of(settings);
         assertEquals("127.0.0.1", s.server());
         assertEquals(5222, s.port());
