@@ -44,6 +44,7 @@ import org.slf4j.LoggerFactory;
 import sabot.controlml.internal.ClockOffsets;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.internal.SchemaValidator;
+import sabot.controlml.payload.AccessRole;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.PayloadException;
 import sabot.controlml.provider.ControlMlProviders;
@@ -112,6 +113,8 @@ public final class ControlMlManager extends Manager {
         this.endpoint = new Endpoint(clock, new ResourceRegistry());
         this.clocks = new ClockOffsets(clock, this::entityTimeOf, r -> Async.go(r, "ControlML clock of a requester"));
         endpoint.setClockOffsets(clocks);
+        // every device tells a requester its own role (section 9): the endpoint has judged it before any handler
+        onGet(Resources.ROLE, (request, none) -> Outcome.success(new AccessRole(request.role())));
         EntityTimeManager.getInstanceFor(connection).enable(); // so that the devices it commands can measure its clock
         // A device learns each requester's clock when it comes online, before its first command (section 5).
         connection.addAsyncStanzaListener(this::onPresence, stanza -> stanza instanceof Presence && endpoint

@@ -6,6 +6,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 
+import sabot.controlml.payload.AccessRole;
 import sabot.controlml.payload.DirectoryListing;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileQuery;
@@ -71,6 +72,9 @@ public final class Resources {
     /** {@code cm.tasks} (get): loaded tasks. */
     public static final Resource<TaskList, NoQuery> TASKS = new Resource<>("cm.tasks", TaskList.CODEC, null, true,
             false, "tasks loaded on the robot");
+    /** {@code cm.role} (get): the requester's own role on the device; every device answers it. */
+    public static final Resource<AccessRole, NoQuery> ROLE = new Resource<>("cm.role", AccessRole.CODEC, null, true,
+            false, "the requester's role on this device");
     /** {@code cm.fs.list} (get with a path): directory listing. */
     public static final Resource<DirectoryListing, FileQuery> FS_LIST = new Resource<>("cm.fs.list",
             DirectoryListing.CODEC, FileQuery.CODEC, true, false, "remote FS: list a directory");
@@ -88,7 +92,7 @@ public final class Resources {
 
     static {
         for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, PID, LIMITS, MISSION,
-                TASKS, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
+                TASKS, ROLE, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
             BY_NAME.put(r.name(), r);
         }
     }

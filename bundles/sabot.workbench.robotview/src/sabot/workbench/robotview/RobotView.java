@@ -19,6 +19,7 @@ import org.eclipse.swt.layout.GridData;
 import org.eclipse.swt.layout.GridLayout;
 import org.eclipse.swt.widgets.Combo;
 import org.eclipse.swt.widgets.Composite;
+import org.eclipse.swt.widgets.Control;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.swt.widgets.Label;
 import org.eclipse.ui.ISelectionListener;
@@ -28,6 +29,10 @@ import org.osgi.annotation.versioning.ConsumerType;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.controlml.ControlMlCondition;
+import sabot.controlml.Resources;
+import sabot.controlml.Role;
+import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
@@ -55,6 +60,12 @@ public abstract class RobotView extends ViewPart {
     private String robot;
     private volatile String message = "";
     private volatile boolean messageIsError;
+    /** The account's role on the chosen robot as the robot last said it (cm.role), or null while not known. */
+    private volatile Role role;
+    /** Asks of cm.role sent and not answered yet (UI thread). */
+    private int roleAsks;
+    /** Whether the chosen robot was online at the last fleet event (UI thread): it is asked its role on coming online. */
+    private boolean robotOnline;
 
     @Override
     public final void createPartControl(Composite parent) {
@@ -115,10 +126,69 @@ public abstract class RobotView extends ViewPart {
         return binding == null ? null : binding.fleet();
     }
 
+    /**
+     * @return the account's role on the chosen robot as the robot said it ({@code cm.role}), {@link Role#NONE} when
+     *         it refuses the account, null while not known (no robot, not asked yet, no answer)
+     */
+    public final Role role() {
+        return role;
+    }
+
+    /** @return true while an ask of the chosen robot's {@code cm.role} is on its way */
+    public final boolean roleAsked() {
+        return roleAsks > 0;
+    }
+
+    /**
+     * Enables a control when the account's role on the chosen robot includes {@code needed}, or while the role is not
+     * known (the robot judges then); otherwise disables it, its tooltip saying why (UI thread; a plug-in calls it from
+     * {@link #robotChanged}).
+     *
+     * @param what for the operator, e.g. "writing gains"
+     */
+    protected final void gate(Control control, Role needed, String what) {
+        Role r = role;
+        boolean allowed = r == null || r.includes(needed);
+        control.setEnabled(allowed && robot != null);
+        control.setToolTipText(allowed ? null : what + " needs the " + needed.label() + " role on " + robot + "; the "
+                + "robot says this account is " + r.withArticle() + " there (roles are granted on the lab's XMPP "
+                + "server)");
+    }
+
+    /** Asks the chosen robot for the account's role ({@code cm.role}); the answer re-runs {@link #robotChanged}. */
+    public final void refreshRole() {
+        String jid = robot;
+        FleetState fleet = fleet();
+        if (jid == null || fleet == null) {
+            return;
+        }
+        Display display = getSite().getShell().getDisplay();
+        roleAsks++;
+        fleet.get(jid, Resources.ROLE).whenComplete((answer, failure) -> {
+            FleetCommandException refusal = failure == null ? null : FleetCommandException.in(failure);
+            Role said = answer != null ? answer.role() : refusal != null && refusal.condition()
+                    == ControlMlCondition.ACCESS_DENIED ? Role.NONE : null;
+            if (!display.isDisposed()) {
+                display.asyncExec(() -> {
+                    roleAsks--;
+                    if (jid.equals(robot) && said != null && said != role) {
+                        role = said;
+                        LOG.info("{}: this account is {} there", jid, said.withArticle());
+                        robotChanged(robotState(), false);
+                    }
+                });
+            }
+        });
+    }
+
     /** Chooses a robot (as the operator does in the chooser); null chooses none. */
     public final void choose(String jid) {
         boolean changed = !Objects.equals(jid, robot);
         robot = jid;
+        if (changed) {
+            role = null;
+            refreshRole();
+        }
         int i = jid == null ? -1 : shownJids.indexOf(jid);
         if (chooser != null && !chooser.isDisposed() && chooser.getSelectionIndex() != i) {
             if (i < 0) {
@@ -184,6 +254,7 @@ public abstract class RobotView extends ViewPart {
         Job job = Job.create(label, monitor -> {
             T answer = null;
             String error;
+            boolean roleRefused = false;
             if (fleet == null) {
                 error = "no fleet: the ControlML plug-in is not installed or not running";
             } else {
@@ -192,6 +263,9 @@ public abstract class RobotView extends ViewPart {
                     error = null;
                 } catch (ExecutionException e) {
                     error = reason(e);
+                    FleetCommandException refusal = FleetCommandException.in(e);
+                    roleRefused = refusal != null && (refusal.condition() == ControlMlCondition.SET_NOT_PERMITTED
+                            || refusal.condition() == ControlMlCondition.ACCESS_DENIED);
                 } catch (TimeoutException e) {
                     error = "no answer within " + ANSWER_TIMEOUT_S + " s";
                 } catch (InterruptedException e) {
@@ -201,10 +275,14 @@ public abstract class RobotView extends ViewPart {
             }
             T result = answer;
             String failure = error;
+            boolean askRole = roleRefused;
             if (!display.isDisposed()) {
                 display.asyncExec(() -> {
                     if (failure != null) {
                         showMessage(label + ": " + failure, true);
+                        if (askRole) {
+                            refreshRole(); // the role may have changed on the server: ask again
+                        }
                     } else {
                         showMessage(label + ": done", false);
                         onSuccess.accept(result);
@@ -253,6 +331,12 @@ public abstract class RobotView extends ViewPart {
             chooser.setItems(robots.stream().map(r -> r.name() + " (" + r.jid() + ")").toArray(String[]::new));
             chooser.getParent().layout();
         }
+        RobotState chosen = robotState();
+        boolean online = chosen != null && chosen.availability() != Availability.OFFLINE;
+        if (online && !robotOnline && role == null) {
+            refreshRole(); // chosen while it was offline, or back: ask now that it can answer
+        }
+        robotOnline = online;
         if (robot == null && !jids.isEmpty()) {
             choose(jids.get(0));
         } else if (robot != null && jids.contains(robot)) {

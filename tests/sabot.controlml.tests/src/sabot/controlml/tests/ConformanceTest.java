@@ -22,7 +22,6 @@ import org.w3c.dom.NamedNodeMap;
 import org.w3c.dom.Node;
 import org.xml.sax.InputSource;
 
-import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlCondition;
@@ -32,6 +31,7 @@ import sabot.controlml.ControlMlType;
 import sabot.controlml.Outcome;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.payload.Goal;
 

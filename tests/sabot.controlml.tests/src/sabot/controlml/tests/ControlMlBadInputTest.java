@@ -20,7 +20,6 @@ import org.junit.jupiter.params.provider.CsvSource;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -28,6 +27,7 @@ import sabot.controlml.ControlMlError;
 import sabot.controlml.ControlMlType;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.payload.Goal;

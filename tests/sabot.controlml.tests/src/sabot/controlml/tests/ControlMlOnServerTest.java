@@ -38,7 +38,6 @@ import org.junit.jupiter.api.TestInfo;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
@@ -49,6 +48,7 @@ import sabot.controlml.PendingCommand;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;

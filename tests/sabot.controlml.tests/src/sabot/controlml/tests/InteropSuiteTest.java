@@ -23,20 +23,20 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceUrn;
 import sabot.identity.HardwareDescription;
+import sabot.identity.IdentityResult;
 import sabot.identity.Inventories;
 import sabot.identity.Inventory;
-import sabot.identity.IdentityResult;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 

@@ -17,7 +17,6 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -28,6 +27,7 @@ import sabot.controlml.RequestId;
 import sabot.controlml.Resource;
 import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PayloadException;

@@ -6,6 +6,8 @@ import java.util.Map;
 
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
+import sabot.controlml.payload.AccessRole;
 import sabot.controlml.payload.DirectoryListing;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileEntry;
@@ -56,6 +58,7 @@ final class Samples {
             Map.entry(Resources.MISSION, new MissionStatus(MissionState.RUNNING, false, 42.5, "to dock <B> & back")),
             Map.entry(Resources.TASKS, new TaskList(List.of(new TaskInfo("localizer", "sabot.onboard.motion",
                     "0.1.0", "active"), new TaskInfo("remotefs", "sabot.onboard.remotefs", "0.1.0", "resolved")))),
+            Map.entry(Resources.ROLE, new AccessRole(Role.OPERATOR)),
             Map.entry(Resources.FS_LIST, new DirectoryListing("maps", List.of(new FileEntry("lab.pgm", 10240, false),
                     new FileEntry("old", 0, true)))),
             Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, FileChunk.sha256Hex(DATA), true)),

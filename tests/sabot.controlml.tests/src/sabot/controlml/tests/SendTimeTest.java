@@ -18,7 +18,6 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
-import sabot.controlml.Role;
 import sabot.controlml.Carrier;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlElement;
@@ -29,6 +28,7 @@ import sabot.controlml.Outcome;
 import sabot.controlml.Request;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.internal.ClockOffsets;
 import sabot.controlml.internal.Endpoint;
 import sabot.controlml.payload.Goal;

@@ -17,6 +17,7 @@ import java.util.Objects;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
 
+import org.jivesoftware.smack.ConnectionConfiguration;
 import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
@@ -92,6 +93,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private ServerTrust trust;
     private Duration startupTime;
     private Thread shutdownHook;
+    /** Plain TCP, no TLS ({@code sabot-xmpp start --tls off}): for the benchmark that compares the two only. */
+    private boolean plainTcp;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -105,6 +108,17 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     /** @return a fixture for a private ejabberd (about 1 s to ready here) */
     public static PrivateXmppServer ejabberd() {
         return new PrivateXmppServer(Kind.EJABBERD);
+    }
+
+    /**
+     * Makes the server accept plain TCP streams ({@code --tls off}; set before {@link #start()}): for the benchmark
+     * that compares TLS with plain TCP, never for a test of the product, whose clients require TLS.
+     *
+     * @return this fixture
+     */
+    public PrivateXmppServer plainTcp() {
+        this.plainTcp = true;
+        return this;
     }
 
     /** @return a fixture for the given server kind */
@@ -180,7 +194,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         Path log = runDir.resolve(SCRIPT_LOG);
         Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
                 Integer.toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT
-                        .toSeconds())).redirectError(log.toFile()).start();
+                        .toSeconds()), "--tls", plainTcp ? "off" : "required").redirectError(log.toFile()).start();
         script.getOutputStream().close();
         // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
         // session, has its output in its state directory: nothing of it holds this pipe open
@@ -205,7 +219,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             throw new IOException("sabot-xmpp start printed no 'pid=N port=N ... ca=FILE' line but '" + out
                     + "'; see " + log, e);
         }
-        trust = ServerTrust.labCa(caFile);
+        trust = plainTcp ? null : ServerTrust.labCa(caFile);
     }
 
     /** The script's {@code [sabot] error:} line, the reason it gives for a failure. */
@@ -276,7 +290,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return caFile;
     }
 
-    /** @return trust in this server's lab CA only */
+    /** @return trust in this server's lab CA only; null for a {@link #plainTcp()} server */
     public ServerTrust trust() {
         return trust;
     }
@@ -297,7 +311,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     public static XMPPTCPConnectionConfiguration.Builder configuration(int port, ServerTrust trust, String localpart,
             String domain, String password) {
         try {
-            return FleetConnections.secured(XMPPTCPConnectionConfiguration.builder()
+            XMPPTCPConnectionConfiguration.Builder b = XMPPTCPConnectionConfiguration.builder()
                     .setXmppDomain(JidCreate.domainBareFrom(domain))
                     .setHostAddress(InetAddress.getLoopbackAddress())
                     .setPort(port)
@@ -305,7 +319,11 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
                     .setResource("test")
                     .setSocketFactory(new NoDelaySocketFactory())
                     .setSendPresence(true)
-                    .setConnectTimeout(10_000), trust);
+                    .setConnectTimeout(10_000);
+            if (trust == null) { // a plainTcp() server's: the benchmark's comparison only
+                return b.setSecurityMode(ConnectionConfiguration.SecurityMode.disabled);
+            }
+            return FleetConnections.secured(b, trust);
         } catch (IOException e) {
             throw new UncheckedIOException(e);
         }

@@ -367,12 +367,14 @@ class LiveFleetUiTest {
         DeviceProfile claim = new DeviceProfile("mobile robot", "Sabot", "SabotOne", "sabot-99", null, 45.76, 4.83,
                 DeviceUrn.urnOf("SN-impostor"), impostor.getUser().asBareJid().toString(), "robot", LocalDate.of(
                         2026, 11, 29), null, null);
-        DeviceIdentityManager.getInstanceFor(impostor).publish(claim, new Inventory(1, claim.uid(),
-                new Inventory.Mechanic("chassis", List.of()), List.of(), List.of())).orElseThrow();
-        for (var c : List.of(robotInLobby, impostor)) {
-            new sabot.fleet.FleetLobby(c, JidCreate.entityBareFrom(room)).join();
-        }
         try {
+            DeviceIdentityManager.getInstanceFor(impostor).publish(claim, new Inventory(1, claim.uid(),
+                    new Inventory.Mechanic("chassis", List.of()), List.of(new Inventory.Board("pc", "x86_64", null,
+                            List.of(), List.of(new Inventory.Item("sabot.onboard", "0.1.0")), List.of())), List.of()))
+                    .orElseThrow();
+            for (var c : List.of(robotInLobby, impostor)) {
+                new sabot.fleet.FleetLobby(c, JidCreate.entityBareFrom(room)).join();
+            }
             int logins = HOLD.logins();
             store.saveLobby(room);
             // the new session compiles the lobby before its status says online

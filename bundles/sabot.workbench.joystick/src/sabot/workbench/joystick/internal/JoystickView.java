@@ -18,6 +18,7 @@ import org.eclipse.swt.widgets.Event;
 import org.eclipse.swt.widgets.Label;
 
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MissionStatus;
 import sabot.model.geometry.Twist2D;
@@ -108,6 +109,7 @@ public final class JoystickView extends RobotView {
 
     @Override
     protected void robotChanged(RobotState state, boolean newRobot) {
+        gate(pad, Role.OPERATOR, "Driving with the joystick");
         MissionStatus m = state == null ? null : state.mission();
         String says = m == null ? "" : "robot: " + m.state().code() + (m.detail().isBlank() ? "" : " — " + m.detail());
         if (!says.equals(robotSays.getText())) {

@@ -21,6 +21,7 @@ import org.eclipse.swtchart.ILineSeries;
 import org.eclipse.swtchart.ISeries;
 
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.pidstep.StepFigures;
@@ -61,6 +62,9 @@ public final class PidView extends RobotView {
     /** Wheels as {@code cm.pid} numbers them on a SabotOne. */
     static final String[] WHEELS = { "0 (left)", "1 (right)" };
     private final Deque<double[]> samples = new ArrayDeque<>();
+    /** What changes the robot: the maintainer's (docs/CONTROLML.md section 9). */
+    private Button writeButton;
+    private Button stepButton;
     private Instant lastSample;
 
     @Override
@@ -74,7 +78,7 @@ public final class PidView extends RobotView {
         Button readButton = new Button(buttons, SWT.PUSH);
         readButton.setText("Read gains");
         readButton.addListener(SWT.Selection, e -> readGains());
-        Button writeButton = new Button(buttons, SWT.PUSH);
+        writeButton = new Button(buttons, SWT.PUSH);
         writeButton.setText("Write gains");
         writeButton.addListener(SWT.Selection, e -> {
             try {
@@ -94,7 +98,7 @@ public final class PidView extends RobotView {
         stepSize = new Text(step, SWT.BORDER | SWT.RIGHT);
         stepSize.setText("2");
         stepSize.setLayoutData(new GridData(60, SWT.DEFAULT));
-        Button stepButton = new Button(step, SWT.PUSH);
+        stepButton = new Button(step, SWT.PUSH);
         stepButton.setText("Step test");
         stepButton.addListener(SWT.Selection, e -> {
             try {
@@ -226,6 +230,8 @@ public final class PidView extends RobotView {
 
     @Override
     protected void robotChanged(RobotState state, boolean newRobot) {
+        gate(writeButton, Role.MAINTAINER, "Writing gains");
+        gate(stepButton, Role.MAINTAINER, "The step test");
         if (newRobot) {
             samples.clear();
             lastSample = null;
@@ -369,5 +375,10 @@ public final class PidView extends RobotView {
     /** @return the chart */
     public Chart chart() {
         return chart;
+    }
+
+    /** @return the Write gains button (enabled for a maintainer of the robot) */
+    public Button writeButton() {
+        return writeButton;
     }
 }

@@ -36,6 +36,7 @@ import org.eclipse.swt.widgets.FileDialog;
 import org.eclipse.swt.widgets.Tree;
 import org.eclipse.swt.widgets.TreeItem;
 
+import sabot.controlml.Role;
 import sabot.controlml.payload.FileEntry;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
@@ -76,6 +77,9 @@ public final class RemoteFilesView extends RobotView {
     private static final Node ROOT = new Node("", null);
 
     private TreeViewer viewer;
+    /** Writes and deletes: the maintainer's (docs/CONTROLML.md section 9). */
+    private Button uploadButton;
+    private Button deleteButton;
     private final Map<String, List<Node>> listed = new ConcurrentHashMap<>();
     private final Map<String, Job> listing = new ConcurrentHashMap<>();
     private String shownRobot;
@@ -86,9 +90,9 @@ public final class RemoteFilesView extends RobotView {
         Composite buttons = new Composite(parent, SWT.NONE);
         buttons.setLayout(new RowLayout());
         button(buttons, "Refresh", this::refresh);
-        button(buttons, "Upload...", this::uploadChosen);
+        uploadButton = button(buttons, "Upload...", this::uploadChosen);
         button(buttons, "Download...", this::downloadSelected);
-        button(buttons, "Delete", this::deleteSelected);
+        deleteButton = button(buttons, "Delete", this::deleteSelected);
 
         viewer = new TreeViewer(parent, SWT.BORDER | SWT.FULL_SELECTION | SWT.MULTI);
         Tree tree = viewer.getTree();
@@ -143,10 +147,11 @@ public final class RemoteFilesView extends RobotView {
         });
     }
 
-    private void button(Composite parent, String text, Runnable action) {
+    private Button button(Composite parent, String text, Runnable action) {
         Button b = new Button(parent, SWT.PUSH);
         b.setText(text);
         b.addListener(SWT.Selection, e -> action.run());
+        return b;
     }
 
     private void column(String title, int width, java.util.function.Function<Node, String> text) {
@@ -163,6 +168,8 @@ public final class RemoteFilesView extends RobotView {
 
     @Override
     protected void robotChanged(RobotState state, boolean newRobot) {
+        gate(uploadButton, Role.MAINTAINER, "Uploading files");
+        gate(deleteButton, Role.MAINTAINER, "Deleting files");
         if (newRobot || shownRobot == null && state != null) {
             shownRobot = state == null ? null : state.jid();
             listed.clear();

@@ -32,11 +32,11 @@ import org.junit.jupiter.params.provider.Arguments;
 import org.junit.jupiter.params.provider.MethodSource;
 import org.jxmpp.jid.Jid;
 
-import sabot.controlml.Role;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.payload.DirectoryListing;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileEntry;

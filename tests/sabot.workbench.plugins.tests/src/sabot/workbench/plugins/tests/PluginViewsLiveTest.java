@@ -37,6 +37,7 @@ import org.eclipse.ui.IWorkbenchPage;
 import org.eclipse.ui.PlatformUI;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smackx.vcardtemp.VCardManager;
+import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
@@ -263,6 +264,38 @@ class PluginViewsLiveTest {
             waitFor(() -> pid.message().contains("write gains"), 20, pid::message);
         }
         assertFalse(pid.messageIsError(), pid.message());
+    }
+
+    /**
+     * The account's role on the robot, as the robot says it (cm.role): a maintainer's Write button is enabled; a role
+     * changed on the server shows when the robot refuses (its text on the message line), and the button is then
+     * disabled with the reason as its tooltip.
+     */
+    @Test
+    @Order(10)
+    void aRoleTakenAwayOnTheServerDisablesWhatTheAccountMayNoLongerDo() throws Exception {
+        PidView pid = open(PidView.ID, PidView.class);
+        awaitLive(pid);
+        waitFor(() -> pid.role() == Role.MAINTAINER, 20, () -> "role on the robot: " + pid.role());
+        assertTrue(pid.writeButton().isEnabled());
+        waitFor(() -> pid.gains() != null, 20, pid::message);
+        BareJid operator = JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN);
+        xmpp.grant(operator, Role.OPERATOR);
+        xmpp.revoke(operator, Role.MAINTAINER);
+        try {
+            pid.writeTyped();
+            waitFor(() -> pid.message().contains("write gains:") && pid.role() == Role.OPERATOR, 20, () -> pid
+                    .message() + "; role " + pid.role());
+            assertTrue(pid.messageIsError() && pid.message().contains("is an operator on this device; a set of "
+                    + "cm.pid needs the maintainer role (set-not-permitted)"), pid.message());
+            waitFor(() -> !pid.writeButton().isEnabled(), 5, () -> "Write gains enabled for an operator");
+            assertEquals("Writing gains needs the maintainer role on " + ROBOT_JID + "; the robot says this account is"
+                    + " an operator there (roles are granted on the lab's XMPP server)", pid.writeButton()
+                            .getToolTipText());
+        } finally {
+            xmpp.grant(operator, Role.MAINTAINER);
+            xmpp.revoke(operator, Role.OPERATOR);
+        }
     }
 
     @Test

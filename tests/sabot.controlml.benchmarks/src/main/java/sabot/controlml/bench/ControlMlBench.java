@@ -35,13 +35,13 @@ import org.jivesoftware.smack.xml.XmlPullParserException;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
 
-import sabot.controlml.Role;
 import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.RequestId;
 import sabot.controlml.Resources;
+import sabot.controlml.Role;
 import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;
 import sabot.controlml.payload.PoseCovariance;
@@ -75,6 +75,9 @@ public final class ControlMlBench {
     private boolean telemetry = true;
     private boolean textForm = true;
     private boolean sharedCpus = false;
+    /** {@code --tls}: only the cost of TLS and SCRAM ({@link TlsCost}). */
+    private boolean tlsCost = false;
+    private int logins = 200;
 
     public static void main(String[] args) throws Exception {
         ControlMlBench bench = new ControlMlBench();
@@ -96,10 +99,14 @@ public final class ControlMlBench {
                 case "--no-telemetry" -> telemetry = false;
                 case "--xml-form" -> textForm = false;
                 case "--shared-cpus" -> sharedCpus = true;
+                case "--tls" -> tlsCost = true;
+                case "--logins" -> logins = Integer.parseInt(args[++i]);
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
                             + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] [--rate HZ (10)] "
-                            + "[--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]");
+                            + "[--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]\n"
+                            + "       ./sabot bench controlml --tls [--server prosody|ejabberd] [--requests N (10000)] "
+                            + "[--logins N (200)] [--robots N (100)]: what TLS and SCRAM cost (TlsCost)");
                     System.exit(0);
                 }
                 default -> throw new IllegalArgumentException("unknown option " + a + " (--help)");
@@ -117,6 +124,11 @@ public final class ControlMlBench {
         }
         Map<String, Object> figures = new java.util.LinkedHashMap<>();
         figures.put("server", kind.name().toLowerCase(Locale.ROOT));
+        if (tlsCost) {
+            new TlsCost(kind, requests, warmup, logins, robots).run(figures);
+            printJson(figures);
+            return 0;
+        }
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             figures.put("server_ready_ms", server.startupTime().toMillis());
             CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
@@ -127,11 +139,15 @@ public final class ControlMlBench {
                 telemetry(server, figures);
             }
         }
+        printJson(figures);
+        return 0;
+    }
+
+    private static void printJson(Map<String, Object> figures) {
         StringBuilder json = new StringBuilder("{");
         figures.forEach((k, v) -> json.append(json.length() > 1 ? ", " : "").append('"').append(k).append("\": ")
                 .append(v instanceof String s ? "\"" + s + "\"" : v));
         System.out.println(json.append('}'));
-        return 0;
     }
 
     // ------------------------------------------------------------------------------------------------ round trips
