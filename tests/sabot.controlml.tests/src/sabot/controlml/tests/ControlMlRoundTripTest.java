@@ -67,6 +67,23 @@ class ControlMlRoundTripTest {
         return ((PayloadCodec<T>) resource.codec()).encode((T) value);
     }
 
+    /**
+     * A robot's mission detail made from an exception's message (a stream error's, with its line end) is one line of
+     * at most 256 characters, so that the robot can still answer cm.mission (it once answered not-acceptable).
+     */
+    @Test
+    void aMissionDetailWithLineEndsOrTooLongIsMadeSendable() throws Exception {
+        String reason = "XMPP connection lost while moving (StreamErrorException: system-shutdown You can read more\n"
+                + "<stream:error><system-shutdown/></stream:error>)" + "x".repeat(400);
+        MissionStatus m = new MissionStatus(MissionState.FAILED, false, 24, reason);
+        assertEquals(MissionStatus.DETAIL_MAX, m.detail().length());
+        assertTrue(m.detail().startsWith("XMPP connection lost while moving (StreamErrorException: system-shutdown "
+                + "You can read more <stream:error>") && m.detail().endsWith("x…"), m.detail());
+        SweComponent encoded = MissionStatus.CODEC.encode(m);
+        assertEquals(m, MissionStatus.CODEC.decode(encoded), "the robot's own endpoint sends it, and it reads back");
+        assertEquals("idle", new MissionStatus(MissionState.IDLE, false, 0, "idle").detail(), "a plain one as it is");
+    }
+
     @Test
     void getWithQueryRoundTripsInsideAnIq() throws Exception {
         ControlMlIQ iq = new ControlMlIQ(ControlMlElement.request(ControlMlType.GET, ID, Resources.FS_READ.name(),

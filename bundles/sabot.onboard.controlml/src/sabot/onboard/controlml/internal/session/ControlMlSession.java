@@ -351,9 +351,15 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         scheduleConnect(settings.reconnectMin());
     }
 
+    /** @return one line for a log, the status and a fault's reason (a stream error: its condition and text) */
     private static String describe(Throwable e) {
+        if (e instanceof XMPPException.StreamErrorException s) {
+            String text = s.getStreamError().getDescriptiveText();
+            return "stream error " + s.getStreamError().getCondition() + (text == null ? "" : " (" + text + ")");
+        }
         String message = e.getMessage();
-        return e.getClass().getSimpleName() + (message == null || message.isBlank() ? "" : ": " + message.strip());
+        return e.getClass().getSimpleName() + (message == null || message.isBlank() ? "" : ": " + message.strip()
+                .replaceAll("\\s+", " "));
     }
 
     /** Queues a notification; call with {@link #lock} held so that notifications keep the order of the changes. */
