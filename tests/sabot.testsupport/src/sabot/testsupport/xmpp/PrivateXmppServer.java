@@ -347,6 +347,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         try {
             anonymous.connect();
             AccountManager accounts = AccountManager.getInstance(anonymous);
+            accounts.sensitiveOperationOverInsecureConnection(trust == null); // a plainTcp() server's: the benchmark's
             accounts.createAccount(Localpart.from(localpart), password);
             return JidCreate.entityBareFrom(localpart + "@" + domain);
         } finally {
