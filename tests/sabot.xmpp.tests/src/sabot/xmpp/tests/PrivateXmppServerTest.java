@@ -78,6 +78,39 @@ class PrivateXmppServerTest {
     }
 
     /**
+     * {@code sabot-xmpp group}, the lab's grants: a bad group name or JID (spaces, a quote that would reach ejabberd's
+     * JSON or Prosody's groups file) is refused with why, the groups unchanged; a good one is listed.
+     */
+    @Test
+    void badGroupChangesAreRefusedWithWhyAndChangeNothing() throws Exception {
+        try (PrivateXmppServer server = PrivateXmppServer.prosody().start()) {
+            assertEquals("", group(server, 0, "list"));
+            String badGroup = group(server, 1, "add", "sabot operators", "alice@sabot.local");
+            assertTrue(badGroup.contains("[sabot] error: xmpp: group 'sabot operators': letters, digits, '.', '_' and "
+                    + "'-' only"), badGroup);
+            String badJid = group(server, 1, "add", "sabot-operators", "al\"ice@sabot.local");
+            assertTrue(badJid.contains("is not a bare JID (local@domain, no quote or backslash)"), badJid);
+            String noAt = group(server, 1, "remove", "sabot-operators", "alice");
+            assertTrue(noAt.contains("'alice' is not a bare JID"), noAt);
+            assertEquals("", group(server, 0, "list"), "changed by a refused change");
+            group(server, 0, "add", "sabot-operators", "alice@sabot.local");
+            assertEquals("sabot-operators alice@sabot.local", group(server, 0, "list").strip());
+        }
+    }
+
+    /** Runs {@code sabot-xmpp group OP --run DIR ARGS...}; @return its output (both streams) */
+    private static String group(PrivateXmppServer server, int expectedStatus, String op, String... args)
+            throws Exception {
+        List<String> command = new java.util.ArrayList<>(List.of(PrivateXmppServer.repositoryRoot().resolve(
+                "product/bin/sabot-xmpp").toString(), "group", op, "--run", server.runDir().toString()));
+        command.addAll(List.of(args));
+        Process p = new ProcessBuilder(command).redirectErrorStream(true).start();
+        String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+        assertEquals(expectedStatus, p.waitFor(), () -> String.join(" ", command) + ": " + out);
+        return out;
+    }
+
+    /**
      * The live processes of a state directory: ejabberd's name it on their command line, Prosody's in their
      * environment (SABOT_XMPP_RUN).
      */
