@@ -271,6 +271,13 @@ async def refusals(op: Peer, viewer: Peer, stranger: Peer, robot: str) -> None:
     refusal("a viewer's set", await viewer.raw(robot, "set", cm.control_ml("set", viewer.ids.next(), "cm.goal",
                                                                            cm.encode_record("cm.goal", cm.goal(
                                                                                1, 1, 0)))), "set-not-permitted")
+    # cm.role (section 9): each requester learns its own role; a stranger has none
+    for peer, expected in ((op, "maintainer"), (viewer, "observer")):
+        a = await peer.raw(robot, "get", cm.control_ml("get", peer.ids.next(), "cm.role"))
+        role = cm.decode(a.cm).value.get("role") if a.type == "result" and a.cm is not None else None
+        check(f"cm.role tells the {expected} its role", role == expected, str(a))
+    refusal("a stranger's cm.role", await stranger.raw(robot, "get", cm.control_ml("get", stranger.ids.next(),
+                                                                                   "cm.role")), "access-denied")
     for word in ("maintenance-lock", "invalid-state", "busy", "device-fault"):
         mission = cm.encode_record("cm.mission", {"state": "paused", "maintenance": False,
                                                   "progress": cm.Measure(0.0, "%"), "detail": word})
