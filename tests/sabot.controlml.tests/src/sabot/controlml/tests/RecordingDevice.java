@@ -13,6 +13,7 @@ import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.SetHandler;
 import sabot.controlml.internal.Endpoint;
+import sabot.controlml.payload.AccessRole;
 
 /**
  * A device whose state is one value per resource: gets return it, sets replace it and are recorded. Registers
@@ -69,6 +70,11 @@ final class RecordingDevice {
 
     @SuppressWarnings("unchecked")
     private <T, Q> void register(Registry registry, Resource<T, Q> r) {
+        if (r == Resources.ROLE) {
+            // what every device answers (ControlMlManager's own handler): the requester's role, not a stored value
+            registry.onGet(r, (request, query) -> Outcome.success((T) new AccessRole(request.role())));
+            return;
+        }
         if (r.isGettable()) {
             registry.onGet(r, (request, query) -> Outcome.success((T) state.get(r.name())));
         }
