@@ -14,7 +14,6 @@ import java.util.stream.Stream;
 
 import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPConnection;
-import org.jivesoftware.smack.roster.AbstractRosterListener;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
@@ -112,7 +111,7 @@ public final class AccessRules {
      * Reloads a roster after the server pushed a change; one reload at a time, and one more when pushes arrived
      * during it. A reload that changes nothing ends the chain (it fires no event).
      */
-    private static final class ReloadAfterPush extends AbstractRosterListener {
+    private static final class ReloadAfterPush extends RosterEntriesListener {
         private final Roster roster;
         private final AtomicBoolean reloading = new AtomicBoolean();
         private final AtomicBoolean again = new AtomicBoolean();
@@ -122,21 +121,7 @@ public final class AccessRules {
         }
 
         @Override
-        public void entriesAdded(Collection<Jid> addresses) {
-            changed();
-        }
-
-        @Override
-        public void entriesUpdated(Collection<Jid> addresses) {
-            changed();
-        }
-
-        @Override
-        public void entriesDeleted(Collection<Jid> addresses) {
-            changed();
-        }
-
-        private void changed() {
+        protected void entriesChanged() {
             if (!reloading.compareAndSet(false, true)) {
                 again.set(true);
                 return;
@@ -167,7 +152,7 @@ public final class AccessRules {
             roster.removeRosterLoadedListener(loaded);
             reloading.set(false);
             if (again.getAndSet(false)) {
-                changed();
+                entriesChanged();
             }
         }
     }

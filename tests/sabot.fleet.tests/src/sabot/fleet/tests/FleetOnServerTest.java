@@ -10,7 +10,6 @@ import java.net.InetAddress;
 import java.net.Socket;
 import java.net.URI;
 import java.time.LocalDate;
-import java.util.Collection;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
@@ -23,7 +22,6 @@ import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
-import org.jivesoftware.smack.roster.AbstractRosterListener;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
@@ -31,7 +29,6 @@ import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
-import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.AccessPolicy;
@@ -53,6 +50,7 @@ import sabot.fleet.PresenceAnnouncer;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.RegistrationResult;
 import sabot.fleet.RosterCompiler;
+import sabot.fleet.RosterEntriesListener;
 import sabot.fleet.SubscriptionGate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.DeviceProfile;
@@ -336,23 +334,9 @@ abstract class FleetOnServerTest {
     private static void awaitRole(Roster roster, AccessPolicy policy, XMPPTCPConnection who, Role role)
             throws InterruptedException {
         Object changed = new Object();
-        var listener = new AbstractRosterListener() {
+        var listener = new RosterEntriesListener() {
             @Override
-            public void entriesAdded(Collection<Jid> addresses) {
-                wake();
-            }
-
-            @Override
-            public void entriesUpdated(Collection<Jid> addresses) {
-                wake();
-            }
-
-            @Override
-            public void entriesDeleted(Collection<Jid> addresses) {
-                wake();
-            }
-
-            private void wake() {
+            protected void entriesChanged() {
                 synchronized (changed) {
                     changed.notifyAll();
                 }

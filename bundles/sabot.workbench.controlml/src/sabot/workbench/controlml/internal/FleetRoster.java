@@ -11,10 +11,8 @@ import java.util.function.Supplier;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.RosterEntry;
 import org.jivesoftware.smack.roster.RosterGroup;
-import org.jivesoftware.smack.roster.RosterListener;
 import org.jivesoftware.smackx.muc.MultiUserChatManager;
 import org.jxmpp.jid.EntityBareJid;
-import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.stringprep.XmppStringprepException;
 import org.slf4j.Logger;
@@ -26,6 +24,7 @@ import sabot.fleet.FleetException;
 import sabot.fleet.FleetLobby;
 import sabot.fleet.PresenceLevels;
 import sabot.fleet.RosterCompiler;
+import sabot.fleet.RosterEntriesListener;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.RobotState;
 
@@ -216,7 +215,7 @@ final class FleetRoster {
         }
     }
 
-    private final class Listener implements RosterListener {
+    private final class Listener extends RosterEntriesListener {
         private final FleetSession s;
 
         Listener(FleetSession s) {
@@ -224,21 +223,7 @@ final class FleetRoster {
         }
 
         @Override
-        public void entriesAdded(Collection<Jid> addresses) {
-            changed();
-        }
-
-        @Override
-        public void entriesUpdated(Collection<Jid> addresses) {
-            changed();
-        }
-
-        @Override
-        public void entriesDeleted(Collection<Jid> addresses) {
-            changed();
-        }
-
-        private void changed() {
+        protected void entriesChanged() {
             connector.execute(() -> {
                 if (current.get() == s) {
                     refresh(s);

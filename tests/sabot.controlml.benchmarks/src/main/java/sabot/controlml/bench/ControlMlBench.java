@@ -371,12 +371,14 @@ public final class ControlMlBench {
         figures.put("shaped_to_raw_p50", round(ms(shaped, 0.5) / ms(raw, 0.5)));
     }
 
-    private static double ms(long[] sorted, double q) {
+    /** @return quantile {@code q} of sorted nanoseconds, in ms */
+    static double ms(long[] sorted, double q) {
         int i = (int) Math.min(sorted.length - 1, Math.ceil(q * sorted.length) - 1);
         return sorted[Math.max(0, i)] / 1e6;
     }
 
-    private static double round(double v) {
+    /** @return {@code v} to three decimals (the JSON's figures) */
+    static double round(double v) {
         return Math.round(v * 1000) / 1000.0;
     }
 

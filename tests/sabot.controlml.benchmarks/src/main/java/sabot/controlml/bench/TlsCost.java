@@ -1,5 +1,8 @@
 package sabot.controlml.bench;
 
+import static sabot.controlml.bench.ControlMlBench.ms;
+import static sabot.controlml.bench.ControlMlBench.round;
+
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Arrays;
@@ -211,14 +214,5 @@ final class TlsCost {
 
     private String name() {
         return kind.name().toLowerCase(Locale.ROOT);
-    }
-
-    private static double ms(long[] sorted, double q) {
-        int i = (int) Math.min(sorted.length - 1, Math.ceil(q * sorted.length) - 1);
-        return sorted[Math.max(0, i)] / 1e6;
-    }
-
-    private static double round(double v) {
-        return Math.round(v * 1000) / 1000.0;
     }
 }
