@@ -210,9 +210,14 @@ SABOT_RIG_DOMAIN=sabot.local
 SABOT_RIG_OPERATOR=operator SABOT_RIG_OPERATOR_PASSWORD=sabot
 SABOT_RIG_OBSERVER=observer SABOT_RIG_OBSERVER_PASSWORD=sabot-observer
 SABOT_RIG_MAINTAINER=maintainer SABOT_RIG_MAINTAINER_PASSWORD=sabot-maintainer
-# The lab's shared groups: the robots', and one per role. The same names as sabot.fleet.AccessRules (ROBOTS_GROUP,
-# LAB_GROUPS), which a robot's configuration takes by default; AccessRulesTest holds the two together.
+# The lab's shared groups: the robots', the robots' asking for access (enrolled, not yet approved: they see no
+# group), and one per role. The same names as sabot.fleet.AccessRules (ROBOTS_GROUP, ENROLLING_GROUP, LAB_GROUPS),
+# which a robot's configuration takes by default; AccessRulesTest holds the two together.
 SABOT_GROUP_ROBOTS=sabot-robots
+SABOT_GROUP_ENROLLING=sabot-enrolling
+# An enrolment token (sabot-xmpp enrol token) begins with this; a robot that finds one in its password file logs in
+# with it once and replaces it with a password of its own (sabot.fleet.Enrolment.TOKEN_PREFIX: the same)
+SABOT_ENROL_TOKEN_PREFIX=sabot-enrol-
 declare -A SABOT_ROLE_GROUPS=([observer]=sabot-observers [operator]=sabot-operators [maintainer]=sabot-maintainers)
 # sabot-sim puts robot i (1-based) at +0.8 (i - 1) m in y from robot 1 (its --help)
 SABOT_RIG_ROBOT_SPACING_Y=0.8

@@ -3,6 +3,8 @@
 -- pointing here.
 -- Everything comes from the environment (Prosody's ENV_<name> globals; Lua's os.getenv is not reachable):
 --   SABOT_XMPP_RUN        absolute state directory (a relative one makes Prosody 0.12.3 hang on start)
+--   SABOT_XMPP_CONFIG     the folder of this file (Sabot's modules are beside it)
+--   SABOT_GROUP_ENROLLING the shared group of the robots asking for access (product/bin/lib.sh)
 --   SABOT_C2S_PORT        client port on 127.0.0.1 (default 15222)
 --   SABOT_RUN_AS_ROOT=1   needed when started by root, or Prosody refuses and hangs
 --   SABOT_ARCHIVE_STORE   "memory" for tests (the file archive caps a chatting pair at ~600 msgs/s)
@@ -49,10 +51,9 @@ network_settings = { nagle = false }
 -- 56-145 ms. Needs Lua 5.4 (Prosody refuses the setting on older Lua).
 gc = { mode = "generational" }
 
--- XEP-0077 in-band registration, unthrottled (devices register themselves; tests create many accounts)
-allow_registration = true
-min_seconds_between_registrations = 0
-registration_throttle_max = 0
+-- XEP-0077 in-band registration closed: accounts are made by the lab's administrator (sabot-xmpp register, and
+-- enrol token for a robot); a logged-in account may still change its password (a robot replaces its enrolment token)
+allow_registration = false
 
 -- XEP-0313 MAM: archive chat by default
 default_archive_policy = true
@@ -65,12 +66,15 @@ smacks_hibernation_time = 60
 -- The lab's shared groups (sabot-xmpp group add|remove): public groups, so that every account's roster holds their
 -- members under the group's name; a robot reads its requesters' roles there (docs/SECURITY.md), a workbench its robots.
 groups_file = run .. "/groups.txt"
+-- the quarantine of robots enrolled and not yet approved (mod_sabot_quarantine, beside this file: it sees no group)
+plugin_paths = { ENV_SABOT_XMPP_CONFIG or error("SABOT_XMPP_CONFIG (the folder of this file) is not set") }
+sabot_quarantine_group = ENV_SABOT_GROUP_ENROLLING or error("SABOT_GROUP_ENROLLING is not set")
 
 -- built in a local and assigned once: a Prosody config file cannot read back an option it has set
 local modules = {
     "roster"; "saslauth"; "disco"; "ping"; "time"; "version"; "uptime";
     "private"; "blocklist"; "carbons";
-    "register";      -- XEP-0077
+    "register";      -- XEP-0077: password change only (allow_registration is false)
     "pep";           -- XEP-0163
     "vcard";         -- XEP-0054 vcard-temp, stored verbatim (vcard_legacy converts to vCard4 and drops
                      -- DESC, ROLE, GEO...: device identity needs every field back as it was written)
@@ -78,6 +82,7 @@ local modules = {
     "smacks";        -- XEP-0198
     "offline";       -- XEP-0160 offline storage with XEP-0203 delay stamps
     "groups";        -- the lab's shared groups (roles, robots) from groups_file, written into every roster
+    "sabot_quarantine"; -- a robot asking for access sees no group (mod_sabot_quarantine.lua, beside this file)
     "admin_shell";   -- prosodyctl shell on data_path/prosody.sock: sabot-xmpp group applies group changes live
 }
 if tls then table.insert(modules, "tls") end
