@@ -37,6 +37,11 @@ public final class AccessRules {
 
     /** The shared group of the lab's robots: how a workbench tells a robot from an account that claims to be one. */
     public static final String ROBOTS_GROUP = "sabot-robots";
+    /**
+     * The shared group of the robots enrolled and not yet approved, asking for access ({@link Enrolment}): its
+     * members see no group, so they find no role and obey nobody; every other account sees them in it.
+     */
+    public static final String ENROLLING_GROUP = "sabot-enrolling";
     /** The lab's shared groups of the roles, a device's defaults: the role's name, plural, after "sabot-". */
     public static final String OBSERVERS_GROUP = "sabot-observers", OPERATORS_GROUP = "sabot-operators",
             MAINTAINERS_GROUP = "sabot-maintainers";

@@ -1,10 +1,11 @@
 package sabot.fleet.tests;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import java.io.IOException;
 import java.lang.reflect.Field;
 import java.net.InetAddress;
 import java.net.Socket;
@@ -20,9 +21,14 @@ import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.AbstractPresenceEventListener;
 import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.RosterGroup;
+import org.jivesoftware.smack.sasl.SASLErrorException;
+import org.jivesoftware.smackx.iqregister.AccountManager;
 import org.jivesoftware.smack.packet.StanzaError.Condition;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Test;
@@ -30,6 +36,7 @@ import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
 import org.jxmpp.jid.impl.JidCreate;
+import org.jxmpp.jid.parts.Localpart;
 
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.ControlMlCondition;
@@ -43,12 +50,11 @@ import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.MissionState;
 import sabot.fleet.AccessRules;
-import sabot.fleet.DeviceRegistration;
+import sabot.fleet.Enrolment;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.FleetLobby;
 import sabot.fleet.PresenceAnnouncer;
 import sabot.fleet.PresenceLevels;
-import sabot.fleet.RegistrationResult;
 import sabot.fleet.RosterCompiler;
 import sabot.fleet.RosterEntriesListener;
 import sabot.fleet.SubscriptionGate;
@@ -66,19 +72,92 @@ abstract class FleetOnServerTest {
 
     protected abstract PrivateXmppServer server();
 
+    /** In-band registration is closed: an unknown device cannot make itself an account (docs/SECURITY.md). */
     @Test
-    void deviceRegistersItselfAndATakenJidIsReportedClearly() throws Exception {
-        var config = server().configuration("robot-reg", PrivateXmppServer.DOMAIN, "pw").build();
+    void noDeviceRegistersItself() throws Exception {
+        XMPPTCPConnection anonymous = new XMPPTCPConnection(server().configuration("robot-reg",
+                PrivateXmppServer.DOMAIN, "pw").build());
+        try {
+            anonymous.connect();
+            AccountManager accounts = AccountManager.getInstance(anonymous);
+            XMPPException.XMPPErrorException refused = assertThrows(XMPPException.XMPPErrorException.class,
+                    () -> accounts.createAccount(Localpart.from("robot-reg"), "pw"));
+            assertTrue(Set.of(Condition.not_allowed, Condition.forbidden, Condition.service_unavailable,
+                    Condition.feature_not_implemented).contains(refused.getStanzaError().getCondition()), refused
+                            .toString());
+        } finally {
+            anonymous.disconnect();
+        }
+        assertThrows(SASLErrorException.class, () -> server().connect(server().configuration("robot-reg",
+                PrivateXmppServer.DOMAIN, "pw").build()), "an account was made");
+    }
 
-        RegistrationResult first = DeviceRegistration.register(config, "robot-reg", "pw", true);
-        RegistrationResult again = DeviceRegistration.register(config, "robot-reg", "other", true);
+    /**
+     * A robot enrolled with a token (docs/SECURITY.md, "Enrolment"): the token logs in once, then the robot's own
+     * password replaces it; until the lab approves, the robot sees no group, so an operator of the lab has no role
+     * on it and is refused, while the operator sees it asking for access; approved, it obeys; a robot refused loses
+     * its account.
+     */
+    @Test
+    void anEnrolledRobotObeysNobodyUntilApprovedAndItsTokenLogsInOnce() throws Exception {
+        XMPPTCPConnection operator = server().login("enrol-operator");
+        server().grant(operator.getUser().asBareJid(), Role.OPERATOR);
+        EntityBareJid robotJid = JidCreate.entityBareFrom("enrol-robot@" + PrivateXmppServer.DOMAIN);
+        String token = server().enrolToken(robotJid);
+        assertTrue(Enrolment.isToken(token), token);
 
-        assertEquals("robot-reg@sabot.local", assertInstanceOf(RegistrationResult.Registered.class, first).jid()
-                .toString());
-        assertEquals("robot-reg@sabot.local", assertInstanceOf(RegistrationResult.Taken.class, again).jid()
-                .toString());
-        // the first registration still holds: its password logs in
-        server().connect(server().configuration("robot-reg", PrivateXmppServer.DOMAIN, "pw").build());
+        XMPPTCPConnection robot = server().connect(server().configuration("enrol-robot", PrivateXmppServer.DOMAIN,
+                token).build());
+        String own = Enrolment.newPassword();
+        Enrolment.replaceToken(robot, own);
+        assertThrows(SASLErrorException.class, () -> server().connect(server().configuration("enrol-robot",
+                PrivateXmppServer.DOMAIN, token).setResource("check").build()), "the token logged in twice");
+        server().connect(server().configuration("enrol-robot", PrivateXmppServer.DOMAIN, own).setResource("check")
+                .build()).disconnect(); // (another resource: the same would replace the robot's session)
+
+        Roster roster = Roster.getInstanceFor(robot);
+        roster.reloadAndWait();
+        AccessPolicy policy = AccessRules.labGroups().on(robot);
+        ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
+        cm.setAccessPolicy(policy);
+        Goal[] goal = { new Goal(Pose2D.ORIGIN, 0.1, 0.1) };
+        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0]));
+        cm.onSet(Resources.GOAL, (r, g) -> {
+            goal[0] = g;
+            return Outcome.done();
+        });
+        // the operator sees it asking for access; the robot sees no group, so nobody has a role there
+        Roster operators = Roster.getInstanceFor(operator);
+        awaitRole(operators, j -> AccessRules.groupsIn(operators, j).contains(AccessRules.ENROLLING_GROUP)
+                ? Role.OBSERVER : Role.NONE, robot, Role.OBSERVER);
+        assertEquals(List.of(), roster.getGroups().stream().map(RosterGroup::getName).toList(),
+                "a robot asking for access sees a group");
+        assertEquals(Role.NONE, policy.roleOf(operator.getUser()));
+        Goal target = new Goal(new Pose2D(2, 1, 0), 0.1, 0.1);
+        var refused = ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, target).errorOrNull();
+        assertEquals(ControlMlCondition.ACCESS_DENIED, refused.cmCondition(), String.valueOf(refused));
+        assertEquals(Pose2D.ORIGIN, goal[0].pose(), "a refused goal changed the robot");
+
+        long t0 = System.nanoTime();
+        server().approve(robotJid);
+        awaitRole(roster, policy, operator, Role.OPERATOR);
+        System.out.printf(Locale.ROOT, "[figure] %s: approval (sabot-xmpp enrol approve) to the operator's role on "
+                + "the running robot: %d ms%n", server().kind(), TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
+        assertTrue(ControlMlManager.getInstanceFor(operator).set(robot.getUser(), Resources.GOAL, target).isSuccess());
+        assertEquals(target, goal[0]);
+        awaitRole(operators, j -> AccessRules.groupsIn(operators, j).contains(AccessRules.ROBOTS_GROUP)
+                ? Role.OBSERVER : Role.NONE, robot, Role.OBSERVER);
+
+        // another robot, refused: its account is gone
+        EntityBareJid otherJid = JidCreate.entityBareFrom("enrol-other@" + PrivateXmppServer.DOMAIN);
+        String otherToken = server().enrolToken(otherJid);
+        IOException twice = assertThrows(IOException.class, () -> server().enrolToken(otherJid));
+        assertTrue(twice.getMessage().contains("already an account"), twice.getMessage());
+        IOException notAsking = assertThrows(IOException.class, () -> server().approve(robotJid));
+        assertTrue(notAsking.getMessage().contains("is not asking for access"), notAsking.getMessage());
+        server().refuse(otherJid);
+        assertThrows(SASLErrorException.class, () -> server().connect(server().configuration("enrol-other",
+                PrivateXmppServer.DOMAIN, otherToken).build()), "a refused robot logged in");
     }
 
     @Test
@@ -331,7 +410,7 @@ abstract class FleetOnServerTest {
     }
 
     /** Waits, on the device's roster changes, until {@code who} holds {@code role} there (at most 10 s). */
-    private static void awaitRole(Roster roster, AccessPolicy policy, XMPPTCPConnection who, Role role)
+    private static void awaitRole(Roster roster, AccessPolicy policy, XMPPConnection who, Role role)
             throws InterruptedException {
         Object changed = new Object();
         var listener = new RosterEntriesListener() {

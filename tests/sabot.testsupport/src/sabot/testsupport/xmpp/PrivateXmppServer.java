@@ -22,7 +22,6 @@ import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
-import org.jivesoftware.smackx.iqregister.AccountManager;
 import org.junit.jupiter.api.extension.AfterAllCallback;
 import org.junit.jupiter.api.extension.BeforeAllCallback;
 import org.junit.jupiter.api.extension.ExtensionContext;
@@ -30,7 +29,6 @@ import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.DomainBareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
-import org.jxmpp.jid.parts.Localpart;
 
 import sabot.controlml.Role;
 import sabot.fleet.AccessRules;
@@ -330,29 +328,57 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     }
 
     /**
-     * Creates an account by in-band registration (XEP-0077), the way devices register themselves.
+     * Makes an account as the lab's administrator does ({@code sabot-xmpp register}: in-band registration is closed).
      *
-     * @throws XMPPException.XMPPErrorException with condition {@code conflict} when the JID is taken
+     * @throws IOException when the server refuses, e.g. the account exists ("already an account: ...")
      */
     public EntityBareJid register(String localpart, String domain, String password) throws IOException,
-            InterruptedException, SmackException, XMPPException {
-        return register(port, trust, localpart, domain, password);
+            InterruptedException {
+        EntityBareJid jid = JidCreate.entityBareFrom(localpart + "@" + domain);
+        registerAll(Map.of(jid, password));
+        return jid;
     }
 
-    /** As {@link #register(String, String, String)}, on a private server started by another process. */
-    public static EntityBareJid register(int port, ServerTrust trust, String localpart, String domain,
-            String password) throws IOException, InterruptedException, SmackException, XMPPException {
-        XMPPTCPConnection anonymous = new XMPPTCPConnection(configuration(port, trust, localpart, domain, password)
-                .build());
-        try {
-            anonymous.connect();
-            AccountManager accounts = AccountManager.getInstance(anonymous);
-            accounts.sensitiveOperationOverInsecureConnection(trust == null); // a plainTcp() server's: the benchmark's
-            accounts.createAccount(Localpart.from(localpart), password);
-            return JidCreate.entityBareFrom(localpart + "@" + domain);
-        } finally {
-            anonymous.disconnect();
+    /** Makes many accounts in one {@code sabot-xmpp register} (the benchmarks' fleets): JID to password. */
+    public void registerAll(Map<EntityBareJid, String> accounts) throws IOException, InterruptedException {
+        StringBuilder lines = new StringBuilder();
+        accounts.forEach((jid, password) -> lines.append(jid).append(' ').append(password).append('\n'));
+        runScript(lines.toString(), "register", "--run", runDir.toString(), "-");
+    }
+
+    /**
+     * Enrols a robot as a lab does ({@code sabot-xmpp enrol token}): its account, in the quarantine group
+     * ({@link AccessRules#ENROLLING_GROUP}), with a one-time token as its password.
+     *
+     * @return the token
+     */
+    public String enrolToken(BareJid robot) throws IOException, InterruptedException {
+        return runScript("", "enrol", "token", "--run", runDir.toString(), robot.toString()).strip();
+    }
+
+    /** {@code sabot-xmpp enrol approve}: the robot out of the quarantine, into the lab's robots. */
+    public void approve(BareJid robot) throws IOException, InterruptedException {
+        runScript("", "enrol", "approve", "--run", runDir.toString(), robot.toString());
+    }
+
+    /** {@code sabot-xmpp enrol refuse}: the robot out of the quarantine and its account deleted. */
+    public void refuse(BareJid robot) throws IOException, InterruptedException {
+        runScript("", "enrol", "refuse", "--run", runDir.toString(), robot.toString());
+    }
+
+    /** Runs sabot-xmpp with {@code input} on its stdin; its log appended to the script log. @return its stdout */
+    private String runScript(String input, String... arguments) throws IOException, InterruptedException {
+        Path log = runDir.resolve(SCRIPT_LOG);
+        Process script = script(arguments).redirectError(Redirect.appendTo(log.toFile())).start();
+        try (var in = script.getOutputStream()) {
+            in.write(input.getBytes(StandardCharsets.UTF_8));
         }
+        String out = new String(script.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+        int status = awaitScript(script);
+        if (status != 0) {
+            throw new IOException("sabot-xmpp " + String.join(" ", arguments) + " failed: " + failure(log));
+        }
+        return out;
     }
 
     /**
@@ -375,24 +401,16 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     /** {@code sabot-xmpp group add|remove}: a shared group's change, applied to the online accounts' rosters. */
     public void group(String op, String group, BareJid jid) throws IOException, InterruptedException {
-        Path log = runDir.resolve(SCRIPT_LOG);
-        Process script = script("group", op, "--run", runDir.toString(), group, jid.toString()).redirectErrorStream(
-                true).redirectOutput(Redirect.appendTo(log.toFile())).start();
-        script.getOutputStream().close();
-        int status = awaitScript(script);
-        if (status != 0) {
-            throw new IOException("sabot-xmpp group " + op + " " + group + " " + jid + " failed: " + failure(log)
-                    + "\n" + tail(log));
-        }
+        runScript("", "group", op, "--run", runDir.toString(), group, jid.toString());
     }
 
-    /** Registers {@code localpart@sabot.local} with the default password, connects and logs in. */
+    /** Makes {@code localpart@sabot.local} with the default password, connects and logs in. */
     public XMPPTCPConnection login(String localpart) throws IOException, InterruptedException, SmackException,
             XMPPException {
         return login(localpart, DOMAIN);
     }
 
-    /** Registers {@code localpart@domain} with the default password, connects and logs in. */
+    /** Makes {@code localpart@domain} with the default password, connects and logs in. */
     public XMPPTCPConnection login(String localpart, String domain) throws IOException, InterruptedException,
             SmackException, XMPPException {
         register(localpart, domain, DEFAULT_PASSWORD);

@@ -1,5 +1,6 @@
 package sabot.onboard.controlml.internal.session;
 
+import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -16,6 +17,9 @@ import org.jivesoftware.smack.SmackException;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.packet.Presence;
+import org.jivesoftware.smack.roster.Roster;
+import org.jivesoftware.smack.roster.RosterEntry;
+import org.jivesoftware.smack.roster.RosterLoadedListener;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
 import org.osgi.framework.BundleContext;
@@ -33,10 +37,14 @@ import org.slf4j.LoggerFactory;
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
+import sabot.controlml.Role;
 import sabot.controlml.StaleCommandPolicy;
+import sabot.fleet.Enrolment;
 import sabot.fleet.FleetConnections;
+import sabot.fleet.FleetException;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.NoDelaySocketFactory;
+import sabot.fleet.RosterEntriesListener;
 import sabot.fleet.SubscriptionGate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
@@ -99,6 +107,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     /** Guarded by {@link #lock}. */
     private String lastLoss = "not connected yet";
     private volatile boolean stopping;
+    /** The account's password: the file's, until an enrolment token in it has been replaced ({@link #replaceToken}). */
+    private volatile String password;
 
     /** Connector thread only: failed attempts since the last login. */
     private int failures;
@@ -113,6 +123,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     public ControlMlSession(@Reference InventorySource inventorySource, BundleContext context,
             Map<String, Object> properties) {
         this.settings = ControlMlSettings.of(properties);
+        this.password = settings.password();
         this.inventorySource = inventorySource;
         this.version = context.getBundle().getVersion().toString();
         XMPPTCPConnectionConfiguration.Builder config = XMPPTCPConnectionConfiguration.builder();
@@ -120,7 +131,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             config.setXmppDomain(settings.jid().asDomainBareJid())
                     .setHostAddressByNameOrIp(settings.server()) // a name is resolved when connecting, not here
                     .setPort(settings.port())
-                    .setUsernameAndPassword(settings.jid().getLocalpart(), settings.password())
+                    .setUsernameAndPassword(settings.jid().getLocalpart(), password)
                     .setResource(settings.resource())
                     .setSocketFactory(sockets)
                     .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
@@ -132,6 +143,9 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         connection.setUseStreamManagement(true);
         connection.setUseStreamManagementResumption(true);
         AccessPolicy policy = settings.open() ? AccessPolicy.OPEN : settings.access().on(connection);
+        if (!settings.open()) {
+            new RoleCensus(Roster.getInstanceFor(connection), policy, settings.jid().toString()).listen();
+        }
         SubscriptionGate.onDevice(connection, policy);
         controlMl = ControlMlManager.getInstanceFor(connection);
         controlMl.setAccessPolicy(policy);
@@ -249,8 +263,14 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                         connection.instantShutdown();
                     }
                     connection.connect();
-                    connection.login();
+                    connection.login(settings.jid().getLocalpart(), password);
+                    if (Enrolment.isToken(password)) {
+                        replaceToken();
+                    }
                 }
+            } catch (FleetException e) {
+                failed(e.getMessage());
+                return;
             } catch (SmackException | XMPPException | java.io.IOException | RuntimeException e) {
                 String certificate = settings.trust().explain(e, settings.jid().getDomain().toString());
                 failed(certificate != null ? certificate : describe(e));
@@ -288,6 +308,100 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         failures = 0;
         publishIdentity(); // first: whoever sees the presence finds the vCard already stored
         sendPresence();
+    }
+
+    /**
+     * The first login with an enrolment token: the token is replaced with a password of the robot's own, on the
+     * server and in the password file, so that the token is good for this one login ({@link Enrolment}). The new
+     * password is written beside the file first: a folder this process cannot write stops here, the token still good.
+     */
+    private void replaceToken() throws FleetException, InterruptedException {
+        Path file = settings.passwordFile();
+        String own = Enrolment.newPassword();
+        Path prepared;
+        try {
+            prepared = PasswordFile.prepare(file, own);
+        } catch (java.io.IOException e) {
+            throw new FleetException("cannot write a new password beside " + file + " (" + e + "); the enrolment token"
+                    + " is kept until it can", e);
+        }
+        try {
+            Enrolment.replaceToken(connection, own);
+        } catch (FleetException e) {
+            deleteQuietly(prepared);
+            throw e;
+        }
+        password = own;
+        try {
+            PasswordFile.commit(prepared, file);
+        } catch (java.io.IOException e) {
+            LOG.error("the server now knows this robot by a new password, but it could not be put in {} ({}): this "
+                    + "session goes on with it, a restart will not log in; the lab enrols the robot again (./sabot enrol"
+                    + " refuse {}, then ./sabot enrol token {})", file, e, settings.jid(), settings.jid());
+            return;
+        }
+        LOG.warn("enrolled: the enrolment token in {} is replaced with a password of this robot's own; the robot asks "
+                + "for access and obeys nobody until the lab approves it (./sabot enrol approve {})", file,
+                settings.jid());
+    }
+
+    private static void deleteQuietly(Path file) {
+        try {
+            java.nio.file.Files.deleteIfExists(file);
+        } catch (java.io.IOException e) {
+            LOG.debug("cannot delete {}: {}", file, e.toString());
+        }
+    }
+
+    /**
+     * Logs who holds a role on this robot whenever that changes (its roster loaded or changed): the console then says
+     * when a robot asking for access has been approved, or when a lab's last maintainer lost the role.
+     */
+    private static final class RoleCensus extends RosterEntriesListener implements RosterLoadedListener {
+        private final Roster roster;
+        private final AccessPolicy policy;
+        private final String jid;
+        private String last = "";
+
+        RoleCensus(Roster roster, AccessPolicy policy, String jid) {
+            this.roster = roster;
+            this.policy = policy;
+            this.jid = jid;
+        }
+
+        void listen() {
+            roster.addRosterListener(this);
+            roster.addRosterLoadedListener(this);
+        }
+
+        @Override
+        public void onRosterLoaded(Roster loaded) {
+            entriesChanged();
+        }
+
+        @Override
+        public void onRosterLoadingFailed(Exception exception) {
+            // the session's own handling says why it is offline
+        }
+
+        @Override
+        protected synchronized void entriesChanged() {
+            Map<Role, Integer> count = new TreeMap<>();
+            for (RosterEntry e : roster.getEntries()) {
+                Role r = policy.roleOf(e.getJid());
+                if (r != Role.NONE) {
+                    count.merge(r, 1, Integer::sum);
+                }
+            }
+            int total = count.values().stream().mapToInt(Integer::intValue).sum();
+            String text = total == 0 ? "accounts with a role on this robot: 0 (it obeys nobody: a robot asking for "
+                    + "access until the lab approves it, ./sabot enrol approve " + jid + ")"
+                    : "accounts with a role on this robot: " + total + " " + count;
+            if (!text.equals(last)) {
+                last = text;
+                LOG.info(text);
+            }
+        }
     }
 
     private void failed(String reason) {

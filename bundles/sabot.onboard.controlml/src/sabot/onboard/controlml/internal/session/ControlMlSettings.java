@@ -35,7 +35,9 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param server            the XMPP server's host name or IP address
  * @param port              its c2s port
  * @param jid               the robot's account
- * @param password          read from the password file
+ * @param password          read from the password file: the account's password, or an enrolment token that the
+ *                          session replaces at its first login ({@link sabot.fleet.Enrolment})
+ * @param passwordFile      that file (absolute)
  * @param resource          the resource the session binds
  * @param reconnectMin      first delay after a loss or failed attempt; doubles up to {@code reconnectMax}
  * @param reconnectMax      longest delay between two attempts
@@ -47,7 +49,8 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
  * @param trust             whom the session trusts for the server's certificate (TLS is always required)
  */
-public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, String resource,
+public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, Path passwordFile,
+        String resource,
         Duration reconnectMin, Duration reconnectMax, AccessRules access, boolean open, Duration staleCommandAfter,
         Duration liveness, String robotName, ServerTrust trust) {
 
@@ -222,10 +225,11 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
             jid = bareJid(p.string(JID, ""), JID, "", problems);
         }
         String password = null;
+        Path file = null;
         if (!p.has(PASSWORD_FILE)) {
             problems.add(new Problem(PASSWORD_FILE, "no password file given"));
         } else {
-            Path file = Paths.get(p.string(PASSWORD_FILE, "")).toAbsolutePath().normalize();
+            file = Paths.get(p.string(PASSWORD_FILE, "")).toAbsolutePath().normalize();
             try {
                 password = PasswordFile.read(file);
             } catch (PasswordFile.Refused e) {
@@ -267,7 +271,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         if (!problems.isEmpty()) {
             return null;
         }
-        return new ControlMlSettings(server, port, jid, password, resource, reconnectMin, reconnectMax,
+        return new ControlMlSettings(server, port, jid, password, file, resource, reconnectMin, reconnectMax,
                 open ? AccessRules.none() : access, open, stale, liveness, robotName, trust);
     }
 

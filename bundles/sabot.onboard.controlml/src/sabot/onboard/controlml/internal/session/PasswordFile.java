@@ -4,6 +4,7 @@ import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
 import java.nio.file.attribute.PosixFilePermission;
 import java.nio.file.attribute.PosixFilePermissions;
 import java.util.EnumSet;
@@ -69,6 +70,31 @@ final class PasswordFile {
             throw new Refused("password file " + file + " is empty (the password is its first line)");
         }
         return password;
+    }
+
+    /**
+     * Writes {@code password} into a new file beside {@code file}, readable and writable by its owner only: the
+     * first half of a replacement ({@link #commit}), done before the server is asked, so that a folder the process
+     * cannot write is found while the old password still works.
+     *
+     * @return the new file
+     */
+    static Path prepare(Path file, String password) throws IOException {
+        Path temporary = Files.createTempFile(file.toAbsolutePath().getParent(), "." + file.getFileName(), ".new",
+                PosixFilePermissions.asFileAttribute(EnumSet.of(PosixFilePermission.OWNER_READ,
+                        PosixFilePermission.OWNER_WRITE)));
+        try {
+            Files.writeString(temporary, password + "\n", StandardCharsets.UTF_8);
+            return temporary;
+        } catch (IOException e) {
+            Files.deleteIfExists(temporary);
+            throw e;
+        }
+    }
+
+    /** Puts the file {@link #prepare} wrote in the place of {@code file}, in one step (a rename). */
+    static void commit(Path prepared, Path file) throws IOException {
+        Files.move(prepared, file, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
     }
 
     /** @return the permissions as an octal mode, e.g. {@code 0644} */

@@ -34,6 +34,7 @@ import org.jivesoftware.smack.xml.XmlPullParser;
 import org.jivesoftware.smack.xml.XmlPullParserException;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
+import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.ControlMl;
 import sabot.controlml.ControlMlElement;
@@ -432,9 +433,14 @@ public final class ControlMlBench {
         for (XMPPTCPConnection s : subs) {
             Roster.getInstanceFor(s).addPresenceEventListener(countAvailable(mutual, "bench-robot"));
         }
+        Map<EntityBareJid, String> accounts = new java.util.LinkedHashMap<>();
+        for (int r = 0; r < robots; r++) {
+            accounts.put(JidCreate.entityBareFrom("bench-robot" + r + "@" + PrivateXmppServer.DOMAIN),
+                    PrivateXmppServer.DEFAULT_PASSWORD);
+        }
+        server.registerAll(accounts); // one call for the fleet: in-band registration is closed
         for (int r = 0; r < robots; r++) {
             String name = "bench-robot" + r;
-            server.register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
             XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
                     PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
             Roster roster = Roster.getInstanceFor(c);

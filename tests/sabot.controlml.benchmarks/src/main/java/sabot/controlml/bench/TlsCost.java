@@ -6,6 +6,7 @@ import static sabot.controlml.bench.ControlMlBench.round;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Arrays;
+import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
@@ -15,7 +16,9 @@ import java.util.concurrent.Future;
 import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
+import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.FullJid;
+import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
@@ -151,13 +154,16 @@ final class TlsCost {
     private void reconnection(PrivateXmppServer server, Map<String, Object> figures) throws Exception {
         ExecutorService pool = Executors.newFixedThreadPool(robots, Thread.ofPlatform().daemon().factory());
         try {
+            Map<EntityBareJid, String> accounts = new LinkedHashMap<>();
+            for (int i = 0; i < robots; i++) {
+                accounts.put(JidCreate.entityBareFrom("storm-" + i + "@" + PrivateXmppServer.DOMAIN),
+                        PrivateXmppServer.DEFAULT_PASSWORD);
+            }
+            server.registerAll(accounts);
             List<Future<?>> up = new ArrayList<>();
             for (int i = 0; i < robots; i++) {
                 int n = i;
-                up.add(pool.submit(() -> {
-                    server.register("storm-" + n, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
-                    return loginUntilDone(server, n, Long.MAX_VALUE);
-                }));
+                up.add(pool.submit(() -> loginUntilDone(server, n, Long.MAX_VALUE)));
             }
             List<XMPPTCPConnection> online = new ArrayList<>();
             for (Future<?> f : up) {

@@ -194,6 +194,7 @@ public final class WorkbenchBench {
             figures.put("cpu_layout", cpus.description());
             String operatorPw = "operator-pw";
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, operatorPw);
+            server.registerAll(FleetLoad.accounts(robots, "load-", "robot-pw")); // in-band registration is closed
             long l0 = System.nanoTime();
             try (LoadProcess load = LoadProcess.start(server.port(), server.caFile(), loadNice, dir.resolve("load.log"), List.of(
                     "--robots", Integer.toString(robots), "--password", "robot-pw", "--operator", operator.toString(),

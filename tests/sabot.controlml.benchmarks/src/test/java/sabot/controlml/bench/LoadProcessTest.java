@@ -34,6 +34,7 @@ class LoadProcessTest {
         FleetLoad.setUpSmack();
         try (PrivateXmppServer server = PrivateXmppServer.prosody().start()) {
             EntityBareJid operator = server.register("operator", PrivateXmppServer.DOMAIN, "operator-pw");
+            server.registerAll(FleetLoad.accounts(2, "load-", "robot-pw")); // in-band registration is closed
             long loadPid;
             try (LoadProcess load = LoadProcess.start(server.port(), server.caFile(), 19, dir.resolve("load.log"), List.of("--robots",
                     "2", "--password", "robot-pw", "--operator", operator.toString(), "--rate", "10", "--seed", "1"))) {

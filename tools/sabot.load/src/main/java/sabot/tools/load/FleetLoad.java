@@ -6,8 +6,10 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.Random;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
@@ -185,13 +187,15 @@ public final class FleetLoad implements AutoCloseable {
      */
     public static FleetLoad start(PrivateXmppServer server, int count, String prefix, String password,
             BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
+        server.registerAll(accounts(count, prefix, password));
         return start(server.port(), server.trust(), count, prefix, password, operator, rateHz, velocityRateHz, seed,
                 map);
     }
 
     /**
      * As {@link #start(PrivateXmppServer, int, String, String, BareJid, double, double, long, Path)}, on a private
-     * server on the loopback port {@code port}, started by another process, whose certificate {@code trust} checks.
+     * server on the loopback port {@code port}, started by another process, whose certificate {@code trust} checks;
+     * that process has made the accounts ({@link #accounts}: in-band registration is closed).
      */
     public static FleetLoad start(int port, ServerTrust trust, int count, String prefix, String password,
             BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
@@ -205,8 +209,7 @@ public final class FleetLoad implements AutoCloseable {
         int rows = (int) Math.ceil(count / (double) cols);
         try {
             for (int i = 0; i < count; i++) {
-                String name = String.format(Locale.ROOT, "%s%02d", prefix, i + 1);
-                PrivateXmppServer.register(port, trust, name, PrivateXmppServer.DOMAIN, password);
+                String name = name(prefix, i);
                 XMPPTCPConnection c = new XMPPTCPConnection(PrivateXmppServer.configuration(port, trust, name,
                         PrivateXmppServer.DOMAIN, password).setResource("onboard").setSendPresence(false).build());
                 // no stream management (as ./sabot bench controlml): with it, a server that lags behind 2,000
@@ -419,6 +422,20 @@ public final class FleetLoad implements AutoCloseable {
                 }
             }
         }
+    }
+
+    /** @return the accounts of {@code count} robots named {@code prefix01..}, each with {@code password} */
+    public static Map<EntityBareJid, String> accounts(int count, String prefix, String password) {
+        Map<EntityBareJid, String> accounts = new LinkedHashMap<>();
+        for (int i = 0; i < count; i++) {
+            accounts.put(org.jxmpp.jid.impl.JidCreate.entityBareFromOrThrowUnchecked(name(prefix, i) + "@"
+                    + PrivateXmppServer.DOMAIN), password);
+        }
+        return accounts;
+    }
+
+    private static String name(String prefix, int i) {
+        return String.format(Locale.ROOT, "%s%02d", prefix, i + 1);
     }
 
     /** {@link #attached} protocol: the line that says the robots are online. */
