@@ -39,6 +39,8 @@ final class RobotRig implements AutoCloseable {
     final XMPPTCPConnection operatorConnection;
     final ControlMlManager operator;
     final Jid robot;
+    /** The enrolment token the robot started with ({@link #startEnrolling}), else null. */
+    String token;
 
     private RobotRig(SimProcess sim, OnboardProcess onboard, XMPPTCPConnection connection, Jid robot) {
         this.sim = sim;
@@ -77,15 +79,34 @@ final class RobotRig implements AutoCloseable {
     static RobotRig start(PrivateXmppServer xmpp, int robotPort, Path dir, double[] start, double[] believed,
             String[] simOptions, String extraConfig) throws Exception {
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
-        // as a lab's administrator: the robot in the robots' group, the operator's account a maintainer of them
+        // as a lab's administrator: the robot in the robots' group
         xmpp.enrolRobot(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
+        return start(xmpp, robotPort, dir, start, believed, simOptions, extraConfig, "robot-pw");
+    }
+
+    /**
+     * As {@link #start(PrivateXmppServer, Path, double[], String[], String)}, the robot new to the lab: enrolled with
+     * a token in its password file ({@code sabot-xmpp enrol token}), online, and asking for access (not approved).
+     *
+     * @return the rig; {@link #token} the token the robot started with
+     */
+    static RobotRig startEnrolling(PrivateXmppServer xmpp, Path dir, double[] start) throws Exception {
+        String token = xmpp.enrolToken(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
+        RobotRig rig = start(xmpp, xmpp.port(), dir, start, start, new String[0], "", token);
+        rig.token = token;
+        return rig;
+    }
+
+    private static RobotRig start(PrivateXmppServer xmpp, int robotPort, Path dir, double[] start, double[] believed,
+            String[] simOptions, String extraConfig, String password) throws Exception {
+        // the operator's account a maintainer of the lab's robots
         xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.MAINTAINER);
         Files.createDirectories(dir);
         SimProcess sim = SimProcess.start(dir, start, simOptions);
         OnboardProcess onboard = null;
         try {
             onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, robotPort,
-                    xmpp.caFile()), "robot-pw", extraConfig);
+                    xmpp.caFile()), password, extraConfig);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
             onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");

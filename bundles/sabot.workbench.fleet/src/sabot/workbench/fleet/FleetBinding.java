@@ -32,6 +32,7 @@ public final class FleetBinding implements FleetListener {
     private final Map<String, RobotState> robots = new ConcurrentSkipListMap<>();
     private final AtomicBoolean scheduled = new AtomicBoolean();
     private volatile ConnectionStatus status;
+    private volatile List<String> accessRequests = List.of();
     private volatile boolean disposed;
 
     /**
@@ -68,6 +69,7 @@ public final class FleetBinding implements FleetListener {
                 context.ungetService(reference);
                 robots.clear();
                 status = null;
+                accessRequests = List.of();
                 schedule();
             }
         });
@@ -109,6 +111,17 @@ public final class FleetBinding implements FleetListener {
     @Override
     public void connectionChanged(ConnectionStatus s) {
         status = s;
+        schedule();
+    }
+
+    /** @return the robots asking for access as last reported ({@link FleetState#accessRequests()}) */
+    public List<String> accessRequests() {
+        return accessRequests;
+    }
+
+    @Override
+    public void accessRequestsChanged(List<String> jids) {
+        accessRequests = List.copyOf(jids);
         schedule();
     }
 

@@ -27,4 +27,12 @@ public interface FleetListener {
     /** @param status the connection's new state; never null */
     default void connectionChanged(ConnectionStatus status) {
     }
+
+    /**
+     * The robots asking for access changed ({@link FleetState#accessRequests()}).
+     *
+     * @param robots their bare JIDs, sorted; empty when none
+     */
+    default void accessRequestsChanged(java.util.List<String> robots) {
+    }
 }

@@ -39,6 +39,17 @@ public interface FleetState {
     Optional<RobotState> robot(String jid);
 
     /**
+     * The robots asking for access (docs/SECURITY.md, "Enrolment"): enrolled by the lab and not yet approved, the
+     * accounts its server holds in the quarantine group. They are not in {@link #robots()} and obey nobody; their
+     * {@link #identity} can be fetched. A default for providers written before this method: none.
+     *
+     * @return their bare JIDs, sorted; empty when none
+     */
+    default List<String> accessRequests() {
+        return List.of();
+    }
+
+    /**
      * Registers an observer. It first receives the present state (the connection, then every robot), then every
      * change, on the fleet's notification thread. Adding the same listener twice has no effect.
      */

@@ -53,6 +53,9 @@ import sabot.workbench.fleet.FleetBinding;
  * hundred robots at 10 Hz come as dozens of bursts a second, and rewriting every row on each took about a quarter of
  * the UI thread (the map, not the table, is where the operator watches motion). A robot added or removed, or a change
  * of presence, is shown at once. The telemetry ages are refreshed every {@value #AGE_REFRESH_MS} ms on their own.
+ * <p>
+ * Below the table, while any asks, the robots asking for access (enrolled by the lab, not yet approved: not in the
+ * fleet) with their identity ({@link AccessRequests}).
  */
 public final class FleetView extends ViewPart {
 
@@ -71,6 +74,11 @@ public final class FleetView extends ViewPart {
     public static final int UPDATE_MS = 250;
     private static final int AGE_COLUMN = 4;
 
+    /** The tooltip of the robots asking for access: what the request means and where it is answered. */
+    public static final String ACCESS_REQUESTS_TOOLTIP = "Robots enrolled by the lab and not yet approved: they obey "
+            + "nobody. Approve or refuse one on the lab's XMPP server: ./sabot enrol approve JID, ./sabot enrol refuse "
+            + "JID";
+
     /** Hint shown in the empty filter field. */
     public static final String FILTER_HINT = "Filter: robot, presence or mission";
 
@@ -78,6 +86,8 @@ public final class FleetView extends ViewPart {
     private Text filter;
     private String filterText = "";
     private FleetBinding fleet;
+    /** The robots asking for access, below the table (hidden while none asks). */
+    private AccessRequests accessRequests;
     private int sortColumn = 0;
     private boolean descending;
     private Color grey;
@@ -206,6 +216,7 @@ public final class FleetView extends ViewPart {
             }
         });
         viewer.setUseHashlookup(true);
+        accessRequests = new AccessRequests(parent);
         viewer.setContentProvider(ArrayContentProvider.getInstance());
         viewer.setComparator(new ViewerComparator() {
             @Override
@@ -303,6 +314,7 @@ public final class FleetView extends ViewPart {
         if (viewer.getTable().isDisposed()) {
             return;
         }
+        accessRequests.show(fleet.accessRequests(), fleet.fleet());
         List<RobotState> robots = fleet.robots();
         if (presenceOrMembershipChanged(robots)) {
             update();
@@ -400,6 +412,19 @@ public final class FleetView extends ViewPart {
     /** @return the table (for tests) */
     public Table table() {
         return viewer.getTable();
+    }
+
+    /**
+     * @return the robots asking for access as the section below the table shows them: per row who asks (nickname and
+     *         JID) and its UUID (for tests)
+     */
+    public List<List<String>> accessRequestRows() {
+        return accessRequests.rowTexts();
+    }
+
+    /** @return the section of the robots asking for access (for tests and screenshots) */
+    public Table accessRequestTable() {
+        return accessRequests.table();
     }
 
     /** @return the rows in the table's order (for tests) */

@@ -520,6 +520,53 @@ class LiveFleetUiTest {
     }
 
     /**
+     * A robot new to the lab, enrolled with a token (docs/SECURITY.md, "Enrolment"): asking for access, it is listed
+     * below the Fleet table with the identity of its vCard (UUID, the QR code of its inventory) and is not in the
+     * fleet; approved on the server, it joins the fleet and leaves the list.
+     */
+    @Test
+    @Order(8)
+    void aRobotAskingForAccessIsListedWithItsIdentityAndJoinsTheFleetWhenApproved() throws Exception {
+        String jid = "sabot-07@" + PrivateXmppServer.DOMAIN;
+        org.jxmpp.jid.EntityBareJid robot = JidCreate.entityBareFrom(jid);
+        String token = xmpp.enrolToken(robot);
+        org.jivesoftware.smack.tcp.XMPPTCPConnection asking = xmpp.connect(xmpp.configuration("sabot-07",
+                PrivateXmppServer.DOMAIN, token).setResource("onboard").build());
+        try {
+            sabot.fleet.Enrolment.replaceToken(asking, sabot.fleet.Enrolment.newPassword());
+            DeviceProfile profile = new DeviceProfile("mobile robot", "Sabot", "SabotOne", "sabot-07", null, 45.76,
+                    4.83, DeviceUrn.urnOf("SN-0007"), jid, "robot", LocalDate.of(2026, 11, 29), null, null);
+            DeviceIdentityManager.getInstanceFor(asking).publish(profile, new Inventory(1, profile.uid(),
+                    new Inventory.Mechanic("chassis", List.of()), List.of(new Inventory.Board("pc", "x86_64", null,
+                            List.of(), List.of(new Inventory.Item("sabot.onboard", "0.1.0")), List.of())), List.of()))
+                    .orElseThrow();
+            // the vCard is stored before the roster shows the request: the row reads it at once
+            List<String> expected = List.of("sabot-07 <" + jid + ">", profile.uid().toString());
+            waitFor(() -> fleetView().accessRequestRows().contains(expected), 30, () -> "no request from " + jid
+                    + " with its identity: " + fleetView().accessRequestRows());
+            assertTrue(fleetView().rows().stream().noneMatch(r -> r.jid().equals(jid)), "in the fleet unapproved");
+            assertEquals(FleetView.ACCESS_REQUESTS_TOOLTIP, fleetView().accessRequestTable().getToolTipText());
+            capture(fleetView().accessRequestTable().getParent(), "fleet-asking-for-access.png");
+
+            long t0 = System.nanoTime();
+            xmpp.approve(robot);
+            waitFor(() -> fleetView().rows().stream().anyMatch(r -> r.jid().equals(jid) && r.availability()
+                    != Availability.OFFLINE) && fleetView().accessRequestRows().isEmpty(), 30,
+                    () -> "not in the fleet once approved: " + fleetView().rows() + "; asking: "
+                            + fleetView().accessRequestRows());
+            System.out.printf(Locale.ROOT, "[figure] robot approved (sabot-xmpp enrol approve) to online in Fleet: "
+                    + "%d ms%n", TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));
+            assertFalse(fleetView().accessRequestTable().isVisible(), "the empty list is still shown");
+        } finally {
+            asking.instantShutdown();
+            // out of the lab's robots again: the class ends with the fleet it started with
+            xmpp.group("remove", sabot.fleet.AccessRules.ROBOTS_GROUP, robot);
+            waitFor(() -> fleetView().rows().stream().noneMatch(r -> r.jid().equals(jid)), 20,
+                    () -> "still in the fleet: " + fleetView().rows());
+        }
+    }
+
+    /**
      * Holds the workbench's ingest once when armed: a synchronous stanza listener that the test's code adds to each
      * connection the workbench makes (Smack's connection-creation hook; the plug-in's code is unchanged). Smack calls a
      * connection's synchronous listeners in order on one thread, so everything received after the held message waits.

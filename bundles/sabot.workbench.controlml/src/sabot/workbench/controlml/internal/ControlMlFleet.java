@@ -136,6 +136,11 @@ public final class ControlMlFleet implements FleetState {
     }
 
     @Override
+    public List<String> accessRequests() {
+        return registry.accessRequests();
+    }
+
+    @Override
     public void addListener(FleetListener listener) {
         registry.addListener(listener);
     }

@@ -97,12 +97,17 @@ final class FleetRequests {
 
     /** @return the session to ask {@code robot} through; throws why it cannot be asked (NOT_CONNECTED) */
     private FleetSession sessionFor(String robot) {
+        return sessionFor(robot, false);
+    }
+
+    /** @param orAsking also for a robot asking for access (its vCard: who asks) */
+    private FleetSession sessionFor(String robot, boolean orAsking) {
         FleetSession s = session.get();
         if (s == null || !s.connection().isAuthenticated()) {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "the workbench is not connected ("
                     + registry.status().summary() + ")");
         }
-        if (registry.robot(robot) == null) {
+        if (registry.robot(robot) == null && !(orAsking && registry.asking(robot))) {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot
                     + " is not a robot of this workbench's fleet");
         }
@@ -137,7 +142,7 @@ final class FleetRequests {
 
     /** Pool thread: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
     private RobotIdentity fetchIdentity(String robot) {
-        FleetSession s = sessionFor(robot);
+        FleetSession s = sessionFor(robot, true);
         VCard card;
         try {
             card = VCardManager.getInstanceFor(s.connection()).loadVCard(JidCreate.entityBareFrom(robot));

@@ -97,7 +97,8 @@ final class FleetRoster {
 
     /**
      * The robots: the roster's entries in {@link ControlMlFleet#ROBOTS_GROUP} (the robots this workbench follows) and
-     * in the server's shared group of the lab's robots ({@link AccessRules#ROBOTS_GROUP}, which the server writes).
+     * in the server's shared group of the lab's robots ({@link AccessRules#ROBOTS_GROUP}, which the server writes);
+     * and the robots asking for access, in its quarantine group ({@link AccessRules#ENROLLING_GROUP}).
      */
     private void refresh(FleetSession s) {
         Set<String> now = new LinkedHashSet<>();
@@ -127,6 +128,10 @@ final class FleetRoster {
                 registry.remove(jid);
             }
         }
+        // the robots asking for access: in the server's quarantine group, not (yet) one of the fleet's
+        RosterGroup asking = s.roster().getGroup(AccessRules.ENROLLING_GROUP);
+        registry.setAccessRequests(asking == null ? List.of() : asking.getEntries().stream().map(e -> e.getJid()
+                .toString()).filter(j -> !now.contains(j)).toList());
     }
 
     /**

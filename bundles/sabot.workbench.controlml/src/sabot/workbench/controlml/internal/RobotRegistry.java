@@ -27,6 +27,8 @@ final class RobotRegistry {
     private final Set<FleetListener> listeners = new CopyOnWriteArraySet<>();
     private final Object stateLock = new Object();
     private volatile ConnectionStatus status;
+    /** The robots asking for access, sorted (FleetState.accessRequests). */
+    private volatile List<String> asking = List.of();
 
     RobotRegistry(Clock clock, ExecutorService notifier) {
         this.clock = clock;
@@ -58,6 +60,7 @@ final class RobotRegistry {
             if (listeners.add(listener)) {
                 listener.connectionChanged(status);
                 robots.values().forEach(listener::robotChanged);
+                listener.accessRequestsChanged(asking);
             }
         });
     }
@@ -94,6 +97,27 @@ final class RobotRegistry {
         synchronized (stateLock) {
             if (robots.remove(jid) != null) {
                 notifier.execute(() -> listeners.forEach(l -> l.robotRemoved(jid)));
+            }
+        }
+    }
+
+    /** @return the robots asking for access, sorted */
+    List<String> accessRequests() {
+        return asking;
+    }
+
+    /** @return whether {@code jid} asks for access */
+    boolean asking(String jid) {
+        return asking.contains(jid);
+    }
+
+    /** The robots asking for access now (any order); listeners hear of a change. */
+    void setAccessRequests(java.util.Collection<String> jids) {
+        synchronized (stateLock) {
+            List<String> now = jids.stream().sorted().distinct().toList();
+            if (!now.equals(asking)) {
+                asking = now;
+                notifier.execute(() -> listeners.forEach(l -> l.accessRequestsChanged(now)));
             }
         }
     }
