@@ -109,7 +109,8 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         String jid();
 
         @AttributeDefinition(name = "Password file", description = "File whose first line is the account's password; "
-                + "a regular file readable by its owner only (chmod 600).")
+                + "a regular file readable by its owner only (chmod 600). An enrolment token there (./sabot enrol "
+                + "token) is replaced at the first login with a password of the robot's own.")
         String passwordFile();
 
         @AttributeDefinition(name = "Resource", description = "The XMPP resource of the robot's session.")
