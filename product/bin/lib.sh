@@ -230,7 +230,8 @@ sabot_rig_build() {
 
 # sabot_rig_start DIR PORT ROBOTS X,Y,THETA [JVM_OPTION...]
 # Brings the rig up in folder DIR (made empty first): a private Prosody on 127.0.0.1:PORT (0: a free port) with state
-# in DIR/xmpp, the accounts sabot-0I@sabot.local (random password in DIR/robotI/password) and the operator's,
+# in DIR/xmpp, the accounts sabot-0I@sabot.local (enrolled: a token in DIR/robotI/password, replaced by the robot)
+# and the operator's,
 # sabot-sim on the lab map with ROBOTS robots, robot 1 at X,Y,THETA (ground truth DIR/truth.csv, its control channel
 # on a free loopback port), and per robot an onboard product (configuration DIR/robotI/onboard.conf, remote files
 # DIR/robotI/files, console DIR/robotI/onboard.log; JVM options added). Returns once they are started, not online
@@ -246,18 +247,17 @@ sabot_rig_start() {
     RIG_PORT=$(sed -n 's/.* port=\([0-9]*\) .*/\1/p' <<<"$line")
     RIG_CA=$(sed -n 's/.* ca=\([^ ]*\).*/\1/p' <<<"$line")
     [ -s "$RIG_CA" ] || sabot_die "the private Prosody named no lab CA file: $line"
+    # the robots enrolled as a lab enrols them (docs/SECURITY.md, "Enrolment"): a one-time token in each password file,
+    # which the robot replaces with a password of its own at its first login; approved at once (the demo's robots are
+    # the lab's), so they obey the lab's roles from their first login on
     for ((i = 1; i <= robots; i++)); do
         mkdir -p "$dir/robot$i/files"
-        (umask 077; openssl rand -hex 16 | tr -d "\n" >"$dir/robot$i/password")
-        sabot_rig_register "sabot-0$i@$SABOT_RIG_DOMAIN" "$(cat "$dir/robot$i/password")"
+        sabot_rig_enrol "sabot-0$i@$SABOT_RIG_DOMAIN" "$dir/robot$i/password"
     done
     sabot_rig_register "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" "$SABOT_RIG_OPERATOR_PASSWORD"
     sabot_rig_register "$SABOT_RIG_OBSERVER@$SABOT_RIG_DOMAIN" "$SABOT_RIG_OBSERVER_PASSWORD"
     sabot_rig_register "$SABOT_RIG_MAINTAINER@$SABOT_RIG_DOMAIN" "$SABOT_RIG_MAINTAINER_PASSWORD"
-    # as the lab's administrator: the robots in the robots' group, one account per role
-    for ((i = 1; i <= robots; i++)); do
-        sabot_group add "$dir/xmpp" "$SABOT_GROUP_ROBOTS" "sabot-0$i@$SABOT_RIG_DOMAIN"
-    done
+    # as the lab's administrator: one account per role
     sabot_grant "$dir/xmpp" "$SABOT_RIG_OBSERVER@$SABOT_RIG_DOMAIN" observer
     sabot_grant "$dir/xmpp" "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" operator
     sabot_grant "$dir/xmpp" "$SABOT_RIG_MAINTAINER@$SABOT_RIG_DOMAIN" maintainer
@@ -300,6 +300,15 @@ sabot_grant() {
     local group=${SABOT_ROLE_GROUPS[$3]:-}
     [ -n "$group" ] || sabot_die "'$3' is not a role: observer, operator or maintainer"
     sabot_group "${4:-add}" "$1" "$group" "$2"
+}
+
+sabot_rig_enrol() { # JID PASSWORD_FILE: the token written there (mode 600), the robot approved
+    local token
+    token=$("$SABOT_ROOT/product/bin/sabot-xmpp" enrol token --run "$RIG_DIR/xmpp" "$1" 2>/dev/null) \
+        || sabot_die "could not enrol $1 (see $RIG_DIR/xmpp)"
+    (umask 077; printf '%s\n' "$token" >"$2")
+    "$SABOT_ROOT/product/bin/sabot-xmpp" enrol approve --run "$RIG_DIR/xmpp" "$1" >/dev/null 2>&1 \
+        || sabot_die "could not approve $1 (see $RIG_DIR/xmpp)"
 }
 
 sabot_rig_register() { # JID PASSWORD

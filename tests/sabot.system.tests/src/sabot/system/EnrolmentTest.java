@@ -57,7 +57,7 @@ class EnrolmentTest extends RigTest {
 
             long t0 = System.nanoTime();
             xmpp.approve(JidCreate.bareFrom(RobotRig.ROBOT + "@" + PrivateXmppServer.DOMAIN));
-            rig.onboard.await(l -> l.contains("accounts with a role on this robot: 1 {MAINTAINER=1}"),
+            rig.onboard.await(l -> l.contains("accounts with a role on this robot: 1 (maintainer 1)"),
                     "counting the lab's maintainer once approved");
             System.out.printf(Locale.ROOT, "[figure] approval (sabot-xmpp enrol approve) to the maintainer's role on "
                     + "the running product: %d ms%n", TimeUnit.NANOSECONDS.toMillis(System.nanoTime() - t0));

@@ -18,6 +18,7 @@ import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.Role;
 import sabot.fleet.AccessRules;
+import sabot.fleet.Enrolment;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /** Roles from groups, accounts and domains, without a server (the server's side: {@code FleetOnServerTest}). */
@@ -65,13 +66,24 @@ class AccessRulesTest {
         assertTrue(Role.MAINTAINER.includes(Role.OPERATOR) && !Role.OBSERVER.includes(Role.OPERATOR));
     }
 
-    /** The shell's names of the lab's groups (product/bin/lib.sh: ./sabot xmpp grant, the demo) are these. */
+    private static String shellValue(String lib, String name) {
+        Matcher m = Pattern.compile("(?m)^" + name + "=(\\S+)$").matcher(lib);
+        assertTrue(m.find(), "no " + name + " in lib.sh");
+        return m.group(1);
+    }
+
+    /**
+     * The shell's names of the lab's groups and the enrolment token's prefix (product/bin/lib.sh: ./sabot xmpp grant,
+     * ./sabot enrol, the demo) are these.
+     */
     @Test
     void theScriptsGroupNamesAreTheRules() throws Exception {
         String lib = Files.readString(PrivateXmppServer.repositoryRoot().resolve("product/bin/lib.sh"));
         Matcher robots = Pattern.compile("(?m)^SABOT_GROUP_ROBOTS=(\\S+)$").matcher(lib);
         assertTrue(robots.find(), "no SABOT_GROUP_ROBOTS in lib.sh");
         assertEquals(AccessRules.ROBOTS_GROUP, robots.group(1));
+        assertEquals(AccessRules.ENROLLING_GROUP, shellValue(lib, "SABOT_GROUP_ENROLLING"));
+        assertEquals(Enrolment.TOKEN_PREFIX, shellValue(lib, "SABOT_ENROL_TOKEN_PREFIX"));
         Matcher roles = Pattern.compile("(?m)^declare -A SABOT_ROLE_GROUPS=\\((.*)\\)$").matcher(lib);
         assertTrue(roles.find(), "no SABOT_ROLE_GROUPS in lib.sh");
         Map<Role, String> script = new EnumMap<>(Role.class);

@@ -44,7 +44,7 @@ import sabot.fleet.ServerTrust;
  * &#64;RegisterExtension
  * static PrivateXmppServer xmpp = PrivateXmppServer.prosody();
  * ...
- * XMPPTCPConnection alice = xmpp.login("alice");   // account created by in-band registration on first use
+ * XMPPTCPConnection alice = xmpp.login("alice");   // account made by the administrator (sabot-xmpp register) on first use
  * </pre>
  *
  * The server is started, awaited and stopped by {@code product/bin/sabot-xmpp}, the script behind

@@ -98,12 +98,53 @@ class PrivateXmppServerTest {
         }
     }
 
+    @Test
+    void badAccountsAndEnrolmentsAreRefusedWithWhyAndChangeNothing() throws Exception {
+        try (PrivateXmppServer server = PrivateXmppServer.prosody().start()) {
+            String quote = script(server, 1, "register", "al'ice@sabot.local", "pw");
+            assertTrue(quote.contains("'al'ice@sabot.local' is not an account (local@domain, no quote, backslash or "
+                    + "space)"), quote);
+            String spaced = script(server, 1, "register", "bob@sabot.local", "two words");
+            assertTrue(spaced.contains("the password of bob@sabot.local has a space, quote, backslash or control "
+                    + "character"), spaced);
+            String domain = script(server, 1, "register", "bob@elsewhere.example", "pw");
+            assertTrue(domain.contains("Prosody did not make every account"), domain);
+            String notAsking = script(server, 1, "enrol", "approve", "carol@sabot.local");
+            assertTrue(notAsking.contains("carol@sabot.local is not asking for access (enrol list: nobody)"),
+                    notAsking);
+            String badToken = script(server, 1, "enrol", "token", "sabot 07@sabot.local");
+            assertTrue(badToken.contains("is not an account"), badToken);
+            assertEquals("", script(server, 0, "enrol", "list"), "changed by a refused enrolment");
+            assertEquals("", group(server, 0, "list"), "a group changed by a refused enrolment");
+            assertThrows(org.jivesoftware.smack.sasl.SASLErrorException.class, () -> server.connect(server
+                    .configuration("bob", PrivateXmppServer.DOMAIN, "pw").build()), "bob was made");
+        }
+    }
+
     /** Runs {@code sabot-xmpp group OP --run DIR ARGS...}; @return its output (both streams) */
     private static String group(PrivateXmppServer server, int expectedStatus, String op, String... args)
             throws Exception {
+        List<String> all = new java.util.ArrayList<>(List.of(op, "--run", server.runDir().toString()));
+        all.addAll(List.of(args));
+        return script(server, expectedStatus, "group", all.toArray(String[]::new));
+    }
+
+    /**
+     * Runs {@code sabot-xmpp ACTION ARGS...} (for register and enrol, {@code --run DIR} goes after the action's
+     * first word when it has a sub-command, else first); @return its output (both streams)
+     */
+    private static String script(PrivateXmppServer server, int expectedStatus, String action, String... args)
+            throws Exception {
         List<String> command = new java.util.ArrayList<>(List.of(PrivateXmppServer.repositoryRoot().resolve(
-                "product/bin/sabot-xmpp").toString(), "group", op, "--run", server.runDir().toString()));
-        command.addAll(List.of(args));
+                "product/bin/sabot-xmpp").toString(), action));
+        List<String> rest = new java.util.ArrayList<>(List.of(args));
+        if (action.equals("enrol")) {
+            command.add(rest.remove(0));
+        }
+        if (!action.equals("group")) {
+            command.addAll(List.of("--run", server.runDir().toString()));
+        }
+        command.addAll(rest);
         Process p = new ProcessBuilder(command).redirectErrorStream(true).start();
         String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
         assertEquals(expectedStatus, p.waitFor(), () -> String.join(" ", command) + ": " + out);

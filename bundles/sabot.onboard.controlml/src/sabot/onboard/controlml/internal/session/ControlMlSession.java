@@ -340,9 +340,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                     + " refuse {}, then ./sabot enrol token {})", file, e, settings.jid(), settings.jid());
             return;
         }
-        LOG.warn("enrolled: the enrolment token in {} is replaced with a password of this robot's own; the robot asks "
-                + "for access and obeys nobody until the lab approves it (./sabot enrol approve {})", file,
-                settings.jid());
+        LOG.warn("enrolled: the enrolment token in {} is replaced with a password of this robot's own (a robot the lab "
+                + "has not approved yet obeys nobody: ./sabot enrol approve {})", file, settings.jid());
     }
 
     private static void deleteQuietly(Path file) {
@@ -394,9 +393,15 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
                 }
             }
             int total = count.values().stream().mapToInt(Integer::intValue).sum();
+            List<String> each = new java.util.ArrayList<>();
+            for (Role r : List.of(Role.MAINTAINER, Role.OPERATOR, Role.OBSERVER)) {
+                if (count.containsKey(r)) {
+                    each.add(r.label() + " " + count.get(r));
+                }
+            }
             String text = total == 0 ? "accounts with a role on this robot: 0 (it obeys nobody: a robot asking for "
                     + "access until the lab approves it, ./sabot enrol approve " + jid + ")"
-                    : "accounts with a role on this robot: " + total + " " + count;
+                    : "accounts with a role on this robot: " + total + " (" + String.join(", ", each) + ")";
             if (!text.equals(last)) {
                 last = text;
                 LOG.info(text);
