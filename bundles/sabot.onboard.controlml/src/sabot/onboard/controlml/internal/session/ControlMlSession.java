@@ -18,8 +18,6 @@ import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.XMPPException;
 import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.roster.Roster;
-import org.jivesoftware.smack.roster.RosterEntry;
-import org.jivesoftware.smack.roster.RosterLoadedListener;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.jivesoftware.smack.tcp.XMPPTCPConnectionConfiguration;
 import org.osgi.framework.BundleContext;
@@ -37,14 +35,12 @@ import org.slf4j.LoggerFactory;
 import sabot.controlml.AccessPolicy;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.PresenceLevel;
-import sabot.controlml.Role;
 import sabot.controlml.StaleCommandPolicy;
 import sabot.fleet.Enrolment;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.FleetException;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.NoDelaySocketFactory;
-import sabot.fleet.RosterEntriesListener;
 import sabot.fleet.SubscriptionGate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.IdentityResult;
@@ -349,63 +345,6 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             java.nio.file.Files.deleteIfExists(file);
         } catch (java.io.IOException e) {
             LOG.debug("cannot delete {}: {}", file, e.toString());
-        }
-    }
-
-    /**
-     * Logs who holds a role on this robot whenever that changes (its roster loaded or changed): the console then says
-     * when a robot asking for access has been approved, or when a lab's last maintainer lost the role.
-     */
-    private static final class RoleCensus extends RosterEntriesListener implements RosterLoadedListener {
-        private final Roster roster;
-        private final AccessPolicy policy;
-        private final String jid;
-        private String last = "";
-
-        RoleCensus(Roster roster, AccessPolicy policy, String jid) {
-            this.roster = roster;
-            this.policy = policy;
-            this.jid = jid;
-        }
-
-        void listen() {
-            roster.addRosterListener(this);
-            roster.addRosterLoadedListener(this);
-        }
-
-        @Override
-        public void onRosterLoaded(Roster loaded) {
-            entriesChanged();
-        }
-
-        @Override
-        public void onRosterLoadingFailed(Exception exception) {
-            // the session's own handling says why it is offline
-        }
-
-        @Override
-        protected synchronized void entriesChanged() {
-            Map<Role, Integer> count = new TreeMap<>();
-            for (RosterEntry e : roster.getEntries()) {
-                Role r = policy.roleOf(e.getJid());
-                if (r != Role.NONE) {
-                    count.merge(r, 1, Integer::sum);
-                }
-            }
-            int total = count.values().stream().mapToInt(Integer::intValue).sum();
-            List<String> each = new java.util.ArrayList<>();
-            for (Role r : List.of(Role.MAINTAINER, Role.OPERATOR, Role.OBSERVER)) {
-                if (count.containsKey(r)) {
-                    each.add(r.label() + " " + count.get(r));
-                }
-            }
-            String text = total == 0 ? "accounts with a role on this robot: 0 (it obeys nobody: a robot asking for "
-                    + "access until the lab approves it, ./sabot enrol approve " + jid + ")"
-                    : "accounts with a role on this robot: " + total + " (" + String.join(", ", each) + ")";
-            if (!text.equals(last)) {
-                last = text;
-                LOG.info(text);
-            }
         }
     }
 
