@@ -410,7 +410,7 @@ abstract class FleetOnServerTest {
     }
 
     /** Waits, on the device's roster changes, until {@code who} holds {@code role} there (at most 10 s). */
-    private static void awaitRole(Roster roster, AccessPolicy policy, XMPPConnection who, Role role)
+    static void awaitRole(Roster roster, AccessPolicy policy, XMPPConnection who, Role role)
             throws InterruptedException {
         Object changed = new Object();
         var listener = new RosterEntriesListener() {

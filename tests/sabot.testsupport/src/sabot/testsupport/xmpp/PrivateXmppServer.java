@@ -93,6 +93,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private Thread shutdownHook;
     /** Plain TCP, no TLS ({@code sabot-xmpp start --tls off}): for the benchmark that compares the two only. */
     private boolean plainTcp;
+    /** 2 for a two-node ejabberd cluster ({@link #ejabberdCluster()}), else 1. */
+    private int nodes = 1;
+    /** A cluster's second node: its pid (0 when stopped), port and loopback address. */
+    private long pid2;
+    private int port2;
+    private InetAddress address2;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -106,6 +112,18 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     /** @return a fixture for a private ejabberd (about 1 s to ready here) */
     public static PrivateXmppServer ejabberd() {
         return new PrivateXmppServer(Kind.EJABBERD);
+    }
+
+    /**
+     * @return a fixture for a private two-node ejabberd cluster (docs/CLUSTER.md): node 1 on 127.0.0.1, node 2 on
+     *         127.0.0.2, one Mnesia (accounts, rosters, shared groups) and one XMPP service; about 4 s to ready here.
+     *         {@link #port()} and {@link #configuration} are node 1's; {@link #configuration(int, String, String,
+     *         String)} picks a node
+     */
+    public static PrivateXmppServer ejabberdCluster() {
+        PrivateXmppServer s = new PrivateXmppServer(Kind.EJABBERD);
+        s.nodes = 2;
+        return s;
     }
 
     /**
@@ -159,8 +177,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         startupTime = Duration.ofNanos(System.nanoTime() - t0);
         shutdownHook = new Thread(this::stopProcess, "stop-private-" + kind.serverName);
         Runtime.getRuntime().addShutdownHook(shutdownHook);
-        System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d after %d ms, dir %s%n", kind.serverName,
-                pid, port, startupTime.toMillis(), runDir);
+        System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d%s after %d ms, dir %s%n", kind.serverName,
+                pid, port, nodes == 2 ? " (cluster: node 2 pid " + pid2 + " on " + address2.getHostAddress() + ":"
+                        + port2 + ")" : "", startupTime.toMillis(), runDir);
         return this;
     }
 
@@ -192,7 +211,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         Path log = runDir.resolve(SCRIPT_LOG);
         Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
                 Integer.toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT
-                        .toSeconds()), "--tls", plainTcp ? "off" : "required").redirectError(log.toFile()).start();
+                        .toSeconds()), "--tls", plainTcp ? "off" : "required", "--nodes", Integer.toString(nodes))
+                .redirectError(log.toFile()).start();
         script.getOutputStream().close();
         // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
         // session, has its output in its state directory: nothing of it holds this pipe open
@@ -213,6 +233,11 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             pid = Long.parseLong(ready.get("pid"));
             port = Integer.parseInt(ready.get("port"));
             caFile = Path.of(ready.get("ca"));
+            if (nodes == 2) {
+                pid2 = Long.parseLong(ready.get("pid2"));
+                port2 = Integer.parseInt(ready.get("port2"));
+                address2 = InetAddress.getByName(ready.get("address2"));
+            }
         } catch (NumberFormatException | NullPointerException e) {
             throw new IOException("sabot-xmpp start printed no 'pid=N port=N ... ca=FILE' line but '" + out
                     + "'; see " + log, e);
@@ -300,6 +325,61 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
         return configuration(port, trust, localpart, domain, password);
+    }
+
+    /**
+     * As {@link #configuration(String, String, String)}, to a node of a cluster ({@link #ejabberdCluster()}).
+     *
+     * @param node 1 or 2
+     */
+    public XMPPTCPConnectionConfiguration.Builder configuration(int node, String localpart, String domain,
+            String password) {
+        return configuration(port(node), trust, localpart, domain, password).setHostAddress(address(node));
+    }
+
+    /** @return the client port of a node (1 or 2) of a cluster; node 1 is {@link #port()} */
+    public int port(int node) {
+        checkNode(node);
+        return node == 1 ? port : port2;
+    }
+
+    /** @return the loopback address of a node (1: 127.0.0.1, 2: 127.0.0.2) */
+    public InetAddress address(int node) {
+        checkNode(node);
+        return node == 1 ? InetAddress.getLoopbackAddress() : address2;
+    }
+
+    /** @return the pid of a node's server process, 0 once it was killed */
+    public long pid(int node) {
+        checkNode(node);
+        return node == 1 ? pid : pid2;
+    }
+
+    private void checkNode(int node) {
+        if (node < 1 || node > nodes) {
+            throw new IllegalArgumentException("node " + node + ": this fixture has " + nodes + " node(s)");
+        }
+    }
+
+    /**
+     * Kills a node of a cluster at once (SIGKILL to its process group), as a crash would: its clients' connections
+     * break without a closing stream; the other node goes on serving.
+     */
+    public synchronized void killNode(int node) throws IOException, InterruptedException {
+        checkNode(node);
+        long p = pid(node);
+        if (p == 0) {
+            return;
+        }
+        Process kill = new ProcessBuilder("kill", "-KILL", "--", "-" + p).redirectErrorStream(true).start();
+        kill.getOutputStream().close();
+        kill.waitFor();
+        ProcessHandle.of(p).ifPresent(h -> h.onExit().join());
+        if (node == 1) {
+            pid = 0;
+        } else {
+            pid2 = 0;
+        }
     }
 
     /**
@@ -461,7 +541,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     /** Stops the server with {@code sabot-xmpp stop}: SIGTERM to its process group, SIGKILL after 3 s. */
     private void stopProcess() {
-        if (pid == 0) {
+        if (pid == 0 && pid2 == 0) {
             return;
         }
         int status;
@@ -480,6 +560,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         System.out.printf("[xmpp] private %s pid %d stopped%s%n", kind.serverName, pid, status == 0 ? ""
                 : ": sabot-xmpp stop failed with status " + status + ", see " + runDir.resolve(SCRIPT_LOG));
         pid = 0;
+        pid2 = 0;
     }
 
     /** The repository root: system property {@code sabot.root}, else the nearest parent holding product/xmpp. */
