@@ -26,7 +26,12 @@ abstract class RigTest {
     /** The joystick's rate, Hz, as the workbench's joystick sends it. */
     static final int JOYSTICK_HZ = 10;
 
-    protected final PrivateXmppServer xmpp = PrivateXmppServer.prosody();
+    protected final PrivateXmppServer xmpp = newServer();
+
+    /** @return the test's server, not started: a private Prosody; a test of a cluster overrides it */
+    protected PrivateXmppServer newServer() {
+        return PrivateXmppServer.prosody();
+    }
 
     @BeforeEach
     void startServer() throws Exception {

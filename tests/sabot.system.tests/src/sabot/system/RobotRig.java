@@ -81,7 +81,19 @@ final class RobotRig implements AutoCloseable {
         xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
         // as a lab's administrator: the robot in the robots' group
         xmpp.enrolRobot(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
-        return start(xmpp, robotPort, dir, start, believed, simOptions, extraConfig, "robot-pw");
+        return start(xmpp, robotPort, dir, start, believed, simOptions, extraConfig, "robot-pw", "127.0.0.1", 1);
+    }
+
+    /**
+     * As {@link #start(PrivateXmppServer, Path, double[], String[], String)} on a two-node cluster
+     * ({@link PrivateXmppServer#ejabberdCluster()}): the robot configured with both nodes (it logs in through node 1),
+     * the operator on node 2.
+     */
+    static RobotRig startOnCluster(PrivateXmppServer xmpp, Path dir, double[] start) throws Exception {
+        xmpp.register(ROBOT, PrivateXmppServer.DOMAIN, "robot-pw");
+        xmpp.enrolRobot(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
+        return start(xmpp, xmpp.port(), dir, start, start, new String[0], "", "robot-pw", xmpp.address(1)
+                .getHostAddress() + ", " + xmpp.address(2).getHostAddress(), 2);
     }
 
     /**
@@ -92,13 +104,18 @@ final class RobotRig implements AutoCloseable {
      */
     static RobotRig startEnrolling(PrivateXmppServer xmpp, Path dir, double[] start) throws Exception {
         String token = xmpp.enrolToken(JidCreate.bareFrom(ROBOT + "@" + PrivateXmppServer.DOMAIN));
-        RobotRig rig = start(xmpp, xmpp.port(), dir, start, start, new String[0], "", token);
+        RobotRig rig = start(xmpp, xmpp.port(), dir, start, start, new String[0], "", token, "127.0.0.1", 1);
         rig.token = token;
         return rig;
     }
 
+    /**
+     * @param servers      the robot's {@code controlml.server}
+     * @param operatorNode the node the operator logs in through (1 but on a cluster)
+     */
     private static RobotRig start(PrivateXmppServer xmpp, int robotPort, Path dir, double[] start, double[] believed,
-            String[] simOptions, String extraConfig, String password) throws Exception {
+            String[] simOptions, String extraConfig, String password, String servers, int operatorNode)
+            throws Exception {
         // the operator's account a maintainer of the lab's robots
         xmpp.grant(JidCreate.bareFrom(OPERATOR + "@" + PrivateXmppServer.DOMAIN), Role.MAINTAINER);
         Files.createDirectories(dir);
@@ -106,11 +123,13 @@ final class RobotRig implements AutoCloseable {
         OnboardProcess onboard = null;
         try {
             onboard = OnboardProcess.start(dir, new OnboardProcess.Robot(ROBOT, sim.link(1), believed, robotPort,
-                    xmpp.caFile()), password, extraConfig);
+                    xmpp.caFile()), password, extraConfig, servers);
             onboard.await(l -> l.contains("task(s) loaded"), "listing the loaded tasks");
             onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online");
             onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
-            XMPPTCPConnection c = xmpp.login(OPERATOR);
+            xmpp.register(OPERATOR, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+            XMPPTCPConnection c = xmpp.connect(xmpp.configuration(operatorNode, OPERATOR, PrivateXmppServer.DOMAIN,
+                    PrivateXmppServer.DEFAULT_PASSWORD).build());
             return new RobotRig(sim, onboard, c, JidCreate.from(ROBOT + "@" + PrivateXmppServer.DOMAIN + "/onboard"));
         } catch (Exception | AssertionError e) {
             if (onboard != null) {

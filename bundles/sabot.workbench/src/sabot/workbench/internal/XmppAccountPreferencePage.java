@@ -51,6 +51,7 @@ public final class XmppAccountPreferencePage extends PreferencePage implements I
         GridLayoutFactory.swtDefaults().numColumns(2).applyTo(c);
         XmppAccount account = store.load();
         server = field(c, "&Server:", account.server(), SWT.BORDER);
+        server.setMessage("host or address; a cluster's nodes comma-separated: a,b");
         port = field(c, "&Port:", Integer.toString(account.port()), SWT.BORDER);
         jid = field(c, "&JID:", account.jid(), SWT.BORDER);
         password = field(c, "Pass&word:", "", SWT.BORDER | SWT.PASSWORD);

@@ -47,6 +47,14 @@ public final class OnboardProcess implements AutoCloseable {
 
     /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
     public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
+        return configuration(r, passwordFile, fsRoot, extra, "127.0.0.1");
+    }
+
+    /**
+     * As {@link #configuration(Robot, Path, Path, String)}, the robot's XMPP server(s) given: {@code controlml.server}
+     * (e.g. a cluster's nodes, {@code 127.0.0.1, 127.0.0.2})
+     */
+    public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra, String servers) {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
         return String.format(Locale.ROOT, """
                 robot.name = %s
@@ -57,25 +65,31 @@ public final class OnboardProcess implements AutoCloseable {
                 localizer.startY = %.3f
                 localizer.startTheta = %.4f
                 planner.map = %s
-                controlml.server = 127.0.0.1
+                controlml.server = %s
                 controlml.port = %d
                 controlml.caFile = %s
                 controlml.jid = %s@%s
                 controlml.passwordFile = %s
                 remotefs.root = %s
                 %s
-                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
+                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, servers, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
                 PrivateXmppServer.DOMAIN, passwordFile, fsRoot, extra);
     }
 
     /** Writes the password file (mode 0600) and the configuration into {@code dir}, then starts the product. */
     public static OnboardProcess start(Path dir, Robot robot, String password, String extra) throws IOException {
+        return start(dir, robot, password, extra, "127.0.0.1");
+    }
+
+    /** As {@link #start(Path, Robot, String, String)}, with the robot's XMPP server(s) given ({@code servers}). */
+    public static OnboardProcess start(Path dir, Robot robot, String password, String extra, String servers)
+            throws IOException {
         Path passwordFile = dir.resolve("xmpp-password");
         Files.writeString(passwordFile, password + "\n");
         Files.setPosixFilePermissions(passwordFile, PosixFilePermissions.fromString("rw-------"));
         Path fsRoot = Files.createDirectories(dir.resolve("fs"));
         Path config = dir.resolve("onboard.conf");
-        Files.writeString(config, configuration(robot, passwordFile, fsRoot, extra));
+        Files.writeString(config, configuration(robot, passwordFile, fsRoot, extra, servers));
         return start(config);
     }
 

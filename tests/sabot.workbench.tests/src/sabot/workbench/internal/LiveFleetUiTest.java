@@ -645,7 +645,7 @@ class LiveFleetUiTest {
                         sorted.length - 1, Math.ceil(sorted.length * 0.99) - 1)] / 1e6, sorted[sorted.length - 1] / 1e6);
     }
 
-    private static boolean live(RobotState r) {
+    static boolean live(RobotState r) {
         return r != null && r.availability() != Availability.OFFLINE && r.pose() != null && !r.isStale(Instant.now());
     }
 
@@ -653,7 +653,7 @@ class LiveFleetUiTest {
         return fleetView().rows().stream().filter(r -> r.jid().equals(ROBOT_JID)).findFirst().orElse(null);
     }
 
-    private static IWorkbenchPage page() {
+    static IWorkbenchPage page() {
         return PlatformUI.getWorkbench().getActiveWorkbenchWindow().getActivePage();
     }
 
@@ -663,13 +663,13 @@ class LiveFleetUiTest {
         return w;
     }
 
-    private static FleetView fleetView() {
+    static FleetView fleetView() {
         FleetView f = (FleetView) page().findView(FleetView.ID);
         assertNotNull(f, "fleet view not open");
         return f;
     }
 
-    private static String statusLineText() {
+    static String statusLineText() {
         // the item's label, found in the window's widgets (the status line manager is the window's own business)
         List<String> texts = new ArrayList<>();
         collectLabels(PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell(), texts);

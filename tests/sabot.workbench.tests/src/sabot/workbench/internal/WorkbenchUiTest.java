@@ -136,6 +136,10 @@ class WorkbenchUiTest {
             fields.get(0).setText("");
             assertFalse(page.isValid());
             assertEquals("Server is empty", page.getErrorMessage());
+            fields.get(0).setText("127.0.0.1,");
+            assertFalse(page.isValid());
+            assertEquals("Server: an empty name in the list (several servers are comma-separated: a,b)", page
+                    .getErrorMessage());
             fields.get(0).setText("127.0.0.1");
             fields.get(1).setText("not-a-port");
             assertFalse(page.isValid());

@@ -3,6 +3,7 @@ package sabot.workbench.controlml.internal;
 import java.io.IOException;
 import java.net.InetAddress;
 import java.time.Duration;
+import java.util.List;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.ThreadFactory;
@@ -47,6 +48,8 @@ final class FleetConnection {
     private final ScheduledExecutorService connector;
     private final ThreadFactory watchThreads;
     private final Backoff backoff;
+    /** Connection thread: which of the account's servers the next attempt goes to (modulo their number). */
+    private int serverIndex;
     private final Duration requestTimeout;
     private final RobotRegistry registry;
     private final FleetRoster roster;
@@ -113,6 +116,7 @@ final class FleetConnection {
             connector.execute(() -> {
                 reconnectQueued.set(false);
                 backoff.reset();
+                serverIndex = 0;
                 closeSession();
                 connect();
             });
@@ -150,12 +154,15 @@ final class FleetConnection {
             registry.setStatus(State.NO_ACCOUNT, account.jid(), e.getMessage());
             return;
         }
-        registry.setStatus(State.CONNECTING, account.jid(), account.server() + ":" + account.port());
+        // one of the account's servers (a cluster's nodes): the same until an attempt there fails, then the next
+        List<String> servers = account.servers();
+        String server = servers.get(Math.floorMod(serverIndex, servers.size()));
+        registry.setStatus(State.CONNECTING, account.jid(), server + ":" + account.port());
         XMPPTCPConnection c = null;
         try {
             EntityBareJid me = JidCreate.entityBareFrom(account.jid());
             c = new XMPPTCPConnection(FleetConnections.builder(me.getDomain().toString(), InetAddress.getByName(
-                    account.server()), account.port(), trust).setUsernameAndPassword(me
+                    server), account.port(), trust).setUsernameAndPassword(me
                             .getLocalpart().toString(), new String(password)).setResource(RESOURCE_PREFIX + Long
                                     .toHexString(System.nanoTime() & 0xffffff)).build());
             ReconnectionManager.getInstanceFor(c).disableAutomaticReconnection(); // our own back-off, below
@@ -188,9 +195,9 @@ final class FleetConnection {
             session = s;
             roster.start(s, store.loadRobots(), store.loadLobby());
             backoff.reset();
-            registry.setStatus(State.ONLINE, account.jid(), account.server() + ":" + account.port());
-            LOG.info("connected as {} to {}:{}; following {} robot(s)", c.getUser(), account.server(), account
-                    .port(), registry.jids().size());
+            registry.setStatus(State.ONLINE, account.jid(), server + ":" + account.port());
+            LOG.info("connected as {} to {}:{}; following {} robot(s)", c.getUser(), server, account.port(),
+                    registry.jids().size());
             for (RobotState robot : registry.robots()) {
                 if (robot.availability() != Availability.OFFLINE) {
                     telemetry.follow(s, robot.jid(), 0);
@@ -212,6 +219,7 @@ final class FleetConnection {
                 linkWatch = null;
             }
             session = null;
+            serverIndex++; // the next of the account's servers, if it has several
             String certificate = trust.explain(e, account.jid().substring(account.jid().indexOf('@') + 1));
             retry(account.jid(), certificate != null ? certificate : describe(e));
         }

@@ -81,7 +81,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final InventorySource inventorySource;
     private final String version;
     private final XMPPTCPConnection connection;
-    private final NoDelaySocketFactory sockets = new NoDelaySocketFactory();
+    /** The sockets: TCP_NODELAY, and the server chosen among the configured ones (a cluster's nodes). */
+    private final NoDelaySocketFactory sockets;
     private final ControlMlManager controlMl;
     private final ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
             "sabot-session-connect"));
@@ -108,6 +109,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
 
     /** Connector thread only: failed attempts since the last login. */
     private int failures;
+    /** Connector thread only: the servers not yet tried since the last login or the last round's end. */
+    private int untried;
     private volatile long offlineSinceNanos = System.nanoTime();
 
     private record Announced(PresenceLevel level, String reason) {
@@ -120,12 +123,16 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             Map<String, Object> properties) {
         this.settings = ControlMlSettings.of(properties);
         this.password = settings.password();
+        this.sockets = new NoDelaySocketFactory(settings.servers());
+        this.untried = sockets.size();
         this.inventorySource = inventorySource;
         this.version = context.getBundle().getVersion().toString();
         XMPPTCPConnectionConfiguration.Builder config = XMPPTCPConnectionConfiguration.builder();
         try {
             config.setXmppDomain(settings.jid().asDomainBareJid())
-                    .setHostAddressByNameOrIp(settings.server()) // a name is resolved when connecting, not here
+                    // the first server's; the sockets connect to the one chosen (NoDelaySocketFactory), a name resolved
+                    // when connecting, not here
+                    .setHostAddressByNameOrIp(settings.servers().get(0))
                     .setPort(settings.port())
                     .setUsernameAndPassword(settings.jid().getLocalpart(), password)
                     .setResource(settings.resource())
@@ -177,7 +184,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         };
         tasks.open();
         LOG.info("controlml task started: {} on {}:{} (resource {}, TLS trusting {}), {}", settings.jid(),
-                settings.server(), settings.port(), settings.resource(), settings.trust().describe(),
+                String.join(", ", settings.servers()), settings.port(), settings.resource(), settings.trust().describe(),
                 settings.open() ? "roles: none, the policy is open" : "roles from the server's groups: " + settings
                         .access().describe());
         if (settings.open()) {
@@ -299,9 +306,11 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             return;
         }
         double offlineFor = (System.nanoTime() - offlineSinceNanos) / 1e9;
-        LOG.info("online as {}{}", connection.getUser(), failures == 0 ? "" : String.format(
-                " after %d failed attempt(s), %.1f s offline", failures, offlineFor));
+        LOG.info("online as {}{}{}", connection.getUser(), sockets.size() > 1 ? " through " + sockets.current() : "",
+                failures == 0 ? "" : String.format(" after %d failed attempt(s), %.1f s offline", failures,
+                        offlineFor));
         failures = 0;
+        untried = sockets.size();
         publishIdentity(); // first: whoever sees the presence finds the vCard already stored
         sendPresence();
     }
@@ -353,10 +362,18 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             lastLoss = reason; // the status says why the session is offline
         }
         failures++;
-        Duration delay = backoff(failures, settings.reconnectMin(), settings.reconnectMax());
+        String server = sockets.current();
+        // another server of the list not tried since the last login: at once; once all were, the back-off
+        boolean another = sockets.size() > 1 && untried > 1;
+        Duration delay = another ? Duration.ZERO : backoff(failures, settings.reconnectMin(), settings.reconnectMax());
+        if (sockets.size() > 1) {
+            untried = another ? untried - 1 : sockets.size();
+            sockets.next();
+        }
         if (failures <= LOGGED_FAILURES) {
-            LOG.warn("cannot connect to {}:{} as {} (attempt {}): {}; next attempt in {} s{}", settings.server(),
-                    settings.port(), settings.jid(), failures, reason, delay.toMillis() / 1000.0,
+            LOG.warn("cannot connect to {}:{} as {} (attempt {}): {}; next attempt{} in {} s{}", server,
+                    settings.port(), settings.jid(), failures, reason, sockets.size() > 1 ? " through "
+                            + sockets.current() : "", delay.toMillis() / 1000.0,
                     failures == LOGGED_FAILURES ? " (further failures are logged at debug level until the session is"
                             + " back; it keeps trying every " + settings.reconnectMax().toMillis() / 1000.0
                             + " s at most)" : "");

@@ -32,7 +32,8 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * which belong to the ControlML endpoint). Types and ranges are the Metatype's; this adds what it cannot say: JID
  * syntax, the password file's existence and permissions, reconnectMin &le; reconnectMax.
  *
- * @param server            the XMPP server's host name or IP address
+ * @param servers           the XMPP server's host name or IP address; several: the nodes of a cluster on one port,
+ *                          tried in turn (the first until it fails)
  * @param port              its c2s port
  * @param jid               the robot's account
  * @param password          read from the password file: the account's password, or an enrolment token that the
@@ -49,7 +50,7 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
  * @param trust             whom the session trusts for the server's certificate (TLS is always required)
  */
-public record ControlMlSettings(String server, int port, EntityBareJid jid, String password, Path passwordFile,
+public record ControlMlSettings(List<String> servers, int port, EntityBareJid jid, String password, Path passwordFile,
         String resource,
         Duration reconnectMin, Duration reconnectMax, AccessRules access, boolean open, Duration staleCommandAfter,
         Duration liveness, String robotName, ServerTrust trust) {
@@ -90,9 +91,10 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         /** Highest telemetry rate, Hz. */
         double MAX_RATE_HZ = 100;
 
-        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address. The "
-                + "session always requires TLS (STARTTLS), with a certificate that names the account's domain and is "
-                + "signed by the CA of caFile.")
+        @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address; several,"
+                + " comma-separated, for the nodes of a cluster on one port (docs/CLUSTER.md): the session keeps to one"
+                + " until an attempt there fails, then tries the next at once. The session always requires TLS "
+                + "(STARTTLS), with a certificate that names the account's domain and is signed by the CA of caFile.")
         String server() default DEFAULT_SERVER;
 
         @AttributeDefinition(name = "CA file", required = false, description = "PEM file of the certificate "
@@ -197,7 +199,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
 
     @Override
     public String toString() { // never the password
-        return "ControlMlSettings[server=" + server + ", port=" + port + ", jid=" + jid + ", resource=" + resource
+        return "ControlMlSettings[servers=" + servers + ", port=" + port + ", jid=" + jid + ", resource=" + resource
                 + ", reconnect " + reconnectMin + ".." + reconnectMax + ", roles " + (open ? "open" : access.describe())
                 + ", trust "
                 + trust.describe() + "]";
@@ -205,9 +207,16 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
 
     private static ControlMlSettings parse(Map<String, ?> properties, List<Problem> problems) {
         TaskProperties p = new TaskProperties(properties);
-        String server = p.string(SERVER, DEFAULT_SERVER);
-        if (server.isEmpty()) {
-            problems.add(new Problem(SERVER, "no server given (a host name or an IP address)"));
+        List<String> servers = new ArrayList<>();
+        for (String item : p.string(SERVER, DEFAULT_SERVER).split(",")) {
+            String server = item.strip();
+            if (server.isEmpty() || server.chars().anyMatch(c -> Character.isWhitespace(c) || Character.isISOControl(c)
+                    || c == '/')) {
+                problems.add(new Problem(SERVER, "'" + server.replaceAll("\\p{Cntrl}", "?") + "' is not a server (a "
+                        + "host name or an IP address; several, comma-separated)"));
+            } else {
+                servers.add(server);
+            }
         }
         int port = DEFAULT_PORT;
         try {
@@ -272,7 +281,7 @@ public record ControlMlSettings(String server, int port, EntityBareJid jid, Stri
         if (!problems.isEmpty()) {
             return null;
         }
-        return new ControlMlSettings(server, port, jid, password, file, resource, reconnectMin, reconnectMax,
+        return new ControlMlSettings(List.copyOf(servers), port, jid, password, file, resource, reconnectMin, reconnectMax,
                 open ? AccessRules.none() : access, open, stale, liveness, robotName, trust);
     }
 

@@ -55,7 +55,7 @@ class ControlMlSettingsTest {
     @Test
     void defaultsApplyToEverySettingLeftOut() throws Exception {
         ControlMlSettings s = ControlMlSettings.of(settings);
-        assertEquals("127.0.0.1", s.server());
+        assertEquals(List.of("127.0.0.1"), s.servers());
         assertEquals(5222, s.port());
         assertEquals("s3cret", s.password(), "the first line, without its line end");
         assertEquals("onboard", s.resource());
@@ -153,6 +153,16 @@ class ControlMlSettingsTest {
     void aGroupNameWithAControlCharacterIsRefusedNamingIt() {
         settings.put("operatorGroups", "lab-ops, bad\u0007name");
         assertOneProblem("operatorGroups", "group name 'bad?name' has a control character");
+    }
+
+    @Test
+    void severalServersAreACommaSeparatedListAndABadOneIsNamed() throws Exception {
+        settings.put("server", " 127.0.0.1, 127.0.0.2 ,lab-2.example");
+        assertEquals(List.of("127.0.0.1", "127.0.0.2", "lab-2.example"), ControlMlSettings.of(settings).servers());
+        settings.put("server", "127.0.0.1,,lab 2");
+        assertEquals(List.of(new Problem("server", "'' is not a server (a host name or an IP address; several, "
+                + "comma-separated)"), new Problem("server", "'lab 2' is not a server (a host name or an IP address; "
+                        + "several, comma-separated)")), problems());
     }
 
     @Test
