@@ -19,7 +19,6 @@ import javax.net.SocketFactory;
  * the TCP level (a reset), without the TLS close that closing Smack's TLS socket writes. On a link that comes back,
  * that close would reach the server late, after the session has been resumed on a new connection, and Prosody 0.12
  * then ends the resumed stream (not-well-formed).
- */
  * <p>
  * Made with {@linkplain #NoDelaySocketFactory(List) several servers} (the nodes of a cluster, all on one port, as
  * behind one DNS name with several addresses), its sockets connect to the server now {@linkplain #current() chosen},
