@@ -15,6 +15,9 @@ import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.jxmpp.jid.EntityBareJid;
+import org.osgi.framework.BundleContext;
+import org.osgi.framework.FrameworkUtil;
+import org.osgi.framework.ServiceReference;
 
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Resources;
@@ -28,6 +31,7 @@ import sabot.fleet.PresenceLevels;
 import sabot.model.geometry.Pose2D;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
+import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
@@ -65,7 +69,14 @@ class ClusterFleetUiTest {
         try {
             XmppAccountStore store = XmppAccountStore.workbenchStore();
             store.forgetPassword();
-            store.saveRobots(List.of());
+            // a password alone changed: the plug-in is told (FleetState.reconnect), and drops the fleet without one
+            BundleContext context = FrameworkUtil.getBundle(ClusterFleetUiTest.class).getBundleContext();
+            ServiceReference<FleetState> ref = context.getServiceReference(FleetState.class);
+            try {
+                context.getService(ref).reconnect();
+            } finally {
+                context.ungetService(ref);
+            }
             waitFor(() -> fleetView().rows().isEmpty(), 20, () -> "fleet not emptied: " + fleetView().rows());
         } finally {
             if (poses != null) {
