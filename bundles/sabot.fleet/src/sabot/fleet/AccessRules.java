@@ -8,6 +8,8 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.stream.Collectors;
 import java.util.stream.Stream;
@@ -114,12 +116,18 @@ public final class AccessRules {
 
     /**
      * Reloads a roster after the server pushed a change; one reload at a time, and one more when pushes arrived
-     * during it. A reload that changes nothing ends the chain (it fires no event).
+     * during it. A reload that changes nothing ends the chain (it fires no event). A chain in which the roster changed
+     * is followed by one more reload {@value #SETTLE_MS} ms after its end: ejabberd 23.01 pushes an account's addition
+     * to a shared group before it writes it (mod_shared_roster's {@code add_user_to_group2}; a removal it writes
+     * first), so the reloads right after the push may read the roster from before the change, twice in a row on a
+     * cluster, where the write and the caches' clearing go to every node; the later reload reads it written.
      */
     private static final class ReloadAfterPush extends RosterEntriesListener {
         private final Roster roster;
         private final AtomicBoolean reloading = new AtomicBoolean();
         private final AtomicBoolean again = new AtomicBoolean();
+        /** The roster changed during the chain under way: its end schedules the settling reload. */
+        private final AtomicBoolean settle = new AtomicBoolean();
 
         ReloadAfterPush(Roster roster) {
             this.roster = roster;
@@ -127,10 +135,24 @@ public final class AccessRules {
 
         @Override
         protected void entriesChanged() {
+            settle.set(true); // (a settling reload that changes nothing schedules none: the chain ends there)
             if (!reloading.compareAndSet(false, true)) {
                 again.set(true);
                 return;
             }
+            reload();
+        }
+
+        /** The settling reload: its changes, if any, make a chain of their own that schedules no other. */
+        private void settling() {
+            if (!reloading.compareAndSet(false, true)) {
+                again.set(true); // a chain under way: it reads the roster after this moment anyway
+                return;
+            }
+            reload();
+        }
+
+        private void reload() {
             RosterLoadedListener loaded = new RosterLoadedListener() {
                 @Override
                 public void onRosterLoaded(Roster r) {
@@ -157,10 +179,17 @@ public final class AccessRules {
             roster.removeRosterLoadedListener(loaded);
             reloading.set(false);
             if (again.getAndSet(false)) {
-                entriesChanged();
+                if (reloading.compareAndSet(false, true)) {
+                    reload();
+                }
+            } else if (settle.getAndSet(false)) {
+                CompletableFuture.delayedExecutor(SETTLE_MS, TimeUnit.MILLISECONDS).execute(this::settling);
             }
         }
     }
+
+    /** How long after a chain of reloads that a push started the settling reload comes ({@link ReloadAfterPush}). */
+    static final long SETTLE_MS = 300;
 
     /**
      * @param requester    a requester's bare JID

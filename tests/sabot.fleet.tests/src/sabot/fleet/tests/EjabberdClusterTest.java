@@ -73,11 +73,6 @@ class EjabberdClusterTest {
     private static Pair pair(String robotName, String operatorName) throws Exception {
         EntityBareJid robotJid = XMPP.register(robotName, PrivateXmppServer.DOMAIN, PASSWORD);
         EntityBareJid operatorJid = XMPP.register(operatorName, PrivateXmppServer.DOMAIN, PASSWORD);
-        // the lab's administrator, through node 1's admin API: the groups are the cluster's. Before the logins: a
-        // change of a group that exists already, made while the robot is online, was once not pushed to it on the
-        // cluster (docs/CLUSTER.md), where one node alone always pushes it (FleetOnServerTest)
-        XMPP.enrolRobot(robotJid);
-        XMPP.grant(operatorJid, Role.OPERATOR);
         XMPPTCPConnection robot = on(1, robotName);
         XMPPTCPConnection operator = on(2, operatorName);
         AccessPolicy policy = AccessRules.labGroups().on(robot);
@@ -89,6 +84,9 @@ class EjabberdClusterTest {
             goal[0] = g;
             return Outcome.done();
         });
+        // the lab's administrator, through node 1's admin API, while both are online: the groups are the cluster's
+        XMPP.enrolRobot(robotJid);
+        XMPP.grant(operatorJid, Role.OPERATOR);
         FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, operator, Role.OPERATOR);
         return new Pair(robot, operator, cm, goal);
     }
