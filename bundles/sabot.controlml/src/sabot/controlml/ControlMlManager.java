@@ -3,7 +3,9 @@ package sabot.controlml;
 import java.time.Clock;
 import java.time.Duration;
 import java.time.Instant;
+import java.util.ArrayList;
 import java.util.Date;
+import java.util.Iterator;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -82,6 +84,10 @@ public final class ControlMlManager extends Manager {
     private final Endpoint endpoint;
     private final ClockOffsets clocks;
     private final Map<RequestId, PendingMessage<?>> pendingMessages = new ConcurrentHashMap<>();
+    /** Stored commands that arrived before their resource's handler ({@link #hold}). */
+    private final List<Message> held = new ArrayList<>();
+    /** The most stored commands held at once. */
+    static final int HELD_MAX = 256;
     private final Map<String, Boolean> sentStanzaIds = new LinkedHashMap<>(1024, 0.75f, false) {
         private static final long serialVersionUID = 1L;
 
@@ -452,6 +458,7 @@ public final class ControlMlManager extends Manager {
      */
     public <T, Q> void onGet(Resource<T, Q> resource, GetHandler<T, Q> handler) {
         endpoint.onGet(resource, handler);
+        releaseHeld(resource);
     }
 
     /**
@@ -461,6 +468,7 @@ public final class ControlMlManager extends Manager {
      */
     public <T> void onSet(Resource<T, ?> resource, SetHandler<T> handler) {
         endpoint.onSet(resource, handler);
+        releaseHeld(resource);
     }
 
     /** Stops serving a resource (gets and sets). */
@@ -522,6 +530,9 @@ public final class ControlMlManager extends Manager {
             return;
         }
         if (element.type() != null && element.type().isRequest()) {
+            if (hold(message, element)) {
+                return;
+            }
             Endpoint.Answer answer = endpoint.serve(element, element.type(), from, delayOf(message), Carrier.MESSAGE);
             Message reply;
             if (answer.element() != null) {
@@ -547,6 +558,51 @@ public final class ControlMlManager extends Manager {
             return;
         }
         completeFromMessage(pending, element);
+    }
+
+    /**
+     * A stored command (section 5) can arrive at the login, before the device's code has registered the handler of
+     * its resource (a robot's session logs in while its other tasks still start): a request for a resource of the
+     * registry that has no handler yet is held, and served once its handler is registered (judged then, by its age,
+     * with the stale-command policy), at most {@value #HELD_MAX}; beyond them, or for a name the registry does not
+     * know, it is answered at once. A device that never serves the resource never answers it, as if offline.
+     *
+     * @return whether the message was held
+     */
+    private boolean hold(Message message, ControlMlElement element) {
+        if (!element.hasValidAttributes() || endpoint.resources().byName(element.res()) == null || endpoint.serves(
+                element.type(), element.res())) {
+            return false;
+        }
+        synchronized (held) {
+            if (held.size() >= HELD_MAX) {
+                return false;
+            }
+            held.add(message);
+        }
+        LOG.info("stored command {} {} from {} held until this device serves {}", element.res(), element.id(),
+                message.getFrom(), element.res());
+        // registered meanwhile (between the check and the hold): released now
+        if (endpoint.serves(element.type(), element.res())) {
+            releaseHeld(endpoint.resources().byName(element.res()));
+        }
+        return true;
+    }
+
+    /** Serves the held messages that a handler of {@code resource} now serves (the registering thread). */
+    private void releaseHeld(Resource<?, ?> resource) {
+        List<Message> now = new ArrayList<>();
+        synchronized (held) {
+            for (Iterator<Message> i = held.iterator(); i.hasNext();) {
+                Message m = i.next();
+                ControlMlElement e = m.getExtension(ControlMlElement.class);
+                if (resource.name().equals(e.res()) && endpoint.serves(e.type(), e.res())) {
+                    now.add(m);
+                    i.remove();
+                }
+            }
+        }
+        now.forEach(this::onMessage);
     }
 
     private <T> void completeFromMessage(PendingMessage<T> pending, ControlMlElement element) {

@@ -101,6 +101,15 @@ public final class Endpoint {
         setHandlers.put(resource.name(), Objects.requireNonNull(handler));
     }
 
+    /**
+     * @return whether a request of this type for this resource has a handler here ({@code false} for a name this
+     *         device's registry does not know)
+     */
+    public boolean serves(ControlMlType type, String res) {
+        return res != null && (type == ControlMlType.GET ? getHandlers.containsKey(res) : type == ControlMlType.SET
+                && setHandlers.containsKey(res));
+    }
+
     /** Stops serving a resource. */
     public void removeHandlers(Resource<?, ?> resource) {
         getHandlers.remove(resource.name());

@@ -1,6 +1,7 @@
 package sabot.controlml.tests;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
@@ -35,6 +36,7 @@ import org.jivesoftware.smackx.time.packet.Time;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInfo;
+import org.jxmpp.jid.BareJid;
 import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 
@@ -467,6 +469,42 @@ abstract class ControlMlOnServerTest {
             }
         }
         throw new AssertionError("command " + id + " not in the archive: " + archived);
+    }
+
+    /**
+     * Section 5: a stored command that arrives at the login, before the device's code has registered the handler of
+     * its resource (a robot whose tasks still start), is held and applied once the handler is registered.
+     */
+    @Test
+    void aStoredCommandThatArrivesBeforeItsHandlerIsAppliedOnceTheHandlerIsThere(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = server().login(unique(info, "wb"));
+        String name = unique(info, "robot");
+        EntityBareJid robotJid = server().register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+        PendingCommand<Goal> sent = ControlMlManager.getInstanceFor(wb).sendCommandMessage(robotJid, Resources.GOAL,
+                NEW_GOAL);
+        assertArchived(wb, robotJid, sent.id()); // stored before the robot logs in
+
+        XMPPTCPConnection c = new XMPPTCPConnection(server().configuration(name, PrivateXmppServer.DOMAIN,
+                PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
+        ControlMlManager manager = ControlMlManager.getInstanceFor(c);
+        BareJid operator = wb.getUser().asBareJid();
+        manager.setAccessPolicy(j -> j.asBareJid().equals(operator) ? Role.MAINTAINER : Role.NONE);
+        CountDownLatch arrived = new CountDownLatch(1);
+        c.addSyncStanzaListener(stanza -> arrived.countDown(), stanza -> stanza instanceof Message && stanza
+                .getExtension(ControlMlElement.class) != null);
+        c.connect().login();
+        closeAfterClass.add(c);
+        assertTrue(arrived.await(TIMEOUT_S, TimeUnit.SECONDS), "the stored command never arrived");
+        assertFalse(sent.outcome().isDone(), "answered before the robot serves cm.goal: " + sent.outcome());
+
+        List<Goal> applied = new java.util.concurrent.CopyOnWriteArrayList<>();
+        manager.onSet(Resources.GOAL, (request, goal) -> {
+            applied.add(goal);
+            return Outcome.done();
+        });
+        Outcome<Goal> outcome = sent.outcome().get(TIMEOUT_S, TimeUnit.SECONDS);
+        assertTrue(outcome.isSuccess(), outcome::toString);
+        assertEquals(List.of(NEW_GOAL), applied);
     }
 
     private Robot offlineRobotComesOnline(String localpart, XMPPTCPConnection wb, StaleCommandPolicy policy)

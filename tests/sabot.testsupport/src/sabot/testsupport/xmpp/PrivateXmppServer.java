@@ -500,7 +500,15 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     /** Connects and logs in with a configuration; the connection is closed when the fixture stops. */
     public XMPPTCPConnection connect(XMPPTCPConnectionConfiguration configuration) throws IOException,
             InterruptedException, SmackException, XMPPException {
-        XMPPTCPConnection connection = new XMPPTCPConnection(configuration);
+        return connect(new XMPPTCPConnection(configuration));
+    }
+
+    /**
+     * Connects and logs in a connection made by the caller (who has set up its listeners and managers before the
+     * login); it is closed when the fixture stops.
+     */
+    public XMPPTCPConnection connect(XMPPTCPConnection connection) throws IOException, InterruptedException,
+            SmackException, XMPPException {
         synchronized (connections) {
             connections.add(connection);
         }
