@@ -33,6 +33,7 @@ public final class FleetBinding implements FleetListener {
     private final AtomicBoolean scheduled = new AtomicBoolean();
     private volatile ConnectionStatus status;
     private volatile List<String> accessRequests = List.of();
+    private volatile List<QueuedCommand> queued = List.of();
     private volatile boolean disposed;
 
     /**
@@ -70,6 +71,7 @@ public final class FleetBinding implements FleetListener {
                 robots.clear();
                 status = null;
                 accessRequests = List.of();
+                queued = List.of();
                 schedule();
             }
         });
@@ -122,6 +124,17 @@ public final class FleetBinding implements FleetListener {
     @Override
     public void accessRequestsChanged(List<String> jids) {
         accessRequests = List.copyOf(jids);
+        schedule();
+    }
+
+    /** @return the commands waiting for offline robots as last reported ({@link FleetState#queuedCommands()}) */
+    public List<QueuedCommand> queuedCommands() {
+        return queued;
+    }
+
+    @Override
+    public void queuedCommandsChanged(List<QueuedCommand> now) {
+        queued = List.copyOf(now);
         schedule();
     }
 

@@ -35,4 +35,12 @@ public interface FleetListener {
      */
     default void accessRequestsChanged(java.util.List<String> robots) {
     }
+
+    /**
+     * The commands waiting for offline robots changed ({@link FleetState#queuedCommands()}).
+     *
+     * @param queued oldest first; empty when none
+     */
+    default void queuedCommandsChanged(java.util.List<QueuedCommand> queued) {
+    }
 }

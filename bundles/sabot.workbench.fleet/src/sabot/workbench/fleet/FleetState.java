@@ -75,6 +75,28 @@ public interface FleetState {
     CompletableFuture<Void> goTo(String robot, Goal goal);
 
     /**
+     * Sends the robot to a goal when it comes online: a stored command (docs/CONTROLML.md section 5) that waits at the
+     * server while the robot is offline, listed in {@link #queuedCommands()} until the robot answers. The robot judges
+     * it by its age when it arrives (older than its stale limit, default 5 s: refused as {@code stale-command}). A
+     * default for providers written before this method: it refuses with
+     * {@link sabot.controlml.ControlMlCondition#UNSUPPORTED_OPERATION}.
+     *
+     * @param robot bare JID
+     * @return completes when the robot took the goal, exceptionally with its refusal; may take as long as the robot
+     *         stays offline
+     */
+    default CompletableFuture<Void> goToWhenOnline(String robot, Goal goal) {
+        return CompletableFuture.failedFuture(new FleetCommandException(
+                sabot.controlml.ControlMlCondition.UNSUPPORTED_OPERATION,
+                "this workbench's ControlML plug-in cannot queue commands for offline robots"));
+    }
+
+    /** @return the commands waiting for offline robots ({@link #goToWhenOnline}), oldest first; empty when none */
+    default List<QueuedCommand> queuedCommands() {
+        return List.of();
+    }
+
+    /**
      * Stops the robot: aborts its mission when one is running or paused ({@code cm.mission} set aborted), otherwise
      * commands a zero twist ({@code cm.velocity}).
      *

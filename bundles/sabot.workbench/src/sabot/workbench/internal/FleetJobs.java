@@ -112,6 +112,14 @@ public final class FleetJobs {
      * @param report  on the UI thread: the text to show and whether it is a refusal or failure
      * @return the scheduled job
      */
+    /** @return a command's failure for the operator: the robot's text and its ControlML reason, or the cause */
+    public static String describe(Throwable failure) {
+        FleetCommandException refusal = FleetCommandException.in(failure);
+        return refusal != null ? refusal.text() + " (" + refusal.condition().element() + ")" : String.valueOf(
+                failure instanceof ExecutionException || failure instanceof java.util.concurrent.CompletionException
+                        ? failure.getCause() : failure);
+    }
+
     public static Job run(String what, Display display, FleetState fleet, Function<FleetState,
             java.util.concurrent.CompletableFuture<?>> command, BiConsumer<String, Boolean> report) {
         Job job = Job.create(what, monitor -> {
@@ -122,9 +130,7 @@ public final class FleetJobs {
                 try {
                     command.apply(fleet).get(ANSWER_TIMEOUT_S, TimeUnit.SECONDS);
                 } catch (ExecutionException e) {
-                    FleetCommandException refusal = FleetCommandException.in(e);
-                    error = refusal != null ? refusal.text() + " (" + refusal.condition().element() + ")" : String
-                            .valueOf(e.getCause());
+                    error = describe(e);
                 } catch (TimeoutException e) {
                     error = "no answer within " + ANSWER_TIMEOUT_S + " s";
                 } catch (InterruptedException e) {

@@ -38,8 +38,9 @@ import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.MissionStatus;
-import sabot.workbench.fleet.RobotState;
 import sabot.workbench.fleet.FleetBinding;
+import sabot.workbench.fleet.QueuedCommand;
+import sabot.workbench.fleet.RobotState;
 
 /**
  * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
@@ -86,6 +87,8 @@ public final class FleetView extends ViewPart {
     private Text filter;
     private String filterText = "";
     private FleetBinding fleet;
+    /** The commands waiting for offline robots that the rows show (UI thread only). */
+    private List<QueuedCommand> shownQueued = List.of();
     /** The robots asking for access, below the table (hidden while none asks). */
     private AccessRequests accessRequests;
     private int sortColumn = 0;
@@ -107,7 +110,23 @@ public final class FleetView extends ViewPart {
 
     /** The texts of one row (for tests and the sort). */
     public static List<String> texts(RobotState r, Instant now) {
-        return List.of(r.name() + " <" + r.jid() + ">", presence(r), pose(r), mission(r.mission()), age(r, now));
+        return texts(r, now, List.of());
+    }
+
+    /**
+     * The texts of one row, with the commands waiting for the robot while it is offline
+     * ({@link sabot.workbench.fleet.FleetState#queuedCommands()}; those of other robots are ignored) in its Mission
+     * column.
+     */
+    public static List<String> texts(RobotState r, Instant now, List<QueuedCommand> queued) {
+        String mission = mission(r.mission());
+        List<String> waiting = queued.stream().filter(q -> q.robot().equals(r.jid())).map(q -> q.what() + " (sent "
+                + seconds(Duration.between(q.queuedAt(), now)) + " ago)").toList();
+        if (!waiting.isEmpty()) {
+            mission = "queued until online: " + String.join("; ", waiting) + (r.mission() == null ? "" : " | "
+                    + mission);
+        }
+        return List.of(r.name() + " <" + r.jid() + ">", presence(r), pose(r), mission, age(r, now));
     }
 
     private static String presence(RobotState r) {
@@ -194,7 +213,7 @@ public final class FleetView extends ViewPart {
 
                 @Override
                 public String getText(Object element) {
-                    return texts((RobotState) element, Instant.now()).get(index);
+                    return texts((RobotState) element, Instant.now(), fleet.queuedCommands()).get(index);
                 }
 
                 @Override
@@ -315,6 +334,11 @@ public final class FleetView extends ViewPart {
             return;
         }
         accessRequests.show(fleet.accessRequests(), fleet.fleet());
+        List<QueuedCommand> queued = fleet.queuedCommands();
+        if (!queued.equals(shownQueued)) {
+            shownQueued = queued; // rows whose robots' states did not change show them too
+            viewer.refresh();
+        }
         List<RobotState> robots = fleet.robots();
         if (presenceOrMembershipChanged(robots)) {
             update();

@@ -33,6 +33,7 @@ import org.osgi.annotation.versioning.ConsumerType;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
+import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
@@ -183,13 +184,32 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     // ---------------------------------------------------------------------------------------------- commands
 
-    /** Sends a goal to a robot in a job; the answer appears in the status line and on the map. */
+    /**
+     * Sends a goal to a robot in a job; the answer appears in the status line and on the map. To a robot that is
+     * offline it goes as a stored command ({@code FleetState.goToWhenOnline}): Fleet lists it until the robot, back,
+     * takes it or refuses it (older than its stale limit).
+     */
     public void sendGoal(String robot, Goal goal) {
         if (robot == null) {
             return;
         }
         String what = String.format(Locale.ROOT, "%s: go to (%.2f, %.2f, %.2f rad)", name(robot), goal.pose().x(),
                 goal.pose().y(), goal.pose().theta());
+        RobotState r = fleet.robot(robot);
+        FleetState f = fleet.fleet();
+        if (r != null && r.availability() == Availability.OFFLINE && f != null) {
+            // an offline robot: the goal waits for it at the server, listed in Fleet until the robot answers
+            show(what + ": queued until " + name(robot) + " is online (refused if older than its stale limit then)",
+                    false);
+            Display display = canvas.getDisplay();
+            f.goToWhenOnline(robot, goal).whenComplete((done, failure) -> {
+                String text = what + " (queued): " + (failure == null ? "done" : FleetJobs.describe(failure));
+                if (!display.isDisposed()) {
+                    display.asyncExec(() -> show(text, failure != null));
+                }
+            });
+            return;
+        }
         FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.goTo(robot, goal), this::show);
     }
 

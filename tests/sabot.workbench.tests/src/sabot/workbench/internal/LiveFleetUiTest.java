@@ -567,6 +567,45 @@ class LiveFleetUiTest {
     }
 
     /**
+     * A goal for a robot that is down (docs/CONTROLML.md section 5): the workbench queues it at the server and Fleet
+     * lists it; the robot's product, back after more than its stale limit (5 s; it takes longer to start), refuses it
+     * and stays where it is; the refusal reaches the status line and the list empties.
+     */
+    @Test
+    @Order(9)
+    void aGoalForARobotThatIsDownWaitsInFleetAndIsRefusedAsStaleWhenItComesBackLate() throws Exception {
+        onboard.close();
+        waitFor(() -> robotRow() != null && robotRow().availability() == Availability.OFFLINE, 20,
+                () -> "robot not offline: " + robotRow());
+        WorkspaceView workspace = workspace();
+        workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(GOAL[0], GOAL[1],
+                GOAL[2]), 0.1, 0.3));
+        waitFor(() -> missionText().startsWith("queued until online: go to (6.00, 4.40, 1.57 rad)"), 10,
+                () -> "not listed as queued: " + missionText());
+        assertTrue(workspace.lastMessage().contains("queued until sabot-01 is online"), workspace.lastMessage());
+        SimProcess.Truth before = truth();
+
+        onboard = OnboardProcess.start(onboard.config());
+        onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online again");
+        waitFor(() -> workspace.lastMessage().contains("(queued): ") && !missionText().startsWith("queued"), 30,
+                () -> "no answer shown: " + workspace.lastMessage() + "; " + missionText());
+        assertTrue(workspace.lastMessage().contains("stale-command"), workspace.lastMessage());
+        onboard.await(l -> l.contains("ready to move"), "saying the inertial biases have settled");
+        waitFor(() -> live(robotRow()), 30, () -> "robot not live again: " + robotRow());
+        assertTrue(truth().distanceTo(before.x(), before.y()) < 0.02, "a stale goal moved the robot");
+    }
+
+    /** @return the robot's Mission cell as Fleet shows it */
+    private static String missionText() {
+        for (org.eclipse.swt.widgets.TableItem item : fleetView().table().getItems()) {
+            if (item.getData() instanceof RobotState r && r.jid().equals(ROBOT_JID)) {
+                return item.getText(3);
+            }
+        }
+        return "(no row)";
+    }
+
+    /**
      * Holds the workbench's ingest once when armed: a synchronous stanza listener that the test's code adds to each
      * connection the workbench makes (Smack's connection-creation hook; the plug-in's code is unchanged). Smack calls a
      * connection's synchronous listeners in order on one thread, so everything received after the held message waits.

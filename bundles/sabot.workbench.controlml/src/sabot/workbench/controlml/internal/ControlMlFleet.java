@@ -34,6 +34,7 @@ import sabot.workbench.fleet.ConnectionStatus;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotIdentity;
+import sabot.workbench.fleet.QueuedCommand;
 import sabot.workbench.fleet.RobotState;
 
 /**
@@ -92,7 +93,7 @@ public final class ControlMlFleet implements FleetState {
         FleetRoster roster = new FleetRoster(registry, telemetry, connector, this::session);
         maps = new RobotMaps(this);
         connection = new FleetConnection(connector, named("sabot-fleet-liveness"), backoff, requestTimeout, registry,
-                roster, telemetry, maps);
+                roster, telemetry, maps, requests);
     }
 
     private FleetSession session() {
@@ -161,6 +162,16 @@ public final class ControlMlFleet implements FleetState {
         // the plan exists once the robot took the goal; show it with the goal
         sent.thenRun(() -> telemetry.fetchPlan(robot));
         return sent;
+    }
+
+    @Override
+    public CompletableFuture<Void> goToWhenOnline(String robot, Goal goal) {
+        return requests.goToWhenOnline(robot, goal);
+    }
+
+    @Override
+    public List<QueuedCommand> queuedCommands() {
+        return registry.queuedCommands();
     }
 
     @Override

@@ -48,6 +48,7 @@ final class FleetConnection {
     private final ScheduledExecutorService connector;
     private final ThreadFactory watchThreads;
     private final Backoff backoff;
+    private final FleetRequests requests;
     /** Connection thread: which of the account's servers the next attempt goes to (modulo their number). */
     private int serverIndex;
     private final Duration requestTimeout;
@@ -75,7 +76,8 @@ final class FleetConnection {
      */
     FleetConnection(ScheduledExecutorService connector, ThreadFactory watchThreads, Backoff backoff,
             Duration requestTimeout, RobotRegistry registry, FleetRoster roster, FleetTelemetry telemetry,
-            RobotMaps maps) {
+            RobotMaps maps, FleetRequests requests) {
+        this.requests = requests;
         this.connector = connector;
         this.watchThreads = watchThreads;
         this.backoff = backoff;
@@ -171,6 +173,8 @@ final class FleetConnection {
             c.setUseStreamManagementResumption(false);
             ControlMlManager manager = ControlMlManager.getInstanceFor(c);
             manager.setRequestTimeout(requestTimeout);
+            // answers to stored commands sent by an earlier session (FleetState.goToWhenOnline) come here
+            manager.addUnsolicitedAnswerListener((from, answer) -> requests.unsolicited(answer));
             Roster r = Roster.getInstanceFor(c);
             // One roster request at login, ours (reloadAndWait below). Smack would send another when authenticated:
             // the two results come back as asynchronous callbacks, and the later one, computed before a removal

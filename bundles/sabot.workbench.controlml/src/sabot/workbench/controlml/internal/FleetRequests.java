@@ -1,6 +1,10 @@
 package sabot.workbench.controlml.internal;
 
+import java.time.Instant;
+import java.util.Locale;
+import java.util.Map;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.function.Supplier;
@@ -11,20 +15,27 @@ import org.jivesoftware.smack.packet.Presence;
 import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smackx.vcardtemp.VCardManager;
 import org.jivesoftware.smackx.vcardtemp.packet.VCard;
+import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.Jid;
 import org.jxmpp.jid.impl.JidCreate;
 import org.jxmpp.stringprep.XmppStringprepException;
 
 import sabot.controlml.ControlMlCondition;
+import sabot.controlml.ControlMlElement;
 import sabot.controlml.ControlMlError;
 import sabot.controlml.ControlMlManager;
+import sabot.controlml.ControlMlType;
 import sabot.controlml.Outcome;
+import sabot.controlml.PendingCommand;
 import sabot.controlml.Resource;
+import sabot.controlml.Resources;
+import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceVCards;
 import sabot.identity.IdentityResult;
 import sabot.workbench.fleet.FleetCommandException;
+import sabot.workbench.fleet.QueuedCommand;
 import sabot.workbench.fleet.RobotIdentity;
 
 /**
@@ -37,6 +48,8 @@ final class FleetRequests {
     private final ExecutorService pool;
     private final Supplier<FleetSession> session;
     private final RobotRegistry registry;
+    /** The commands waiting for offline robots, by id: completed with the robot's answer. */
+    private final Map<String, CompletableFuture<Void>> queued = new ConcurrentHashMap<>();
 
     /** A request through the robot's ControlML manager. */
     @FunctionalInterface
@@ -60,6 +73,56 @@ final class FleetRequests {
 
     <T> CompletableFuture<T> set(String robot, Resource<T, ?> resource, T value) {
         return request(robot, (m, jid) -> m.set(jid, resource, value));
+    }
+
+    /**
+     * A goal for a robot that is offline, as a stored command (docs/CONTROLML.md section 5): listed in the registry's
+     * queued commands until the robot's answer comes, on this session or, when this one is lost meanwhile, on a later
+     * one ({@link #unsolicited}).
+     */
+    CompletableFuture<Void> goToWhenOnline(String robot, Goal goal) {
+        return onPool(() -> {
+            FleetSession s = sessionFor(robot);
+            EntityBareJid device;
+            try {
+                device = JidCreate.entityBareFrom(robot);
+            } catch (XmppStringprepException e) {
+                throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID");
+            }
+            PendingCommand<Goal> sent = s.manager().sendCommandMessage(device, Resources.GOAL, goal);
+            QueuedCommand q = new QueuedCommand(robot, sent.id().toString(), String.format(Locale.ROOT,
+                    "go to (%.2f, %.2f, %.2f rad)", goal.pose().x(), goal.pose().y(), goal.pose().theta()), Instant
+                            .now());
+            CompletableFuture<Void> done = new CompletableFuture<>();
+            queued.put(q.id(), done);
+            registry.addQueued(q);
+            sent.outcome().whenComplete((o, failure) -> answered(q.id(), o != null ? o : Outcome.failure(
+                    ControlMlCondition.UNSPECIFIED, String.valueOf(failure))));
+            return done;
+        }).thenCompose(f -> f);
+    }
+
+    /** An answer that came to a later session than the one that sent the command (stored for the workbench). */
+    void unsolicited(ControlMlElement answer) {
+        if (answer.id() != null && queued.containsKey(answer.id().toString())) {
+            answered(answer.id().toString(), answer.type() == ControlMlType.ERROR ? Outcome.failure(answer.failure())
+                    : Outcome.done());
+        }
+    }
+
+    private void answered(String id, Outcome<?> outcome) {
+        CompletableFuture<Void> done = queued.remove(id);
+        if (done == null) {
+            return; // answered already (the answer came twice: to the old session and a new one)
+        }
+        registry.removeQueued(id);
+        if (outcome instanceof Outcome.Failure<?> failure) {
+            ControlMlError e = failure.error();
+            done.completeExceptionally(new FleetCommandException(e.cmCondition() != null ? e.cmCondition()
+                    : ControlMlCondition.UNSPECIFIED, e.text() == null ? String.valueOf(e.condition()) : e.text()));
+        } else {
+            done.complete(null);
+        }
     }
 
     /** The robot's vCard, parsed with {@code sabot.identity}'s device profile. */

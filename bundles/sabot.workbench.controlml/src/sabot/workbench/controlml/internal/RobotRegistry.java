@@ -12,6 +12,7 @@ import java.util.function.UnaryOperator;
 import sabot.workbench.fleet.ConnectionStatus;
 import sabot.workbench.fleet.ConnectionStatus.State;
 import sabot.workbench.fleet.FleetListener;
+import sabot.workbench.fleet.QueuedCommand;
 import sabot.workbench.fleet.RobotState;
 
 /**
@@ -27,6 +28,8 @@ final class RobotRegistry {
     private final Set<FleetListener> listeners = new CopyOnWriteArraySet<>();
     private final Object stateLock = new Object();
     private volatile ConnectionStatus status;
+    /** The commands waiting for offline robots, oldest first (FleetState.queuedCommands). */
+    private volatile List<QueuedCommand> queued = List.of();
     /** The robots asking for access, sorted (FleetState.accessRequests). */
     private volatile List<String> asking = List.of();
 
@@ -61,6 +64,7 @@ final class RobotRegistry {
                 listener.connectionChanged(status);
                 robots.values().forEach(listener::robotChanged);
                 listener.accessRequestsChanged(asking);
+                listener.queuedCommandsChanged(queued);
             }
         });
     }
@@ -99,6 +103,35 @@ final class RobotRegistry {
                 notifier.execute(() -> listeners.forEach(l -> l.robotRemoved(jid)));
             }
         }
+    }
+
+    /** @return the commands waiting for offline robots, oldest first */
+    List<QueuedCommand> queuedCommands() {
+        return queued;
+    }
+
+    /** A command now waits for an offline robot; listeners hear of it. */
+    void addQueued(QueuedCommand command) {
+        synchronized (stateLock) {
+            List<QueuedCommand> now = new java.util.ArrayList<>(queued);
+            now.add(command);
+            setQueued(List.copyOf(now));
+        }
+    }
+
+    /** The command with this id no longer waits (answered); nothing when none does. */
+    void removeQueued(String id) {
+        synchronized (stateLock) {
+            List<QueuedCommand> now = queued.stream().filter(q -> !q.id().equals(id)).toList();
+            if (now.size() != queued.size()) {
+                setQueued(now);
+            }
+        }
+    }
+
+    private void setQueued(List<QueuedCommand> now) {
+        queued = now;
+        notifier.execute(() -> listeners.forEach(l -> l.queuedCommandsChanged(now)));
     }
 
     /** @return the robots asking for access, sorted */
