@@ -309,6 +309,7 @@ class LiveFleetUiTest {
     @Order(4)
     void ctrlShiftHStopsADrivingRobot() throws Exception {
         WorkspaceView workspace = workspace();
+        long sentAt = System.nanoTime();
         workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(START[0],
                 START[1], START[2]), 0.1, 0.2));
         SimProcess.Truth[] moving = new SimProcess.Truth[1];
@@ -568,7 +569,7 @@ class LiveFleetUiTest {
 
     /**
      * A goal for a robot that is down (docs/CONTROLML.md section 5): the workbench queues it at the server and Fleet
-     * lists it; the robot's product, back after more than its stale limit (5 s; it takes longer to start), refuses it
+     * lists it; the robot's product, back after more than its stale limit (5 s), refuses it
      * and stays where it is; the refusal reaches the status line and the list empties.
      */
     @Test
@@ -578,13 +579,20 @@ class LiveFleetUiTest {
         waitFor(() -> robotRow() != null && robotRow().availability() == Availability.OFFLINE, 20,
                 () -> "robot not offline: " + robotRow());
         WorkspaceView workspace = workspace();
+        long sentAt = System.nanoTime();
         workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(GOAL[0], GOAL[1],
                 GOAL[2]), 0.1, 0.3));
         waitFor(() -> missionText().startsWith("queued until online: go to (6.00, 4.40, 1.57 rad)"), 10,
                 () -> "not listed as queued: " + missionText());
         assertTrue(workspace.lastMessage().contains("queued until sabot-01 is online"), workspace.lastMessage());
         SimProcess.Truth before = truth();
-
+        // back later than its stale limit: the rule is one of time, so the test lets that time pass (not a wait for
+        // an event: nothing happens meanwhile)
+        long late = TimeUnit.NANOSECONDS.toMillis(sentAt + TimeUnit.MILLISECONDS.toNanos(STALE_LIMIT_MS + 500)
+                - System.nanoTime());
+        if (late > 0) {
+            TimeUnit.MILLISECONDS.sleep(late);
+        }
         onboard = OnboardProcess.start(onboard.config());
         onboard.await(l -> l.contains("XMPP session online"), "saying the XMPP session is online again");
         waitFor(() -> workspace.lastMessage().contains("(queued): ") && !missionText().startsWith("queued"), 30,
@@ -594,6 +602,9 @@ class LiveFleetUiTest {
         waitFor(() -> live(robotRow()), 30, () -> "robot not live again: " + robotRow());
         assertTrue(truth().distanceTo(before.x(), before.y()) < 0.02, "a stale goal moved the robot");
     }
+
+    /** The robot's {@code controlml.staleCommandAfter}: the product's default (docs/USER-GUIDE.md), ms. */
+    static final long STALE_LIMIT_MS = 5000;
 
     /** @return the robot's Mission cell as Fleet shows it */
     private static String missionText() {
