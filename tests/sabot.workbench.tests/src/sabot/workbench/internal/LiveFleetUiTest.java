@@ -603,8 +603,8 @@ class LiveFleetUiTest {
         assertTrue(truth().distanceTo(before.x(), before.y()) < 0.02, "a stale goal moved the robot");
     }
 
-    /** The robot's {@code controlml.staleCommandAfter}: the product's default (docs/USER-GUIDE.md), ms. */
-    static final long STALE_LIMIT_MS = 5000;
+    /** The robot's {@code controlml.staleCommandAfter}: the product's default, ms. */
+    static final long STALE_LIMIT_MS = TimeUnit.SECONDS.toMillis(sabot.controlml.ControlMl.DEFAULT_STALE_COMMAND_S);
 
     /** @return the robot's Mission cell as Fleet shows it */
     private static String missionText() {
