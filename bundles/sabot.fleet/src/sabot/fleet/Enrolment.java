@@ -55,7 +55,7 @@ public final class Enrolment {
         } catch (XMPPException.XMPPErrorException e) {
             throw new FleetException("the server refused to replace the enrolment token of " + connection.getUser()
                     .asBareJid() + ": " + e.getStanzaError().getCondition(), e);
-        } catch (SmackException | XMPPException e) {
+        } catch (SmackException e) {
             throw new FleetException("replacing the enrolment token of " + connection.getUser().asBareJid()
                     + " failed: " + e.getMessage(), e);
         }

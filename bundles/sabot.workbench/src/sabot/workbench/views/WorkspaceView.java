@@ -196,13 +196,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         String what = String.format(Locale.ROOT, "%s: go to (%.2f, %.2f, %.2f rad)", name(robot), goal.pose().x(),
                 goal.pose().y(), goal.pose().theta());
         RobotState r = fleet.robot(robot);
-        FleetState f = fleet.fleet();
-        if (r != null && r.availability() == Availability.OFFLINE && f != null) {
+        FleetState service = fleet.fleet();
+        if (r != null && r.availability() == Availability.OFFLINE && service != null) {
             // an offline robot: the goal waits for it at the server, listed in Fleet until the robot answers
             show(what + ": queued until " + name(robot) + " is online (refused if older than its stale limit then)",
                     false);
             Display display = canvas.getDisplay();
-            f.goToWhenOnline(robot, goal).whenComplete((done, failure) -> {
+            service.goToWhenOnline(robot, goal).whenComplete((done, failure) -> {
                 String text = what + " (queued): " + (failure == null ? "done" : FleetJobs.describe(failure));
                 if (!display.isDisposed()) {
                     display.asyncExec(() -> show(text, failure != null));
