@@ -579,17 +579,16 @@ class LiveFleetUiTest {
         waitFor(() -> robotRow() != null && robotRow().availability() == Availability.OFFLINE, 20,
                 () -> "robot not offline: " + robotRow());
         WorkspaceView workspace = workspace();
-        long sentAt = System.nanoTime();
         workspace.sendGoal(ROBOT_JID, new sabot.controlml.payload.Goal(new sabot.model.geometry.Pose2D(GOAL[0], GOAL[1],
                 GOAL[2]), 0.1, 0.3));
         waitFor(() -> missionText().startsWith("queued until online: go to (6.00, 4.40, 1.57 rad)"), 10,
                 () -> "not listed as queued: " + missionText());
         assertTrue(workspace.lastMessage().contains("queued until sabot-01 is online"), workspace.lastMessage());
         SimProcess.Truth before = truth();
-        // back later than its stale limit: the rule is one of time, so the test lets that time pass (not a wait for
-        // an event: nothing happens meanwhile)
-        long late = TimeUnit.NANOSECONDS.toMillis(sentAt + TimeUnit.MILLISECONDS.toNanos(STALE_LIMIT_MS + 500)
-                - System.nanoTime());
+        // back later than its stale limit: the rule is one of time, so the test lets that time pass from the moment
+        // the command left (the fleet's request pool may send it later than the click), not a wait for an event
+        Instant queuedAt = queuedAt(ROBOT_JID);
+        long late = Duration.between(Instant.now(), queuedAt.plusMillis(STALE_LIMIT_MS + 500)).toMillis();
         if (late > 0) {
             TimeUnit.MILLISECONDS.sleep(late);
         }
@@ -605,6 +604,18 @@ class LiveFleetUiTest {
 
     /** The robot's {@code controlml.staleCommandAfter}: the product's default, ms. */
     static final long STALE_LIMIT_MS = TimeUnit.SECONDS.toMillis(sabot.controlml.ControlMl.DEFAULT_STALE_COMMAND_S);
+
+    /** @return when the fleet sent the command it has queued for {@code robot} (the workbench's clock) */
+    private static Instant queuedAt(String robot) {
+        BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
+        ServiceReference<FleetState> ref = context.getServiceReference(FleetState.class);
+        try {
+            return context.getService(ref).queuedCommands().stream().filter(q -> q.robot().equals(robot)).findFirst()
+                    .orElseThrow(() -> new AssertionError("nothing queued for " + robot)).queuedAt();
+        } finally {
+            context.ungetService(ref);
+        }
+    }
 
     /** @return the robot's Mission cell as Fleet shows it */
     private static String missionText() {
