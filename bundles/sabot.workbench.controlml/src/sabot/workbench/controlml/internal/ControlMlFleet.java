@@ -66,6 +66,8 @@ public final class ControlMlFleet implements FleetState {
 
     private final Clock clock;
     private final ExecutorService requestPool = Executors.newFixedThreadPool(4, named("sabot-fleet-request"));
+    /** Sends stored commands for offline robots: a send waits for no answer, so never behind the pool's requests. */
+    private final ExecutorService storedCommands = Executors.newSingleThreadExecutor(named("sabot-fleet-stored"));
     private final ExecutorService notifier = Executors.newSingleThreadExecutor(named("sabot-fleet-events"));
     private final RobotRegistry registry;
     private final FleetRequests requests;
@@ -88,7 +90,7 @@ public final class ControlMlFleet implements FleetState {
         ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(named(
                 "sabot-fleet-connection"));
         registry = new RobotRegistry(clock, notifier);
-        requests = new FleetRequests(requestPool, this::session, registry);
+        requests = new FleetRequests(requestPool, storedCommands, this::session, registry);
         telemetry = new FleetTelemetry(clock, registry, requests, connector, this::session);
         FleetRoster roster = new FleetRoster(registry, telemetry, connector, this::session);
         maps = new RobotMaps(this);
@@ -117,6 +119,7 @@ public final class ControlMlFleet implements FleetState {
         }
         connection.stop();
         requestPool.shutdownNow();
+        storedCommands.shutdownNow();
         notifier.shutdown();
         LOG.info("ControlML plug-in stopped");
     }

@@ -46,6 +46,7 @@ import sabot.workbench.fleet.RobotIdentity;
 final class FleetRequests {
 
     private final ExecutorService pool;
+    private final ExecutorService sender;
     private final Supplier<FleetSession> session;
     private final RobotRegistry registry;
     /** The commands waiting for offline robots, by id: completed with the robot's answer. */
@@ -57,8 +58,14 @@ final class FleetRequests {
         Outcome<T> on(ControlMlManager manager, Jid robot);
     }
 
-    FleetRequests(ExecutorService pool, Supplier<FleetSession> session, RobotRegistry registry) {
+    /**
+     * @param pool   the requests' threads (each waits for its robot's answer)
+     * @param sender the thread that sends stored commands, which wait for no answer ({@link #goToWhenOnline})
+     */
+    FleetRequests(ExecutorService pool, ExecutorService sender, Supplier<FleetSession> session,
+            RobotRegistry registry) {
         this.pool = pool;
+        this.sender = sender;
         this.session = session;
         this.registry = registry;
     }
@@ -81,7 +88,7 @@ final class FleetRequests {
      * one ({@link #unsolicited}).
      */
     CompletableFuture<Void> goToWhenOnline(String robot, Goal goal) {
-        return onPool(() -> {
+        return on(sender, () -> {
             FleetSession s = sessionFor(robot);
             EntityBareJid device;
             try {
@@ -140,9 +147,14 @@ final class FleetRequests {
      * why it could not be asked), any other failure as UNSPECIFIED.
      */
     <T> CompletableFuture<T> onPool(Supplier<T> work) {
+        return on(pool, work);
+    }
+
+    /** As {@link #onPool}, on {@code threads}. */
+    private static <T> CompletableFuture<T> on(ExecutorService threads, Supplier<T> work) {
         CompletableFuture<T> f = new CompletableFuture<>();
         try {
-            pool.execute(() -> {
+            threads.execute(() -> {
                 try {
                     f.complete(work.get());
                 } catch (FleetCommandException e) {
