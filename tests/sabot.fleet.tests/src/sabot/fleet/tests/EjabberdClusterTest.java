@@ -76,14 +76,8 @@ class EjabberdClusterTest {
         XMPPTCPConnection robot = on(1, robotName);
         XMPPTCPConnection operator = on(2, operatorName);
         AccessPolicy policy = AccessRules.labGroups().on(robot);
+        Goal[] goal = FleetOnServerTest.goalDevice(robot, policy);
         ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
-        cm.setAccessPolicy(policy);
-        Goal[] goal = { new Goal(Pose2D.ORIGIN, 0.1, 0.1) };
-        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0]));
-        cm.onSet(Resources.GOAL, (r, g) -> {
-            goal[0] = g;
-            return Outcome.done();
-        });
         // the lab's administrator, through node 1's admin API, while both are online: the groups are the cluster's
         XMPP.enrolRobot(robotJid);
         XMPP.grant(operatorJid, Role.OPERATOR);

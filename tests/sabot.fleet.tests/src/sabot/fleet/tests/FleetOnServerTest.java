@@ -118,14 +118,7 @@ abstract class FleetOnServerTest {
         Roster roster = Roster.getInstanceFor(robot);
         roster.reloadAndWait();
         AccessPolicy policy = AccessRules.labGroups().on(robot);
-        ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
-        cm.setAccessPolicy(policy);
-        Goal[] goal = { new Goal(Pose2D.ORIGIN, 0.1, 0.1) };
-        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0]));
-        cm.onSet(Resources.GOAL, (r, g) -> {
-            goal[0] = g;
-            return Outcome.done();
-        });
+        Goal[] goal = goalDevice(robot, policy);
         // the operator sees it asking for access; the robot sees no group, so nobody has a role there
         Roster operators = Roster.getInstanceFor(operator);
         awaitRole(operators, j -> AccessRules.groupsIn(operators, j).contains(AccessRules.ENROLLING_GROUP)
@@ -407,6 +400,23 @@ abstract class FleetOnServerTest {
                 Pose2D.ORIGIN, 1, 1)).errorOrNull();
         assertEquals(ControlMlCondition.ACCESS_DENIED, revoked.cmCondition());
         assertEquals(target, goal[0], "the refused set changed nothing");
+    }
+
+    /**
+     * Makes {@code robot} a device that serves {@code cm.goal} (get and set) under {@code policy}.
+     *
+     * @return the goal it holds (one element, the handlers' own), at first the origin
+     */
+    static Goal[] goalDevice(XMPPConnection robot, AccessPolicy policy) {
+        ControlMlManager cm = ControlMlManager.getInstanceFor(robot);
+        cm.setAccessPolicy(policy);
+        Goal[] goal = { new Goal(Pose2D.ORIGIN, 0.1, 0.1) };
+        cm.onGet(Resources.GOAL, (r, q) -> Outcome.success(goal[0]));
+        cm.onSet(Resources.GOAL, (r, g) -> {
+            goal[0] = g;
+            return Outcome.done();
+        });
+        return goal;
     }
 
     /** Waits, on the device's roster changes, until {@code who} holds {@code role} there (at most 10 s). */
