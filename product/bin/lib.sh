@@ -371,3 +371,12 @@ sabot_xvfb_exec() {
     command -v xvfb-run >/dev/null || sabot_die "xvfb-run missing: apt-get install -y xvfb xauth"
     exec xvfb-run -a -s "${SABOT_XVFB_SCREEN[*]}" "$@"
 }
+
+# psql on the ControlML archive of a private ejabberd started with --archive sql (product/bin/sabot-xmpp): DIR/pg's
+# database "ejabberd" as its owner over 127.0.0.1, the rest of the arguments passed to psql (docs/ARCHIVE.md).
+sabot_archive_sql() { # DIR PSQL-ARGUMENTS...
+    local pg=$1/pg
+    shift
+    PGPASSWORD=$(cat "$pg/password") psql -X -q -h 127.0.0.1 -p "$(cat "$pg/port")" -U ejabberd -d ejabberd \
+        -v ON_ERROR_STOP=1 "$@"
+}

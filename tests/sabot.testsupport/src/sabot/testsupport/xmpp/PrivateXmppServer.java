@@ -93,6 +93,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private Thread shutdownHook;
     /** Plain TCP, no TLS ({@code sabot-xmpp start --tls off}): for the benchmark that compares the two only. */
     private boolean plainTcp;
+    /** The archive ({@code sabot-xmpp start --archive}): MAM in memory, or PostgreSQL ({@link #sqlArchive()}). */
+    private String archive = "memory";
     /** 2 for a two-node ejabberd cluster ({@link #ejabberdCluster()}), else 1. */
     private int nodes = 1;
     /** A cluster's second node: its pid (0 when stopped), port and loopback address. */
@@ -134,6 +136,18 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     public PrivateXmppServer plainTcp() {
         this.plainTcp = true;
+        return this;
+    }
+
+    /**
+     * Gives the server (ejabberd) its archive in a private PostgreSQL ({@code --archive sql}; set before
+     * {@link #start()}): MAM, offline messages and entity capabilities there, and every ControlML stanza archived
+     * (docs/ARCHIVE.md), read with {@link #archiveLog(String...)}.
+     *
+     * @return this fixture
+     */
+    public PrivateXmppServer sqlArchive() {
+        this.archive = "sql";
         return this;
     }
 
@@ -210,7 +224,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         Files.createDirectories(runDir);
         Path log = runDir.resolve(SCRIPT_LOG);
         Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
-                Integer.toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT
+                Integer.toString(c2sPort), "--archive", archive, "--timeout", Long.toString(READY_TIMEOUT
                         .toSeconds()), "--tls", plainTcp ? "off" : "required", "--nodes", Integer.toString(nodes))
                 .redirectError(log.toFile()).start();
         script.getOutputStream().close();
@@ -256,7 +270,11 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     }
 
     private ProcessBuilder script(String... arguments) {
-        Path script = repositoryRoot().resolve("product/bin/sabot-xmpp");
+        return command("sabot-xmpp", arguments);
+    }
+
+    private ProcessBuilder command(String name, String... arguments) {
+        Path script = repositoryRoot().resolve("product/bin/" + name);
         if (!Files.isExecutable(script)) {
             throw new IllegalStateException(script + " is missing or not executable");
         }
@@ -446,17 +464,36 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         runScript("", "enrol", "refuse", "--run", runDir.toString(), robot.toString());
     }
 
+    /**
+     * Reads the ControlML archive ({@link #sqlArchive()}) as {@code ./sabot log} does: {@code product/bin/sabot-log}
+     * with this server's state directory and {@code arguments}.
+     *
+     * @return its lines
+     * @throws IOException with its error line when it fails
+     */
+    public List<String> archiveLog(String... arguments) throws IOException, InterruptedException {
+        List<String> command = new ArrayList<>(List.of("--run", runDir.toString()));
+        command.addAll(List.of(arguments));
+        String out = runCommand("sabot-log", "", command.toArray(String[]::new));
+        return out.isEmpty() ? List.of() : List.of(out.split("\n"));
+    }
+
     /** Runs sabot-xmpp with {@code input} on its stdin; its log appended to the script log. @return its stdout */
     private String runScript(String input, String... arguments) throws IOException, InterruptedException {
+        return runCommand("sabot-xmpp", input, arguments);
+    }
+
+    private String runCommand(String name, String input, String... arguments) throws IOException,
+            InterruptedException {
         Path log = runDir.resolve(SCRIPT_LOG);
-        Process script = script(arguments).redirectError(Redirect.appendTo(log.toFile())).start();
+        Process script = command(name, arguments).redirectError(Redirect.appendTo(log.toFile())).start();
         try (var in = script.getOutputStream()) {
             in.write(input.getBytes(StandardCharsets.UTF_8));
         }
         String out = new String(script.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
         int status = awaitScript(script);
         if (status != 0) {
-            throw new IOException("sabot-xmpp " + String.join(" ", arguments) + " failed: " + failure(log));
+            throw new IOException(name + " " + String.join(" ", arguments) + " failed: " + failure(log));
         }
         return out;
     }
