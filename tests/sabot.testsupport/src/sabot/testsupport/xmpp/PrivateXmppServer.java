@@ -478,6 +478,16 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return out.isEmpty() ? List.of() : List.of(out.split("\n"));
     }
 
+    /**
+     * Runs SQL in the archive's database ({@link #sqlArchive()}; {@code sabot-xmpp sql}).
+     *
+     * @return its rows, fields separated by {@code |}
+     */
+    public List<String> archiveSql(String sql) throws IOException, InterruptedException {
+        String out = runScript(sql, "sql", "--run", runDir.toString()).strip();
+        return out.isEmpty() ? List.of() : List.of(out.split("\n"));
+    }
+
     /** Runs sabot-xmpp with {@code input} on its stdin; its log appended to the script log. @return its stdout */
     private String runScript(String input, String... arguments) throws IOException, InterruptedException {
         return runCommand("sabot-xmpp", input, arguments);

@@ -71,6 +71,8 @@ public final class ControlMlBench {
     private PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
     private int robots = 100;
     private int subscribers = 2;
+    /** ejabberd with its archive in PostgreSQL (docs/ARCHIVE.md): every publication counted there at the end. */
+    private boolean archive;
     private double rateHz = 10;
     private int durationS = 60;
     private boolean telemetry = true;
@@ -101,11 +103,12 @@ public final class ControlMlBench {
                 case "--xml-form" -> textForm = false;
                 case "--shared-cpus" -> sharedCpus = true;
                 case "--tls" -> tlsCost = true;
+                case "--archive" -> archive = true;
                 case "--logins" -> logins = Integer.parseInt(args[++i]);
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
-                            + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] [--rate HZ (10)] "
-                            + "[--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]\n"
+                            + "[--server prosody|ejabberd [--archive]] [--robots N (100)] [--subscribers N (2)] "
+                            + "[--rate HZ (10)] [--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]\n"
                             + "       ./sabot bench controlml --tls [--server prosody|ejabberd] [--requests N (10000)] "
                             + "[--logins N (200)] [--robots N (100)]: what TLS and SCRAM cost (TlsCost)");
                     System.exit(0);
@@ -130,7 +133,12 @@ public final class ControlMlBench {
             printJson(figures);
             return 0;
         }
-        try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
+        if (archive && kind != PrivateXmppServer.Kind.EJABBERD) {
+            throw new IllegalArgumentException("--archive: the archive in PostgreSQL is ejabberd's (--server ejabberd)");
+        }
+        PrivateXmppServer fixture = archive ? PrivateXmppServer.of(kind).sqlArchive() : PrivateXmppServer.of(kind);
+        figures.put("archive", archive);
+        try (PrivateXmppServer server = fixture.start()) {
             figures.put("server_ready_ms", server.startupTime().toMillis());
             CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
             System.out.println("[bench] CPUs: " + cpus.description());
@@ -531,12 +539,46 @@ public final class ControlMlBench {
         figures.put("telemetry_p99_ms", lat.length == 0 ? "null" : round(ms(lat, 0.99)));
         figures.put("server_cpu_pct", round(serverCpuPct));
         figures.put("client_cpu_pct", round(clientCpuPct));
+        if (archive) {
+            archived(server, robotConnections, figures);
+        }
         for (XMPPTCPConnection c : robotConnections) {
             c.instantShutdown();
         }
         for (XMPPTCPConnection c : subs) {
             c.instantShutdown();
         }
+    }
+
+    /**
+     * Every value the robots published (in the window and around it: warm-up and settling included), against the
+     * values in the archive: rows of kind telemetry, one per publication stanza, and their distinct values (a value
+     * sent again after ejabberd refused its publish-options is one value, two stanzas). The archive writes every
+     * 200 ms: counted until the count stops growing for 1 s.
+     */
+    private static void archived(PrivateXmppServer server, List<XMPPTCPConnection> robots, Map<String, Object> figures)
+            throws Exception {
+        long sent = robots.stream().mapToLong(c -> {
+            var stats = TelemetryManager.getInstanceFor(c).statistics();
+            return stats.published() + stats.failed();
+        }).sum();
+        String sql = "SELECT count(*), count(DISTINCT (device, cm_id)) FROM sabot_archive WHERE kind = 'telemetry'";
+        String last = "";
+        String now = String.join("", server.archiveSql(sql));
+        long settle = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+        while (!now.equals(last) && System.nanoTime() < settle) {
+            last = now;
+            new CountDownLatch(1).await(1, TimeUnit.SECONDS); // the database is another process: no event to wait on
+            now = String.join("", server.archiveSql(sql));
+        }
+        String[] counts = now.split("\\|");
+        long rows = Long.parseLong(counts[0].strip());
+        long values = Long.parseLong(counts[1].strip());
+        System.out.printf("[bench] archive: %d telemetry values sent (accepted or failed), %d archived (%d "
+                + "stanzas)%s%n", sent, values, rows, values == sent ? "" : ": MISSING " + (sent - values));
+        figures.put("archive_sent", sent);
+        figures.put("archived", values);
+        figures.put("archived_stanzas", rows);
     }
 
     /** The measurement window in epoch nanoseconds; closed until opened. */
