@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.time.Instant;
 import java.util.Arrays;
+import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.BlockingQueue;
@@ -48,7 +49,8 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * A fleet on a two-node ejabberd cluster (docs/CLUSTER.md): the robot on node 1 (127.0.0.1), the operator on node 2
  * (127.0.0.2). The accounts and the lab's groups are one Mnesia; roles, ControlML requests, presence levels and
  * telemetry (an explicit subscription: ejabberd's entity-capability cache is per node) cross the nodes. A node that
- * dies leaves the other serving, and the robot logs in again through it.
+ * dies leaves the other serving, and the robot logs in again through it. Both nodes archive into one PostgreSQL
+ * (docs/ARCHIVE.md).
  */
 @Tag("ejabberd")
 @TestMethodOrder(MethodOrderer.OrderAnnotation.class)
@@ -57,7 +59,7 @@ class EjabberdClusterTest {
     static final long TIMEOUT_S = 10;
 
     @RegisterExtension
-    static final PrivateXmppServer XMPP = PrivateXmppServer.ejabberdCluster();
+    static final PrivateXmppServer XMPP = PrivateXmppServer.ejabberdCluster().sqlArchive();
 
     private static final String PASSWORD = "cluster-pw";
 
@@ -105,6 +107,18 @@ class EjabberdClusterTest {
         System.out.printf(Locale.ROOT, "[figure] ejabberd cluster: cm.goal get from node 2 to a robot on node 1: p50 "
                 + "%.2f ms, p99 %.2f ms (%d requests)%n", rtt[rtt.length / 2] / 1e6, rtt[rtt.length * 99 / 100] / 1e6,
                 rtt.length);
+        // each node archived what its clients sent, into the one database (docs/ARCHIVE.md): the goal through node
+        // 2, its answer through node 1; the archive writes every 200 ms, in another process: polled
+        String sql = "SELECT kind, node FROM sabot_archive WHERE device = '" + p.robot().getUser().asBareJid()
+                + "' AND res = 'cm.goal' AND kind IN ('set', 'result') ORDER BY seq LIMIT 2";
+        List<String> rows = XMPP.archiveSql(sql);
+        for (long end = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S); rows.size() < 2
+                && System.nanoTime() < end; rows = XMPP.archiveSql(sql)) {
+            Thread.sleep(50);
+        }
+        assertEquals(2, rows.size(), "the goal and its answer not archived: " + rows);
+        assertTrue(rows.get(0).startsWith("set|") && rows.get(0).endsWith("@127.0.0.2"), rows.get(0));
+        assertTrue(rows.get(1).startsWith("result|") && rows.get(1).endsWith("@127.0.0.1"), rows.get(1));
 
         // its presence level across the nodes
         Roster roster = Roster.getInstanceFor(p.operator());
