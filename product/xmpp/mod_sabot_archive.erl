@@ -13,12 +13,16 @@
 %%% wait. A failed write keeps the rows for the next attempt (logged once per failure streak), up to ?MAX_HELD rows;
 %%% beyond that the oldest are dropped and counted in the log. Rows older than the option retention_days are
 %%% deleted at start and every hour.
+%%%
+%%% It also answers the command history of a device (urn:sabot:archive:1, docs/ARCHIVE.md): an IQ get to the server's
+%%% domain from an account in one of the groups of the option readers (the lab's roles), answered from the view
+%%% sabot_requests after this node's archiver has written what it held.
 -module(mod_sabot_archive).
 -behaviour(gen_mod).
 -behaviour(gen_server).
 
 -export([start/2, stop/1, reload/3, depends/2, mod_options/1, mod_opt_type/1, mod_doc/0]).
--export([start_link/2, user_send_packet/1]).
+-export([start_link/2, user_send_packet/1, process_iq/1, decode_iq_subel/1]).
 -export([init/1, handle_call/3, handle_cast/2, handle_info/2, terminate/2, code_change/3]).
 
 -include("logger.hrl").
@@ -26,6 +30,9 @@
 
 -define(NS_CONTROLML, <<"urn:sabot:controlml:1">>).
 -define(NS_CONTROLML_ERRORS, <<"urn:sabot:controlml:1:errors">>).
+-define(NS_ARCHIVE, <<"urn:sabot:archive:1">>).
+-define(HISTORY_MAX, 500).
+-define(HISTORY_DEFAULT, 50).
 -define(TELEMETRY_NODE_PREFIX, <<"urn:sabot:controlml:1:telemetry:">>).
 -define(FLUSH_MS, 200).
 -define(BATCH, 1000).
@@ -48,10 +55,12 @@ depends(_Host, _Opts) ->
     [].
 
 mod_opt_type(retention_days) ->
-    econf:pos_int().
+    econf:pos_int();
+mod_opt_type(readers) ->
+    econf:list(econf:binary()).
 
 mod_options(_Host) ->
-    [{retention_days, 30}].
+    [{retention_days, 30}, {readers, []}].
 
 mod_doc() ->
     #{desc => ["Archives every ControlML stanza (Sabot) in the SQL table sabot_archive."]}.
@@ -192,10 +201,89 @@ element(Record) -> xmpp:encode(Record).
 
 attr(Name, El) -> fxml:get_tag_attr_s(Name, El).
 
+%%% --- the command history ---------------------------------------------------------------------------------------
+%% <history xmlns='urn:sabot:archive:1' device='BARE JID' [max='1..500'] [before='SEQ']/>: the device's commands (sets),
+%% newest first, each with its answer.
+
+%% The request reaches process_iq as XML (ejabberd's codec does not know the element).
+decode_iq_subel(El) ->
+    El.
+
+process_iq(#iq{type = set, lang = Lang} = IQ) ->
+    xmpp:make_error(IQ, xmpp:err_not_allowed(<<"the command history is read with a get">>, Lang));
+process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = IQ) ->
+    Host = To#jid.lserver,
+    Readers = gen_mod:get_module_opt(Host, ?MODULE, readers),
+    Groups = mod_shared_roster:list_groups(Host), % a group not made yet holds nobody (and would crash the check)
+    case lists:any(fun(G) -> lists:member(G, Groups) andalso
+                                 mod_shared_roster:is_user_in_group({From#jid.luser, From#jid.lserver}, G, Host)
+                   end, Readers) of
+        false ->
+            xmpp:make_error(IQ, xmpp:err_forbidden(
+                iolist_to_binary([<<"the command history is for the lab's roles (the groups ">>,
+                                  lists:join(<<", ">>, Readers), <<")">>]), Lang));
+        true ->
+            case history_query(element(El)) of
+                {error, Text} ->
+                    xmpp:make_error(IQ, xmpp:err_bad_request(Text, Lang));
+                {ok, Device, Query} ->
+                    gen_server:call(gen_mod:get_module_proc(Host, ?MODULE), flush),
+                    case ejabberd_sql:sql_query(Host, Query) of
+                        {selected, _Columns, Rows} ->
+                            xmpp:make_iq_result(IQ, #xmlel{name = <<"history">>,
+                                                           attrs = [{<<"xmlns">>, ?NS_ARCHIVE}, {<<"device">>, Device}],
+                                                           children = [command(Row) || Row <- Rows]});
+                        Error ->
+                            ?ERROR_MSG("Sabot archive: the history of ~ts not read: ~p", [Device, Error]),
+                            xmpp:make_error(IQ, xmpp:err_internal_server_error(<<"the archive could not be read">>,
+                                                                               Lang))
+                    end
+            end
+    end;
+process_iq(#iq{lang = Lang} = IQ) ->
+    xmpp:make_error(IQ, xmpp:err_bad_request(<<"expected one history element">>, Lang)).
+
+-define(HISTORY_COLUMNS, [<<"seq">>, <<"at">>, <<"via">>, <<"res">>, <<"id">>, <<"from">>, <<"answer">>,
+                          <<"condition">>, <<"text">>, <<"ms">>]).
+
+history_query(#xmlel{name = <<"history">>} = El) ->
+    Device = try jid:decode(attr(<<"device">>, El)) of
+                 #jid{luser = U, lresource = <<>>} = J when U /= <<>> -> {ok, jid:encode(J)};
+                 _ -> error
+             catch _:_ -> error
+             end,
+    Max = int_attr(<<"max">>, El, ?HISTORY_DEFAULT),
+    Before = int_attr(<<"before">>, El, none),
+    case {Device, Max, Before} of
+        {error, _, _} -> {error, <<"device: expected a bare JID (robot@sabot.local)">>};
+        {_, M, _} when not is_integer(M); M < 1; M > ?HISTORY_MAX ->
+            {error, iolist_to_binary(io_lib:format("max: expected 1..~B commands", [?HISTORY_MAX]))};
+        {_, _, bad} -> {error, <<"before: expected a command's seq">>};
+        {{ok, D}, _, _} ->
+            {ok, D, [<<"SELECT seq, to_char(at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"'), via, res, "
+                       "cm_id, sender, coalesce(answer, ''), condition, text, coalesce(answer_ms::text, '') "
+                       "FROM sabot_requests WHERE kind = 'set' AND device = ">>, literal(D),
+                     case Before of none -> <<>>; _ -> [<<" AND seq < ">>, integer_to_binary(Before)] end,
+                     <<" ORDER BY seq DESC LIMIT ">>, integer_to_binary(Max)]}
+    end;
+history_query(_) ->
+    {error, <<"expected <history xmlns='urn:sabot:archive:1' device='...'/>">>}.
+
+int_attr(Name, El, Default) ->
+    case attr(Name, El) of
+        <<>> -> Default;
+        V -> try binary_to_integer(V) of N when N >= 0 -> N; _ -> bad catch _:_ -> bad end
+    end.
+
+command(Row) ->
+    #xmlel{name = <<"command">>,
+           attrs = [{K, V} || {K, V} <- lists:zip(?HISTORY_COLUMNS, Row), is_binary(V), V /= <<>>]}.
+
 %%% --- the archiver -------------------------------------------------------------------------------------------------
 init([Host, Opts]) ->
     process_flag(trap_exit, true),
     ejabberd_hooks:add(user_send_packet, Host, ?MODULE, user_send_packet, 100),
+    gen_iq_handler:add_iq_handler(ejabberd_local, Host, ?NS_ARCHIVE, ?MODULE, process_iq),
     erlang:send_after(0, self(), purge),
     ?INFO_MSG("Sabot archive of ControlML stanzas on ~ts: retention ~B days",
               [Host, gen_mod:get_opt(retention_days, Opts)]),
@@ -232,6 +320,7 @@ handle_info(_Info, State) ->
 
 terminate(_Reason, #state{host = Host} = State) ->
     ejabberd_hooks:delete(user_send_packet, Host, ?MODULE, user_send_packet, 100),
+    gen_iq_handler:remove_iq_handler(ejabberd_local, Host, ?NS_ARCHIVE),
     flush(State),
     ok.
 

@@ -23,3 +23,18 @@ CREATE TABLE IF NOT EXISTS sabot_archive (
 CREATE INDEX IF NOT EXISTS sabot_archive_device_at ON sabot_archive (device, at);
 CREATE INDEX IF NOT EXISTS sabot_archive_at ON sabot_archive (at);
 CREATE INDEX IF NOT EXISTS sabot_archive_answer ON sabot_archive (device, cm_id); -- an answer to its request
+
+-- A request with its answer: the device's result or error with the request's ControlML id, to the requester's
+-- account, by the same way (an IQ answers an IQ; a stored command is answered by a message). What ./sabot log and
+-- the command history (urn:sabot:archive:1, mod_sabot_archive.erl) read.
+CREATE OR REPLACE VIEW sabot_requests AS
+SELECT r.seq, r.at, r.device, r.kind, r.via, r.res, r.cm_id, r.sender, r.recipient, r.xml,
+       a.kind AS answer, coalesce(a.condition, '') AS condition, coalesce(a.text, '') AS text,
+       round((extract(epoch FROM a.at - r.at) * 1000)::numeric, 1) AS answer_ms
+FROM sabot_archive r
+LEFT JOIN LATERAL (
+    SELECT a.kind, a.condition, a.text, a.at FROM sabot_archive a
+    WHERE a.device = r.device AND a.cm_id = r.cm_id AND a.via = r.via AND a.kind IN ('result', 'error')
+      AND split_part(a.recipient, '/', 1) = split_part(r.sender, '/', 1) AND a.at >= r.at
+    ORDER BY a.at LIMIT 1) a ON true
+WHERE r.kind IN ('get', 'set');

@@ -16,6 +16,9 @@ import java.util.concurrent.TimeUnit;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
+import org.jivesoftware.smack.XMPPException.XMPPErrorException;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Tag;
@@ -32,14 +35,16 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.fleet.AccessRules;
+import sabot.fleet.CommandHistory;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * The archive of every ControlML stanza (docs/ARCHIVE.md) on a private ejabberd with its private PostgreSQL
  * ({@code sabot-xmpp start --archive sql}): requests, answers, a command stored for the device and telemetry are
- * rows of the database, read back with {@code sabot-log} (what {@code ./sabot log} runs), each command with who sent
- * it and its answer; bad arguments to the log are refused with why.
+ * rows of the database, read back with {@code sabot-log} (what {@code ./sabot log} runs) and as a device's command
+ * history over XMPP ({@link CommandHistory}), each command with who sent it and its answer; bad arguments to either
+ * are refused with why.
  */
 @Tag("ejabberd")
 class ArchiveTest {
@@ -151,6 +156,92 @@ class ArchiveTest {
         assertEquals(List.of(), unexpected);
         assertEquals(rows, XMPP.archiveLog("--all", "--until", then, "--limit", "9999999").size(),
                 "a refused call changed the archive");
+    }
+
+    @Test
+    void theCommandHistoryIsForTheLabsRolesNewestFirstWithEachAnswer() throws Exception {
+        EntityBareJid robotJid = XMPP.register("hist-robot", PrivateXmppServer.DOMAIN, PASSWORD);
+        EntityBareJid operatorJid = XMPP.register("hist-operator", PrivateXmppServer.DOMAIN, PASSWORD);
+        EntityBareJid observerJid = XMPP.register("hist-observer", PrivateXmppServer.DOMAIN, PASSWORD);
+        XMPP.register("hist-stranger", PrivateXmppServer.DOMAIN, PASSWORD);
+        XMPPTCPConnection robot = login("hist-robot");
+        XMPPTCPConnection operator = login("hist-operator");
+        XMPPTCPConnection observer = login("hist-observer");
+        XMPPTCPConnection stranger = login("hist-stranger");
+        AccessPolicy policy = AccessRules.labGroups().on(robot);
+        FleetOnServerTest.goalDevice(robot, policy);
+        XMPP.enrolRobot(robotJid);
+        XMPP.grant(operatorJid, Role.OPERATOR);
+        XMPP.grant(observerJid, Role.OBSERVER);
+        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, operator, Role.OPERATOR);
+        ControlMlManager op = ControlMlManager.getInstanceFor(operator);
+        for (int i = 1; i <= 3; i++) {
+            assertTrue(op.set(robot.getUser(), Resources.GOAL, new Goal(new Pose2D(i, 0, 0), 0.1, 0.1)).isSuccess());
+        }
+        var refused = ControlMlManager.getInstanceFor(observer).set(robot.getUser(), Resources.GOAL, new Goal(
+                new Pose2D(5, 5, 0), 0.1, 0.1)).errorOrNull();
+        assertEquals(ControlMlCondition.SET_NOT_PERMITTED, refused.cmCondition(), String.valueOf(refused));
+
+        // at once: the server writes what it holds before it answers
+        List<CommandHistory.Command> latest = CommandHistory.read(observer, robotJid, 3);
+        assertEquals(3, latest.size(), String.valueOf(latest));
+        assertTrue(latest.get(0).seq() > latest.get(1).seq() && latest.get(1).seq() > latest.get(2).seq(),
+                "not newest first: " + latest);
+        CommandHistory.Command denied = latest.get(0);
+        assertTrue(denied.from().startsWith(observerJid + "/"), denied.toString());
+        assertEquals("error", denied.answer());
+        assertEquals("set-not-permitted", denied.condition());
+        assertFalse(denied.text().isEmpty(), denied.toString());
+        for (CommandHistory.Command c : latest.subList(1, 3)) {
+            assertTrue(c.from().startsWith(operatorJid + "/"), c.toString());
+            assertEquals("cm.goal", c.resource());
+            assertEquals("result", c.answer());
+            assertFalse(c.stored());
+            assertTrue(c.answerIn() != null && !c.answerIn().isNegative(), c.toString());
+        }
+        assertEquals(4, CommandHistory.read(operator, robotJid, CommandHistory.MAX).size());
+
+        // nobody outside the lab's roles; bad requests refused with why
+        XMPPErrorException forbidden = assertThrows(XMPPErrorException.class, () -> CommandHistory.read(stranger,
+                robotJid, 10));
+        assertEquals(StanzaError.Condition.forbidden, forbidden.getStanzaError().getCondition());
+        assertTrue(forbidden.getStanzaError().getDescriptiveText().contains(AccessRules.LAB_GROUPS.get(
+                Role.OPERATOR)), forbidden.getStanzaError().toString());
+        Map<Map<String, String>, String> bad = Map.of(
+                Map.of("device", "not a jid@@"), "device: expected a bare JID",
+                Map.of("device", robotJid + "/onboard"), "device: expected a bare JID",
+                Map.of("device", robotJid.toString(), "max", "501"), "max: expected 1..500 commands",
+                Map.of("device", robotJid.toString(), "max", "x"), "max: expected 1..500 commands",
+                Map.of("device", robotJid.toString(), "before", "-1"), "before: expected a command's seq");
+        List<String> unexpected = new ArrayList<>();
+        for (var request : bad.entrySet()) {
+            XMPPErrorException e = assertThrows(XMPPErrorException.class, () -> operator
+                    .sendIqRequestAndWaitForResponse(historyIq(IQ.Type.get, request.getKey())));
+            if (e.getStanzaError().getCondition() != StanzaError.Condition.bad_request || !e.getStanzaError()
+                    .getDescriptiveText().contains(request.getValue())) {
+                unexpected.add(request.getKey() + ": " + e.getStanzaError());
+            }
+        }
+        assertEquals(List.of(), unexpected);
+        XMPPErrorException set = assertThrows(XMPPErrorException.class, () -> operator.sendIqRequestAndWaitForResponse(
+                historyIq(IQ.Type.set, Map.of("device", robotJid.toString()))));
+        assertEquals(StanzaError.Condition.not_allowed, set.getStanzaError().getCondition());
+        assertEquals(4, CommandHistory.read(operator, robotJid, CommandHistory.MAX).size(), "a refusal changed it");
+    }
+
+    /** A history request with any attributes, as a client that does not use {@link CommandHistory} may send. */
+    private static IQ historyIq(IQ.Type type, Map<String, String> attributes) {
+        IQ iq = new IQ(CommandHistory.ELEMENT, CommandHistory.NAMESPACE) {
+            @Override
+            protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+                attributes.forEach(xml::attribute);
+                xml.setEmptyElement();
+        return xml;
+            }
+        };
+        iq.setType(type);
+        iq.setTo(PrivateXmppServer.domainJid(PrivateXmppServer.DOMAIN));
+        return iq;
     }
 
     private static XMPPTCPConnection login(String localpart) throws Exception {

@@ -1,0 +1,94 @@
+package sabot.fleet;
+
+import java.time.Duration;
+import java.time.Instant;
+import java.util.List;
+import java.util.Objects;
+
+import org.jivesoftware.smack.SmackException.NoResponseException;
+import org.jivesoftware.smack.SmackException.NotConnectedException;
+import org.jivesoftware.smack.XMPPConnection;
+import org.jivesoftware.smack.XMPPException.XMPPErrorException;
+import org.jivesoftware.smack.provider.ProviderManager;
+import org.jxmpp.jid.EntityBareJid;
+
+import sabot.fleet.internal.HistoryIq;
+import sabot.fleet.internal.HistoryIqProvider;
+
+/**
+ * A device's command history from the server's archive of every ControlML stanza (docs/ARCHIVE.md): an IQ get
+ * {@code <history xmlns='urn:sabot:archive:1' device='...' max='...'/>} to the server's domain, answered by Sabot's
+ * ejabberd module for the accounts of the lab's roles. The answer lists the device's commands (sets, sent at once or
+ * stored for it), newest first, each with who sent it and its answer.
+ */
+public final class CommandHistory {
+
+    /** The protocol's namespace. */
+    public static final String NAMESPACE = "urn:sabot:archive:1";
+    /** The request's and the answer's element. */
+    public static final String ELEMENT = "history";
+    /** The most commands one request returns (the server refuses more with {@code bad-request}). */
+    public static final int MAX = 500;
+
+    static {
+        ProviderManager.addIQProvider(ELEMENT, NAMESPACE, new HistoryIqProvider());
+    }
+
+    private CommandHistory() {
+    }
+
+    /**
+     * One archived command.
+     *
+     * @param seq       its row in the archive (increasing)
+     * @param at        when the server took it
+     * @param stored    sent as a stored command (a message kept for a device that may be offline), else an IQ
+     * @param resource  its ControlML resource, e.g. {@code cm.goal}
+     * @param id        its ControlML id
+     * @param from      who sent it (full JID)
+     * @param answer    {@code result}, {@code error}, or empty: no answer archived
+     * @param condition an error's condition, else empty
+     * @param text      an error's text, else empty
+     * @param answerIn  how long the answer took at the server, or null without one
+     */
+    public record Command(long seq, Instant at, boolean stored, String resource, String id, String from,
+            String answer, String condition, String text, Duration answerIn) {
+
+        /** Checks the fields. */
+        public Command {
+            Objects.requireNonNull(at, "at");
+            Objects.requireNonNull(resource, "resource");
+            Objects.requireNonNull(id, "id");
+            Objects.requireNonNull(from, "from");
+            Objects.requireNonNull(answer, "answer");
+            Objects.requireNonNull(condition, "condition");
+            Objects.requireNonNull(text, "text");
+        }
+    }
+
+    /**
+     * Reads a device's latest commands.
+     *
+     * @param connection a connection of an account with a role of the lab
+     * @param device     the device's bare JID
+     * @param max        at most this many, 1..{@link #MAX}
+     * @return the commands, newest first
+     * @throws XMPPErrorException   {@code forbidden} without a role of the lab, {@code service-unavailable} where
+     *                               the server keeps no archive (Prosody, or ejabberd without {@code --archive sql})
+     * @throws IllegalStateException when the server's answer has commands that cannot be read (a server of another
+     *                               version)
+     */
+    public static List<Command> read(XMPPConnection connection, EntityBareJid device, int max)
+            throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
+        if (max < 1 || max > MAX) {
+            throw new IllegalArgumentException("max " + max + ": expected 1.." + MAX);
+        }
+        HistoryIq request = HistoryIq.request(connection.getXMPPServiceDomain(), device, max);
+        HistoryIq answer = connection.sendIqRequestAndWaitForResponse(request);
+        if (!answer.problems().isEmpty()) {
+            throw new IllegalStateException("the server's command history of " + device + " has commands that could not"
+                    + " be read: " + String.join("; ", answer.problems()));
+        }
+        return answer.commands();
+    }
+}

@@ -1,0 +1,60 @@
+package sabot.fleet.internal;
+
+import java.util.List;
+
+import org.jivesoftware.smack.packet.IQ;
+import org.jxmpp.jid.DomainBareJid;
+import org.jxmpp.jid.EntityBareJid;
+
+import sabot.fleet.CommandHistory;
+import sabot.fleet.CommandHistory.Command;
+
+/** The command history's IQ ({@link CommandHistory}): the request, or the server's answer with its commands. */
+public final class HistoryIq extends IQ {
+
+    private final EntityBareJid device;
+    private final int max;
+    private final List<Command> commands;
+    private final List<String> problems;
+
+    private HistoryIq(EntityBareJid device, int max, List<Command> commands, List<String> problems) {
+        super(CommandHistory.ELEMENT, CommandHistory.NAMESPACE);
+        this.device = device;
+        this.max = max;
+        this.commands = List.copyOf(commands);
+        this.problems = List.copyOf(problems);
+    }
+
+    /** @return a get of {@code device}'s latest {@code max} commands, to the server's domain */
+    public static HistoryIq request(DomainBareJid server, EntityBareJid device, int max) {
+        HistoryIq iq = new HistoryIq(device, max, List.of(), List.of());
+        iq.setType(Type.get);
+        iq.setTo(server);
+        return iq;
+    }
+
+    /** @return an answer as read: its commands, and what could not be read */
+    static HistoryIq answer(List<Command> commands, List<String> problems) {
+        return new HistoryIq(null, 0, commands, problems);
+    }
+
+    /** @return the commands of an answer, newest first */
+    public List<Command> commands() {
+        return commands;
+    }
+
+    /** @return the commands of the answer that could not be read, and why; empty when all could */
+    public List<String> problems() {
+        return problems;
+    }
+
+    @Override
+    protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+        xml.optAttribute("device", device);
+        if (max > 0) {
+            xml.attribute("max", max);
+        }
+        xml.setEmptyElement();
+        return xml;
+    }
+}
