@@ -95,10 +95,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private boolean plainTcp;
     /** 2 for a two-node ejabberd cluster ({@link #ejabberdCluster()}), else 1. */
     private int nodes = 1;
-    /** A cluster's second node: its pid (0 when stopped), port and loopback address. */
+    /** A cluster's second node: its pid (0 when stopped), port and loopback address; or a federation's ejabberd. */
     private long pid2;
     private int port2;
     private InetAddress address2;
+    /** Two domains on two servers federated over s2s ({@link #federation()}). */
+    private boolean federation;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -123,6 +125,20 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     public static PrivateXmppServer ejabberdCluster() {
         PrivateXmppServer s = new PrivateXmppServer(Kind.EJABBERD);
         s.nodes = 2;
+        return s;
+    }
+
+    /**
+     * @return a fixture for two domains on two servers federated over s2s (docs/FEDERATION.md): Prosody serving
+     *         {@link #DOMAIN} on 127.0.0.1, ejabberd serving {@link #SECOND_DOMAIN} on 127.0.0.2, TLS and
+     *         certificates of one lab CA between them; about 2 s to ready here. {@link #configuration(String, String,
+     *         String)} and {@link #login(String, String)} pick the server of the domain; {@link #grant(BareJid, Role)}
+     *         and {@link #enrolRobot(BareJid)} act on the server of a robot's domain through
+     *         {@link #grantOn(String, BareJid, Role)}
+     */
+    public static PrivateXmppServer federation() {
+        PrivateXmppServer s = new PrivateXmppServer(Kind.PROSODY);
+        s.federation = true;
         return s;
     }
 
@@ -179,7 +195,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         Runtime.getRuntime().addShutdownHook(shutdownHook);
         System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d%s after %d ms, dir %s%n", kind.serverName,
                 pid, port, nodes == 2 ? " (cluster: node 2 pid " + pid2 + " on " + address2.getHostAddress() + ":"
-                        + port2 + ")" : "", startupTime.toMillis(), runDir);
+                        + port2 + ")" : federation ? " for " + DOMAIN + " (federated with ejabberd for "
+                                + SECOND_DOMAIN + ", pid " + pid2 + " on " + address2.getHostAddress() + ":" + port2
+                                + ")" : "", startupTime.toMillis(), runDir);
         return this;
     }
 
@@ -209,10 +227,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private void launch(int c2sPort) throws IOException, InterruptedException {
         Files.createDirectories(runDir);
         Path log = runDir.resolve(SCRIPT_LOG);
-        Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
-                Integer.toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT
-                        .toSeconds()), "--tls", plainTcp ? "off" : "required", "--nodes", Integer.toString(nodes))
-                .redirectError(log.toFile()).start();
+        List<String> arguments = new ArrayList<>(List.of("start", "--run", runDir.toString(), "--port", Integer
+                .toString(c2sPort), "--archive", "memory", "--timeout", Long.toString(READY_TIMEOUT.toSeconds()),
+                "--tls", plainTcp ? "off" : "required"));
+        arguments.addAll(federation ? List.of("--federate") : List.of("--server", kind.serverName, "--nodes", Integer
+                .toString(nodes)));
+        Process script = script(arguments.toArray(String[]::new)).redirectError(log.toFile()).start();
         script.getOutputStream().close();
         // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
         // session, has its output in its state directory: nothing of it holds this pipe open
@@ -233,7 +253,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             pid = Long.parseLong(ready.get("pid"));
             port = Integer.parseInt(ready.get("port"));
             caFile = Path.of(ready.get("ca"));
-            if (nodes == 2) {
+            if (nodes == 2 || federation) {
                 pid2 = Long.parseLong(ready.get("pid2"));
                 port2 = Integer.parseInt(ready.get("port2"));
                 address2 = InetAddress.getByName(ready.get("address2"));
@@ -324,6 +344,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      * {@code build()}.
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
+        if (federation && SECOND_DOMAIN.equals(domain)) { // the federation's ejabberd
+            return configuration(port2, trust, localpart, domain, password).setHostAddress(address2);
+        }
         return configuration(port, trust, localpart, domain, password);
     }
 
@@ -469,6 +492,26 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         group("add", AccessRules.LAB_GROUPS.get(role), jid);
     }
 
+    /**
+     * Grants a role on the lab's robots of {@code domain}'s server ({@link #federation()}): the account {@code jid},
+     * of this domain or the other, in the role's group there (docs/FEDERATION.md, "Roles across domains").
+     */
+    public void grantOn(String domain, BareJid jid, Role role) throws IOException, InterruptedException {
+        runScript("", "group", "add", "--run", runDirOf(domain).toString(), AccessRules.LAB_GROUPS.get(role), jid
+                .toString());
+    }
+
+    /** The state directory of the server of {@code domain}: a federation's ejabberd has its own. */
+    private Path runDirOf(String domain) {
+        return federation && SECOND_DOMAIN.equals(domain) ? runDir.resolve("peer") : runDir;
+    }
+
+    /** @return the log file of the server of {@code domain} ({@link #federation()}: Prosody's or ejabberd's) */
+    public Path serverLog(String domain) {
+        return federation && SECOND_DOMAIN.equals(domain) ? runDir.resolve("peer/logs/ejabberd.log")
+                : kind == Kind.PROSODY ? runDir.resolve("prosody.log") : runDir.resolve("logs/ejabberd.log");
+    }
+
     /** Takes a role away: {@code sabot-xmpp group remove} of the role's shared group. */
     public void revoke(BareJid jid, Role role) throws IOException, InterruptedException {
         group("remove", AccessRules.LAB_GROUPS.get(role), jid);
@@ -476,7 +519,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     /** Makes {@code jid} one of the lab's robots: the shared group {@link AccessRules#ROBOTS_GROUP}. */
     public void enrolRobot(BareJid jid) throws IOException, InterruptedException {
-        group("add", AccessRules.ROBOTS_GROUP, jid);
+        runScript("", "group", "add", "--run", runDirOf(jid.getDomain().toString()).toString(),
+                AccessRules.ROBOTS_GROUP, jid.toString());
     }
 
     /** {@code sabot-xmpp group add|remove}: a shared group's change, applied to the online accounts' rosters. */
