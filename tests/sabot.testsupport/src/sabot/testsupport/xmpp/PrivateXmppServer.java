@@ -31,6 +31,7 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.Role;
+import sabot.testsupport.net.SilentRelay;
 import sabot.fleet.AccessRules;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.NoDelaySocketFactory;
@@ -101,6 +102,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private InetAddress address2;
     /** Two domains on two servers federated over s2s ({@link #federation()}). */
     private boolean federation;
+    /**
+     * A federation's s2s links through relays that can go silent ({@link #federationThroughRelays()}): to ejabberd
+     * and to Prosody; null otherwise. With the s2s listeners' ports, chosen once so that a restart keeps them.
+     */
+    private SilentRelay toEjabberd, toProsody;
+    private int s2sProsody, s2sEjabberd;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -140,6 +147,53 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         PrivateXmppServer s = new PrivateXmppServer(Kind.PROSODY);
         s.federation = true;
         return s;
+    }
+
+    /**
+     * @return a {@link #federation()} whose s2s connections, both ways, pass through relays on loopback that
+     *         {@link #partition()} silences and {@link #heal()} resumes (a dead link between the domains: nothing
+     *         passes, nothing is closed)
+     */
+    public static PrivateXmppServer federationThroughRelays() {
+        PrivateXmppServer s = federation();
+        s.s2sProsody = -1; // chosen at the first start
+        return s;
+    }
+
+    /** Silences the s2s link between the domains, both ways ({@link #federationThroughRelays()}). */
+    public void partition() throws IOException {
+        relays().forEach(SilentRelay::silence);
+    }
+
+    /** Resumes the s2s link: what was held passes on ({@link #federationThroughRelays()}). */
+    public void heal() throws IOException {
+        relays().forEach(SilentRelay::resume);
+    }
+
+    private interface RelayAction {
+        void on(SilentRelay relay) throws IOException;
+    }
+
+    private record Relays(SilentRelay a, SilentRelay b) {
+        void forEach(RelayAction action) throws IOException {
+            action.on(a);
+            action.on(b);
+        }
+    }
+
+    private Relays relays() {
+        if (toEjabberd == null) {
+            throw new IllegalStateException("not a federation through relays (federationThroughRelays()), or not "
+                    + "started");
+        }
+        return new Relays(toEjabberd, toProsody);
+    }
+
+    /** A port of {@code address} with no listener now (the script binds it a moment later). */
+    private static int freePort(String address) throws IOException {
+        try (java.net.ServerSocket s = new java.net.ServerSocket(0, 1, InetAddress.getByName(address))) {
+            return s.getLocalPort();
+        }
     }
 
     /**
@@ -232,6 +286,17 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
                 "--tls", plainTcp ? "off" : "required"));
         arguments.addAll(federation ? List.of("--federate") : List.of("--server", kind.serverName, "--nodes", Integer
                 .toString(nodes)));
+        if (s2sProsody != 0) { // through relays: the listeners' ports fixed, and each server dials the other's relay
+            if (toEjabberd == null) {
+                s2sProsody = freePort("127.0.0.1");
+                s2sEjabberd = freePort("127.0.0.2");
+                toEjabberd = new SilentRelay(new java.net.InetSocketAddress(InetAddress.getByName("127.0.0.2"),
+                        s2sEjabberd));
+                toProsody = new SilentRelay(s2sProsody);
+            }
+            arguments.addAll(List.of("--s2s-ports", s2sProsody + "," + s2sEjabberd, "--s2s-via", toEjabberd.port()
+                    + "," + toProsody.port()));
+        }
         Process script = script(arguments.toArray(String[]::new)).redirectError(log.toFile()).start();
         script.getOutputStream().close();
         // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
@@ -581,6 +646,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             connections.clear();
         }
         stopProcess();
+        if (toEjabberd != null) {
+            toEjabberd.close();
+            toProsody.close();
+            toEjabberd = null;
+            toProsody = null;
+        }
         if (shutdownHook != null) {
             try {
                 Runtime.getRuntime().removeShutdownHook(shutdownHook);
