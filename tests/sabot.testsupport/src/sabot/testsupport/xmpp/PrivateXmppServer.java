@@ -108,6 +108,10 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     private SilentRelay toEjabberd, toProsody;
     private int s2sProsody, s2sEjabberd;
+    /** A federation whose ejabberd has a CA of its own ({@link #federationWithForeignPeerCa()}). */
+    private boolean foreignPeerCa;
+    /** Trust in the CA of a federation's ejabberd (DIR/peer/ca: the lab CA, or its own one). */
+    private ServerTrust peerTrust;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -157,6 +161,16 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     public static PrivateXmppServer federationThroughRelays() {
         PrivateXmppServer s = federation();
         s.s2sProsody = -1; // chosen at the first start
+        return s;
+    }
+
+    /**
+     * @return a {@link #federation()} whose ejabberd's certificate is signed by a CA of its own, not by the lab CA
+     *         that Prosody trusts (and which ejabberd trusts instead of it): s2s fails both ways
+     */
+    public static PrivateXmppServer federationWithForeignPeerCa() {
+        PrivateXmppServer s = federation();
+        s.foreignPeerCa = true;
         return s;
     }
 
@@ -243,6 +257,19 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         runDir = repositoryRoot().resolve("target/xmpp-run/" + kind.serverName + "-" + UUID.randomUUID().toString()
                 .substring(0, 8)).toAbsolutePath();
         long t0 = System.nanoTime();
+        if (foreignPeerCa) { // DIR/peer/ca of its own before the first start: sabot-xmpp keeps it (and warns)
+            Path ca = Files.createDirectories(runDir.resolve("peer/ca"));
+            Process openssl = new ProcessBuilder("openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt",
+                    "ec_paramgen_curve:prime256v1", "-nodes", "-days", "30", "-subj", "/O=Elsewhere/CN=Foreign CA",
+                    "-addext", "basicConstraints=critical,CA:TRUE", "-addext", "keyUsage=critical,keyCertSign,cRLSign",
+                    "-keyout", ca.resolve("ca.key").toString(), "-out", ca.resolve("ca.pem").toString())
+                    .redirectErrorStream(true).redirectOutput(Redirect.appendTo(runDir.resolve(SCRIPT_LOG).toFile()))
+                    .start();
+            openssl.getOutputStream().close();
+            if (awaitScript(openssl) != 0) {
+                throw new IOException("openssl made no foreign CA in " + ca + "; see " + runDir.resolve(SCRIPT_LOG));
+            }
+        }
         launch(c2sPort);
         startupTime = Duration.ofNanos(System.nanoTime() - t0);
         shutdownHook = new Thread(this::stopProcess, "stop-private-" + kind.serverName);
@@ -328,6 +355,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
                     + "'; see " + log, e);
         }
         trust = plainTcp ? null : ServerTrust.labCa(caFile);
+        if (federation) {
+            peerTrust = ServerTrust.labCa(runDir.resolve("peer/ca/ca.pem"));
+        }
     }
 
     /** The script's {@code [sabot] error:} line, the reason it gives for a failure. */
@@ -410,7 +440,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
         if (federation && SECOND_DOMAIN.equals(domain)) { // the federation's ejabberd
-            return configuration(port2, trust, localpart, domain, password).setHostAddress(address2);
+            return configuration(port2, peerTrust, localpart, domain, password).setHostAddress(address2);
         }
         return configuration(port, trust, localpart, domain, password);
     }
