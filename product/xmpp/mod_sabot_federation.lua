@@ -12,7 +12,7 @@ local basic = require "net.resolvers.basic";
 local service = require "net.resolvers.service";
 local st = require "util.stanza";
 
--- domain -> { address, port }
+-- domain -> { address, port }; { } for a peer that DNS finds (a lab's real servers: only the filter below)
 local peers = module:get_option("sabot_federation_peers", {});
 
 -- one wrapper for every host that loads the module: the resolver table is shared by the whole server
@@ -21,10 +21,12 @@ if not service.sabot_original_new then
 	local no_target = { next = function (_, cb) cb(nil); end };
 	service.new = function (domain, srv, proto, extra)
 		local peer = peers[domain];
-		if peer and srv == "xmpp-server" then
+		if not (peer and peer[1]) then -- a peer without an address: found by DNS, as any domain
+			return service.sabot_original_new(domain, srv, proto, extra);
+		elseif srv == "xmpp-server" then
 			module:log("debug", "static s2s route %s -> %s:%d", domain, peer[1], peer[2]);
 			return basic.new(peer[1], peer[2], proto, extra);
-		elseif peer and srv == "xmpps-server" then
+		elseif srv == "xmpps-server" then
 			return no_target;
 		end
 		return service.sabot_original_new(domain, srv, proto, extra);
