@@ -12,6 +12,9 @@
 --   SABOT_TLS             "required" (the default): clients must STARTTLS, with the certificates sabot-xmpp made
 --                         in $SABOT_XMPP_RUN/certs (signed by the lab CA of $SABOT_XMPP_RUN/ca); "off": plain TCP, for
 --                         the benchmark that compares the two only
+--   SABOT_XMPP_S2S_PORT, SABOT_XMPP_PEER  a federation's Prosody (sabot-xmpp start --federate, docs/FEDERATION.md):
+--                         its s2s port on 127.0.0.1, and the one peer, "DOMAIN=ADDRESS:PORT"; it serves SABOT_DOMAIN
+--                         only, and federates with the peer only, over TLS with certificates of the lab CA
 local run = ENV_SABOT_XMPP_RUN or error("SABOT_XMPP_RUN is not set")
 local c2s_port = (ENV_SABOT_C2S_PORT or "15222") + 0
 
@@ -28,12 +31,25 @@ local_interfaces = { "127.0.0.1" }
 c2s_ports = { c2s_port }
 c2s_direct_tls_ports = { }
 legacy_ssl_ports = { }
-s2s_ports = { }
 s2s_direct_tls_ports = { }
-modules_disabled = { "s2s", "s2s_auth_certs" }
+local federation = ENV_SABOT_XMPP_S2S_PORT ~= nil
+if federation then
+    local peer, address, port = (ENV_SABOT_XMPP_PEER or ""):match("^([%w.-]+)=([%d.]+):(%d+)$")
+    if not peer then error("SABOT_XMPP_PEER is not DOMAIN=ADDRESS:PORT: " .. tostring(ENV_SABOT_XMPP_PEER)) end
+    s2s_ports = { ENV_SABOT_XMPP_S2S_PORT + 0 }
+    modules_disabled = { }
+    -- s2s: TLS required, and a peer authenticated by its certificate only (no dialback module is loaded)
+    s2s_require_encryption = true
+    s2s_secure_auth = true
+    ssl = { cafile = run .. "/ca/ca.pem" }  -- the lab CA: the only one a peer's certificate may be signed by
+    sabot_federation_peers = { [peer] = { address, port + 0 } }  -- mod_sabot_federation
+else
+    s2s_ports = { }
+    modules_disabled = { "s2s", "s2s_auth_certs" }
+    s2s_require_encryption = false
+end
 
 c2s_require_encryption = tls
-s2s_require_encryption = false
 -- PLAIN never without TLS: on a plain stream (SABOT_TLS=off) only SCRAM, which does not send the password
 allow_unencrypted_plain_auth = false
 authentication = "internal_hashed"
@@ -86,10 +102,13 @@ local modules = {
     "admin_shell";   -- prosodyctl shell on data_path/prosody.sock: sabot-xmpp group applies group changes live
 }
 if tls then table.insert(modules, "tls") end
+if federation then table.insert(modules, "sabot_federation") end -- the peer's route, and no other domain
 modules_enabled = modules
 
 VirtualHost (ENV_SABOT_DOMAIN or "sabot.local")
-VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests
+if not federation then
+    VirtualHost (ENV_SABOT_DOMAIN2 or "sabot2.local")   -- second domain for cross-domain tests
+end
 
 -- XEP-0045 rooms: the fleet lobby where online devices are discovered (sabot.fleet, roster rule 11)
 Component ("conference." .. (ENV_SABOT_DOMAIN or "sabot.local")) "muc"

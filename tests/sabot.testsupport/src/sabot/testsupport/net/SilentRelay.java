@@ -36,7 +36,15 @@ public final class SilentRelay implements AutoCloseable {
      * @param targetPort the server's port on 127.0.0.1
      */
     public SilentRelay(int targetPort) throws IOException {
-        this.target = new InetSocketAddress(InetAddress.getLoopbackAddress(), targetPort);
+        this(new InetSocketAddress(InetAddress.getLoopbackAddress(), targetPort));
+    }
+
+    /**
+     * @param target the server's address and port (e.g. a federation's ejabberd on 127.0.0.2); the relay listens on
+     *               127.0.0.1
+     */
+    public SilentRelay(InetSocketAddress target) throws IOException {
+        this.target = target;
         this.listener = new ServerSocket(0, 16, InetAddress.getLoopbackAddress());
         this.port = listener.getLocalPort();
         startAccepting(listener);

@@ -31,6 +31,7 @@ import org.jxmpp.jid.EntityBareJid;
 import org.jxmpp.jid.impl.JidCreate;
 
 import sabot.controlml.Role;
+import sabot.testsupport.net.SilentRelay;
 import sabot.fleet.AccessRules;
 import sabot.fleet.FleetConnections;
 import sabot.fleet.NoDelaySocketFactory;
@@ -97,10 +98,22 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private String archive = "memory";
     /** 2 for a two-node ejabberd cluster ({@link #ejabberdCluster()}), else 1. */
     private int nodes = 1;
-    /** A cluster's second node: its pid (0 when stopped), port and loopback address. */
+    /** A cluster's second node: its pid (0 when stopped), port and loopback address; or a federation's ejabberd. */
     private long pid2;
     private int port2;
     private InetAddress address2;
+    /** Two domains on two servers federated over s2s ({@link #federation()}). */
+    private boolean federation;
+    /**
+     * A federation's s2s links through relays that can go silent ({@link #federationThroughRelays()}): to ejabberd
+     * and to Prosody; null otherwise. With the s2s listeners' ports, chosen once so that a restart keeps them.
+     */
+    private SilentRelay toEjabberd, toProsody;
+    private int s2sProsody, s2sEjabberd;
+    /** A federation whose ejabberd has a CA of its own ({@link #federationWithForeignPeerCa()}). */
+    private boolean foreignPeerCa;
+    /** Trust in the CA of a federation's ejabberd (DIR/peer/ca: the lab CA, or its own one). */
+    private ServerTrust peerTrust;
 
     private PrivateXmppServer(Kind kind) {
         this.kind = Objects.requireNonNull(kind);
@@ -126,6 +139,77 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         PrivateXmppServer s = new PrivateXmppServer(Kind.EJABBERD);
         s.nodes = 2;
         return s;
+    }
+
+    /**
+     * @return a fixture for two domains on two servers federated over s2s (docs/FEDERATION.md): Prosody serving
+     *         {@link #DOMAIN} on 127.0.0.1, ejabberd serving {@link #SECOND_DOMAIN} on 127.0.0.2, TLS and
+     *         certificates of one lab CA between them; about 2 s to ready here. {@link #configuration(String, String,
+     *         String)} and {@link #login(String, String)} pick the server of the domain; {@link #grant(BareJid, Role)}
+     *         and {@link #enrolRobot(BareJid)} act on the server of a robot's domain through
+     *         {@link #grantOn(String, BareJid, Role)}
+     */
+    public static PrivateXmppServer federation() {
+        PrivateXmppServer s = new PrivateXmppServer(Kind.PROSODY);
+        s.federation = true;
+        return s;
+    }
+
+    /**
+     * @return a {@link #federation()} whose s2s connections, both ways, pass through relays on loopback that
+     *         {@link #partition()} silences and {@link #heal()} resumes (a dead link between the domains: nothing
+     *         passes, nothing is closed)
+     */
+    public static PrivateXmppServer federationThroughRelays() {
+        PrivateXmppServer s = federation();
+        s.s2sProsody = -1; // chosen at the first start
+        return s;
+    }
+
+    /**
+     * @return a {@link #federation()} whose ejabberd's certificate is signed by a CA of its own, not by the lab CA
+     *         that Prosody trusts (and which ejabberd trusts instead of it): s2s fails both ways
+     */
+    public static PrivateXmppServer federationWithForeignPeerCa() {
+        PrivateXmppServer s = federation();
+        s.foreignPeerCa = true;
+        return s;
+    }
+
+    /** Silences the s2s link between the domains, both ways ({@link #federationThroughRelays()}). */
+    public void partition() throws IOException {
+        relays().forEach(SilentRelay::silence);
+    }
+
+    /** Resumes the s2s link: what was held passes on ({@link #federationThroughRelays()}). */
+    public void heal() throws IOException {
+        relays().forEach(SilentRelay::resume);
+    }
+
+    private interface RelayAction {
+        void on(SilentRelay relay) throws IOException;
+    }
+
+    private record Relays(SilentRelay a, SilentRelay b) {
+        void forEach(RelayAction action) throws IOException {
+            action.on(a);
+            action.on(b);
+        }
+    }
+
+    private Relays relays() {
+        if (toEjabberd == null) {
+            throw new IllegalStateException("not a federation through relays (federationThroughRelays()), or not "
+                    + "started");
+        }
+        return new Relays(toEjabberd, toProsody);
+    }
+
+    /** A port of {@code address} with no listener now (the script binds it a moment later). */
+    private static int freePort(String address) throws IOException {
+        try (java.net.ServerSocket s = new java.net.ServerSocket(0, 1, InetAddress.getByName(address))) {
+            return s.getLocalPort();
+        }
     }
 
     /**
@@ -187,13 +271,28 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         runDir = repositoryRoot().resolve("target/xmpp-run/" + kind.serverName + "-" + UUID.randomUUID().toString()
                 .substring(0, 8)).toAbsolutePath();
         long t0 = System.nanoTime();
+        if (foreignPeerCa) { // DIR/peer/ca of its own before the first start: sabot-xmpp keeps it (and warns)
+            Path ca = Files.createDirectories(runDir.resolve("peer/ca"));
+            Process openssl = new ProcessBuilder("openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt",
+                    "ec_paramgen_curve:prime256v1", "-nodes", "-days", "30", "-subj", "/O=Elsewhere/CN=Foreign CA",
+                    "-addext", "basicConstraints=critical,CA:TRUE", "-addext", "keyUsage=critical,keyCertSign,cRLSign",
+                    "-keyout", ca.resolve("ca.key").toString(), "-out", ca.resolve("ca.pem").toString())
+                    .redirectErrorStream(true).redirectOutput(Redirect.appendTo(runDir.resolve(SCRIPT_LOG).toFile()))
+                    .start();
+            openssl.getOutputStream().close();
+            if (awaitScript(openssl) != 0) {
+                throw new IOException("openssl made no foreign CA in " + ca + "; see " + runDir.resolve(SCRIPT_LOG));
+            }
+        }
         launch(c2sPort);
         startupTime = Duration.ofNanos(System.nanoTime() - t0);
         shutdownHook = new Thread(this::stopProcess, "stop-private-" + kind.serverName);
         Runtime.getRuntime().addShutdownHook(shutdownHook);
         System.out.printf("[xmpp] private %s pid %d ready on 127.0.0.1:%d%s after %d ms, dir %s%n", kind.serverName,
                 pid, port, nodes == 2 ? " (cluster: node 2 pid " + pid2 + " on " + address2.getHostAddress() + ":"
-                        + port2 + ")" : "", startupTime.toMillis(), runDir);
+                        + port2 + ")" : federation ? " for " + DOMAIN + " (federated with ejabberd for "
+                                + SECOND_DOMAIN + ", pid " + pid2 + " on " + address2.getHostAddress() + ":" + port2
+                                + ")" : "", startupTime.toMillis(), runDir);
         return this;
     }
 
@@ -223,10 +322,23 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     private void launch(int c2sPort) throws IOException, InterruptedException {
         Files.createDirectories(runDir);
         Path log = runDir.resolve(SCRIPT_LOG);
-        Process script = script("start", "--server", kind.serverName, "--run", runDir.toString(), "--port",
-                Integer.toString(c2sPort), "--archive", archive, "--timeout", Long.toString(READY_TIMEOUT
-                        .toSeconds()), "--tls", plainTcp ? "off" : "required", "--nodes", Integer.toString(nodes))
-                .redirectError(log.toFile()).start();
+        List<String> arguments = new ArrayList<>(List.of("start", "--run", runDir.toString(), "--port", Integer
+                .toString(c2sPort), "--archive", archive, "--timeout", Long.toString(READY_TIMEOUT.toSeconds()),
+                "--tls", plainTcp ? "off" : "required"));
+        arguments.addAll(federation ? List.of("--federate") : List.of("--server", kind.serverName, "--nodes", Integer
+                .toString(nodes)));
+        if (s2sProsody != 0) { // through relays: the listeners' ports fixed, and each server dials the other's relay
+            if (toEjabberd == null) {
+                s2sProsody = freePort("127.0.0.1");
+                s2sEjabberd = freePort("127.0.0.2");
+                toEjabberd = new SilentRelay(new java.net.InetSocketAddress(InetAddress.getByName("127.0.0.2"),
+                        s2sEjabberd));
+                toProsody = new SilentRelay(s2sProsody);
+            }
+            arguments.addAll(List.of("--s2s-ports", s2sProsody + "," + s2sEjabberd, "--s2s-via", toEjabberd.port()
+                    + "," + toProsody.port()));
+        }
+        Process script = script(arguments.toArray(String[]::new)).redirectError(log.toFile()).start();
         script.getOutputStream().close();
         // the script exits once the server is ready or has failed (its own deadlines); the server, in its own
         // session, has its output in its state directory: nothing of it holds this pipe open
@@ -247,7 +359,7 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             pid = Long.parseLong(ready.get("pid"));
             port = Integer.parseInt(ready.get("port"));
             caFile = Path.of(ready.get("ca"));
-            if (nodes == 2) {
+            if (nodes == 2 || federation) {
                 pid2 = Long.parseLong(ready.get("pid2"));
                 port2 = Integer.parseInt(ready.get("port2"));
                 address2 = InetAddress.getByName(ready.get("address2"));
@@ -257,6 +369,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
                     + "'; see " + log, e);
         }
         trust = plainTcp ? null : ServerTrust.labCa(caFile);
+        if (federation) {
+            peerTrust = ServerTrust.labCa(runDir.resolve("peer/ca/ca.pem"));
+        }
     }
 
     /** The script's {@code [sabot] error:} line, the reason it gives for a failure. */
@@ -342,6 +457,9 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
      * {@code build()}.
      */
     public XMPPTCPConnectionConfiguration.Builder configuration(String localpart, String domain, String password) {
+        if (federation && SECOND_DOMAIN.equals(domain)) { // the federation's ejabberd
+            return configuration(port2, peerTrust, localpart, domain, password).setHostAddress(address2);
+        }
         return configuration(port, trust, localpart, domain, password);
     }
 
@@ -516,6 +634,26 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         group("add", AccessRules.LAB_GROUPS.get(role), jid);
     }
 
+    /**
+     * Grants a role on the lab's robots of {@code domain}'s server ({@link #federation()}): the account {@code jid},
+     * of this domain or the other, in the role's group there (docs/FEDERATION.md, "Roles across domains").
+     */
+    public void grantOn(String domain, BareJid jid, Role role) throws IOException, InterruptedException {
+        runScript("", "group", "add", "--run", runDirOf(domain).toString(), AccessRules.LAB_GROUPS.get(role), jid
+                .toString());
+    }
+
+    /** The state directory of the server of {@code domain}: a federation's ejabberd has its own. */
+    private Path runDirOf(String domain) {
+        return federation && SECOND_DOMAIN.equals(domain) ? runDir.resolve("peer") : runDir;
+    }
+
+    /** @return the log file of the server of {@code domain} ({@link #federation()}: Prosody's or ejabberd's) */
+    public Path serverLog(String domain) {
+        return federation && SECOND_DOMAIN.equals(domain) ? runDir.resolve("peer/logs/ejabberd.log")
+                : kind == Kind.PROSODY ? runDir.resolve("prosody.log") : runDir.resolve("logs/ejabberd.log");
+    }
+
     /** Takes a role away: {@code sabot-xmpp group remove} of the role's shared group. */
     public void revoke(BareJid jid, Role role) throws IOException, InterruptedException {
         group("remove", AccessRules.LAB_GROUPS.get(role), jid);
@@ -523,7 +661,8 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
 
     /** Makes {@code jid} one of the lab's robots: the shared group {@link AccessRules#ROBOTS_GROUP}. */
     public void enrolRobot(BareJid jid) throws IOException, InterruptedException {
-        group("add", AccessRules.ROBOTS_GROUP, jid);
+        runScript("", "group", "add", "--run", runDirOf(jid.getDomain().toString()).toString(),
+                AccessRules.ROBOTS_GROUP, jid.toString());
     }
 
     /** {@code sabot-xmpp group add|remove}: a shared group's change, applied to the online accounts' rosters. */
@@ -584,6 +723,12 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
             connections.clear();
         }
         stopProcess();
+        if (toEjabberd != null) {
+            toEjabberd.close();
+            toProsody.close();
+            toEjabberd = null;
+            toProsody = null;
+        }
         if (shutdownHook != null) {
             try {
                 Runtime.getRuntime().removeShutdownHook(shutdownHook);

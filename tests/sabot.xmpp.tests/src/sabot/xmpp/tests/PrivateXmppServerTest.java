@@ -121,6 +121,60 @@ class PrivateXmppServerTest {
         }
     }
 
+    /**
+     * {@code sabot-xmpp start --federate} (docs/FEDERATION.md): options that do not fit it are refused before anything
+     * starts; the pair is Prosody, ejabberd and ejabberd's private name server, each server with its one domain, and
+     * one stop ends them all.
+     */
+    @Test
+    void aFederationIsTwoServersStoppedTogetherAndBadOptionsAreRefused() throws Exception {
+        Path unused = PrivateXmppServer.repositoryRoot().resolve("target/xmpp-run/federation-refused");
+        String pair = "--federate starts its own pair (Prosody for sabot.local, ejabberd for sabot2.local): no --server "
+                + "or --nodes with it";
+        for (var bad : List.of(java.util.Map.entry(List.of("--federate", "--server", "ejabberd"), pair), java.util.Map
+                .entry(List.of("--federate", "--nodes", "2"), pair), java.util.Map.entry(List.of("--federate", "--tls",
+                        "off"), "--federate needs TLS (s2s is authenticated by certificates): no --tls off with it"),
+                java.util.Map.entry(List.of("--federate", "--s2s-via", "1"), "--s2s-ports/--s2s-via '1': expected two "
+                        + "ports, PROSODY,EJABBERD"), java.util.Map.entry(List.of("--s2s-ports", "25269,25270"),
+                                "--s2s-ports and --s2s-via are options of --federate"))) {
+            List<String> command = new java.util.ArrayList<>(List.of("start", "--run", unused.toString()));
+            command.addAll(bad.getKey());
+            String out = sabotXmpp(1, command.toArray(String[]::new));
+            assertTrue(out.contains("[sabot] error: xmpp: " + bad.getValue()), bad.getKey() + ": " + out);
+        }
+        assertFalse(Files.exists(unused), "a refused start made its state directory");
+
+        PrivateXmppServer server = PrivateXmppServer.federation().start();
+        try {
+            List<String> processes = processesOf(server.runDir());
+            assertTrue(processes.stream().anyMatch(p -> p.contains("prosody")), processes.toString());
+            assertTrue(processes.stream().anyMatch(p -> p.contains("beam")), processes.toString());
+            assertTrue(processes.stream().anyMatch(p -> p.contains("dnsmasq")), processes.toString());
+            String local = sabotXmpp(1, "register", "--run", server.runDir().resolve("peer").toString(),
+                    "x@sabot.local", "pw");
+            assertTrue(local.contains("x@sabot.local: the server of " + server.runDir().resolve("peer")
+                    + " serves sabot2.local only"), local);
+            String status = sabotXmpp(0, "status", "--run", server.runDir().toString());
+            assertTrue(status.startsWith("running: prosody for sabot.local, pid " + server.pid()), status);
+            assertTrue(status.contains("federated with ejabberd for sabot2.local"), status);
+        } finally {
+            server.close();
+        }
+        assertEquals(List.of(), processesOf(server.runDir()), "processes left running after the stop");
+    }
+
+    /** Runs {@code sabot-xmpp ARGS...}; @return its output (both streams) */
+    private static String sabotXmpp(int expectedStatus, String... args) throws Exception {
+        List<String> command = new java.util.ArrayList<>(List.of(PrivateXmppServer.repositoryRoot().resolve(
+                "product/bin/sabot-xmpp").toString()));
+        command.addAll(List.of(args));
+        Process p = new ProcessBuilder(command).redirectErrorStream(true).start();
+        p.getOutputStream().close();
+        String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+        assertEquals(expectedStatus, p.waitFor(), () -> String.join(" ", command) + ": " + out);
+        return out;
+    }
+
     /** Runs {@code sabot-xmpp group OP --run DIR ARGS...}; @return its output (both streams) */
     private static String group(PrivateXmppServer server, int expectedStatus, String op, String... args)
             throws Exception {
