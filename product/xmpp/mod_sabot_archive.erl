@@ -16,7 +16,7 @@
 %%%
 %%% It also answers the command history of a device (urn:sabot:archive:1, docs/ARCHIVE.md): an IQ get to the server's
 %%% domain from an account in one of the groups of the option readers (the lab's roles), answered from the view
-%%% sabot_requests after this node's archiver has written what it held.
+%%% sabot_requests after every node's archiver has written what it held.
 -module(mod_sabot_archive).
 -behaviour(gen_mod).
 -behaviour(gen_server).
@@ -227,7 +227,7 @@ process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = 
                 {error, Text} ->
                     xmpp:make_error(IQ, xmpp:err_bad_request(Text, Lang));
                 {ok, Device, Query} ->
-                    gen_server:call(gen_mod:get_module_proc(Host, ?MODULE), flush),
+                    flush_cluster(Host),
                     case ejabberd_sql:sql_query(Host, Query) of
                         {selected, _Columns, Rows} ->
                             xmpp:make_iq_result(IQ, #xmlel{name = <<"history">>,
@@ -242,6 +242,18 @@ process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = 
     end;
 process_iq(#iq{lang = Lang} = IQ) ->
     xmpp:make_error(IQ, xmpp:err_bad_request(<<"expected one history element">>, Lang)).
+
+%% Every node's archiver writes what it holds: a history then has every command the cluster took before the request
+%% (a node that does not answer within a second is left out, and logged).
+flush_cluster(Host) ->
+    Proc = gen_mod:get_module_proc(Host, ?MODULE),
+    lists:foreach(fun(Node) ->
+                          try gen_server:call({Proc, Node}, flush, 1000)
+                          catch Class:Reason ->
+                                  ?WARNING_MSG("Sabot archive: node ~p did not write what it holds (~p:~p)",
+                                               [Node, Class, Reason])
+                          end
+                  end, ejabberd_cluster:get_nodes()).
 
 -define(HISTORY_COLUMNS, [<<"seq">>, <<"at">>, <<"via">>, <<"res">>, <<"id">>, <<"from">>, <<"answer">>,
                           <<"condition">>, <<"text">>, <<"ms">>]).

@@ -13,6 +13,7 @@ import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
+import sabot.fleet.CommandHistory;
 import sabot.model.geometry.Twist2D;
 
 /**
@@ -129,6 +130,19 @@ public interface FleetState {
      * @return the robot's value
      */
     <T> CompletableFuture<T> get(String robot, Resource<T, NoQuery> resource);
+
+    /**
+     * Reads a robot's latest commands from the server's archive of ControlML stanzas (docs/ARCHIVE.md): who sent
+     * each, and its answer.
+     *
+     * @param max at most this many, 1..{@link CommandHistory#MAX}
+     * @return completes with the commands, newest first; exceptionally with a {@link FleetCommandException} saying
+     *         why not (the server keeps no archive, the account has no role of the lab, not connected)
+     */
+    default CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+        return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
+                "no command history here"));
+    }
 
     /** Reads a resource that takes a query ({@code get} with a payload, e.g. {@code cm.fs.list}). */
     <T, Q> CompletableFuture<T> get(String robot, Resource<T, Q> resource, Q query);

@@ -11,6 +11,8 @@ import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Function;
 
+import org.eclipse.jface.action.Action;
+import org.eclipse.jface.action.MenuManager;
 import org.eclipse.jface.viewers.ArrayContentProvider;
 import org.eclipse.jface.viewers.ColumnLabelProvider;
 import org.eclipse.jface.viewers.IElementComparer;
@@ -39,6 +41,7 @@ import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.MissionStatus;
 import sabot.workbench.fleet.FleetBinding;
+import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.QueuedCommand;
 import sabot.workbench.fleet.RobotState;
 
@@ -54,6 +57,8 @@ import sabot.workbench.fleet.RobotState;
  * hundred robots at 10 Hz come as dozens of bursts a second, and rewriting every row on each took about a quarter of
  * the UI thread (the map, not the table, is where the operator watches motion). A robot added or removed, or a change
  * of presence, is shown at once. The telemetry ages are refreshed every {@value #AGE_REFRESH_MS} ms on their own.
+ * <p>
+ * The context menu opens a robot's command history from the server's archive ({@link CommandHistoryDialog}).
  * <p>
  * Below the table, while any asks, the robots asking for access (enrolled by the lab, not yet approved: not in the
  * fleet) with their identity ({@link AccessRequests}).
@@ -79,6 +84,9 @@ public final class FleetView extends ViewPart {
     public static final String ACCESS_REQUESTS_TOOLTIP = "Robots enrolled by the lab and not yet approved: they obey "
             + "nobody. Approve or refuse one on the lab's XMPP server: ./sabot enrol approve JID, ./sabot enrol refuse "
             + "JID";
+
+    /** The context menu's item that opens a robot's command history. */
+    public static final String COMMAND_HISTORY = "Command History…";
 
     /** Hint shown in the empty filter field. */
     public static final String FILTER_HINT = "Filter: robot, presence or mission";
@@ -260,11 +268,46 @@ public final class FleetView extends ViewPart {
                 }
             }
         });
+        MenuManager menu = new MenuManager();
+        menu.setRemoveAllWhenShown(true);
+        menu.addMenuListener(m -> {
+            RobotState r = viewer.getStructuredSelection().getFirstElement() instanceof RobotState s ? s : null;
+            Action history = new Action(COMMAND_HISTORY) {
+                @Override
+                public void run() {
+                    openCommandHistory(r.jid());
+                }
+            };
+            history.setEnabled(r != null && fleet.fleet() != null);
+            m.add(history);
+        });
+        table.setMenu(menu.createContextMenu(table));
         getSite().setSelectionProvider(viewer);
         getSite().getService(IContextService.class).activateContext(WorkspaceView.FLEET_CONTEXT);
         getSite().getPage().addSelectionListener(otherViews);
         fleet = new FleetBinding(table.getDisplay()::asyncExec, this::fleetChanged);
         tick();
+    }
+
+    /** @return the fleet the view shows, or null while none is there */
+    public FleetState fleetState() {
+        return fleet.fleet();
+    }
+
+    /**
+     * Opens a robot's command history from the server's archive ({@link CommandHistoryDialog}), as the context menu's
+     * item does.
+     *
+     * @return the dialog, open (it reads the history in the background); null when no fleet is there to ask
+     */
+    public CommandHistoryDialog openCommandHistory(String jid) {
+        FleetState state = fleet.fleet();
+        if (state == null) {
+            return null;
+        }
+        CommandHistoryDialog dialog = new CommandHistoryDialog(getSite().getShell(), state, jid);
+        dialog.open();
+        return dialog;
     }
 
     private static Comparator<RobotState> comparator(int column) {

@@ -843,11 +843,11 @@ class LiveFleetUiTest {
         toDocs(png);
     }
 
-    private static Path screenshots() throws Exception {
+    static Path screenshots() throws Exception {
         return Files.createDirectories(Paths.get(System.getProperty("sabot.screenshots", "target/screenshots")));
     }
 
-    private static void toDocs(Path png) throws Exception {
+    static void toDocs(Path png) throws Exception {
         String root = System.getProperty("sabot.root");
         if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
             Path docs = Files.createDirectories(Paths.get(root, "docs", "images"));

@@ -27,14 +27,15 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
+import sabot.fleet.CommandHistory;
 import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
 import sabot.workbench.fleet.ConnectionStatus;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
-import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.QueuedCommand;
+import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
 
 /**
@@ -222,6 +223,11 @@ public final class ControlMlFleet implements FleetState {
     @Override
     public CompletableFuture<RobotIdentity> identity(String robot) {
         return requests.identity(robot);
+    }
+
+    @Override
+    public CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+        return requests.commandHistory(robot, max);
     }
 
     /**

@@ -1,6 +1,7 @@
 package sabot.workbench.controlml.internal;
 
 import java.time.Instant;
+import java.util.List;
 import java.util.Locale;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
@@ -31,6 +32,7 @@ import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
+import sabot.fleet.CommandHistory;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceVCards;
 import sabot.identity.IdentityResult;
@@ -216,6 +218,45 @@ final class FleetRequests {
     }
 
     /** Pool thread: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
+    /** The robot's latest commands from the server's archive ({@link CommandHistory}), on the pool. */
+    CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+        return onPool(() -> fetchHistory(robot, max));
+    }
+
+    private List<CommandHistory.Command> fetchHistory(String robot, int max) {
+        FleetSession s = sessionFor(robot, false);
+        try {
+            return CommandHistory.read(s.connection(), JidCreate.entityBareFrom(robot), max);
+        } catch (XmppStringprepException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
+                    .getMessage());
+        } catch (XMPPException.XMPPErrorException e) {
+            StanzaError error = e.getStanzaError();
+            if (error.getCondition() == StanzaError.Condition.service_unavailable
+                    || error.getCondition() == StanzaError.Condition.feature_not_implemented) {
+                throw new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION, NO_ARCHIVE);
+            }
+            ControlMlCondition c = error.getCondition() == StanzaError.Condition.forbidden
+                    ? ControlMlCondition.ACCESS_DENIED : ControlMlCondition.UNSPECIFIED;
+            throw new FleetCommandException(c, "the server: " + (error.getDescriptiveText() != null ? error
+                    .getDescriptiveText() : error.getCondition().toString()));
+        } catch (SmackException.NoResponseException e) {
+            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no command history of " + robot + " within "
+                    + s.connection().getReplyTimeout() + " ms");
+        } catch (SmackException e) {
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "command history of " + robot + ": "
+                    + e);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "command history of " + robot
+                    + ": interrupted");
+        }
+    }
+
+    /** What a server without the archive of ControlML stanzas makes of a history request. */
+    static final String NO_ARCHIVE = "this server keeps no archive of commands (an ejabberd started with --archive sql "
+            + "does: docs/ARCHIVE.md)";
+
     private RobotIdentity fetchIdentity(String robot) {
         FleetSession s = sessionFor(robot, true);
         VCard card;
