@@ -606,6 +606,20 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
         return out.isEmpty() ? List.of() : List.of(out.split("\n"));
     }
 
+    /**
+     * @return the process id of the archive's PostgreSQL ({@link #sqlArchive()}: its postmaster, whose children are
+     *         the database's other processes) while it runs; empty without one
+     */
+    public java.util.OptionalLong archiveDatabasePid() {
+        try {
+            List<String> lines = Files.readAllLines(runDir.resolve("pg/data/postmaster.pid"));
+            return lines.isEmpty() ? java.util.OptionalLong.empty() : java.util.OptionalLong.of(Long.parseLong(lines
+                    .get(0).strip()));
+        } catch (IOException | NumberFormatException | NullPointerException e) {
+            return java.util.OptionalLong.empty();
+        }
+    }
+
     /** Runs sabot-xmpp with {@code input} on its stdin; its log appended to the script log. @return its stdout */
     private String runScript(String input, String... arguments) throws IOException, InterruptedException {
         return runCommand("sabot-xmpp", input, arguments);

@@ -71,8 +71,6 @@ public final class ControlMlBench {
     private PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
     private int robots = 100;
     private int subscribers = 2;
-    /** ejabberd with its archive in PostgreSQL (docs/ARCHIVE.md): every publication counted there at the end. */
-    private boolean archive;
     private double rateHz = 10;
     private int durationS = 60;
     private boolean telemetry = true;
@@ -103,11 +101,10 @@ public final class ControlMlBench {
                 case "--xml-form" -> textForm = false;
                 case "--shared-cpus" -> sharedCpus = true;
                 case "--tls" -> tlsCost = true;
-                case "--archive" -> archive = true;
                 case "--logins" -> logins = Integer.parseInt(args[++i]);
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench controlml [--requests N (10000)] [--warmup N (1000)] "
-                            + "[--server prosody|ejabberd [--archive]] [--robots N (100)] [--subscribers N (2)] "
+                            + "[--server prosody|ejabberd] [--robots N (100)] [--subscribers N (2)] "
                             + "[--rate HZ (10)] [--duration S (60)] [--no-telemetry] [--xml-form] [--shared-cpus]\n"
                             + "       ./sabot bench controlml --tls [--server prosody|ejabberd] [--requests N (10000)] "
                             + "[--logins N (200)] [--robots N (100)]: what TLS and SCRAM cost (TlsCost)");
@@ -133,12 +130,7 @@ public final class ControlMlBench {
             printJson(figures);
             return 0;
         }
-        if (archive && kind != PrivateXmppServer.Kind.EJABBERD) {
-            throw new IllegalArgumentException("--archive: the archive in PostgreSQL is ejabberd's (--server ejabberd)");
-        }
-        PrivateXmppServer fixture = archive ? PrivateXmppServer.of(kind).sqlArchive() : PrivateXmppServer.of(kind);
-        figures.put("archive", archive);
-        try (PrivateXmppServer server = fixture.start()) {
+        try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
             figures.put("server_ready_ms", server.startupTime().toMillis());
             CpuLayout cpus = sharedCpus ? CpuLayout.shared("--shared-cpus") : CpuLayout.split(server.pid());
             System.out.println("[bench] CPUs: " + cpus.description());
@@ -152,7 +144,7 @@ public final class ControlMlBench {
         return 0;
     }
 
-    private static void printJson(Map<String, Object> figures) {
+    static void printJson(Map<String, Object> figures) {
         StringBuilder json = new StringBuilder("{");
         figures.forEach((k, v) -> json.append(json.length() > 1 ? ", " : "").append('"').append(k).append("\": ")
                 .append(v instanceof String s ? "\"" + s + "\"" : v));
@@ -394,223 +386,29 @@ public final class ControlMlBench {
     // ------------------------------------------------------------------------------------------------ telemetry
 
     private void telemetry(PrivateXmppServer server, Map<String, Object> figures) throws Exception {
-        System.out.printf("[bench] telemetry: %d robots x %.0f Hz -> %d subscribers for %d s%n", robots, rateHz,
-                subscribers, durationS);
-        long setup0 = System.nanoTime();
-        List<XMPPTCPConnection> subs = new ArrayList<>();
-        // Arrival times per subscriber: latency = arrival - the pose's time stamp (same JVM, same clock).
-        LongAdder delivered = new LongAdder();
-        LongAdder deliveredOutside = new LongAdder();
-        long[][] latencies = new long[subscribers][];
-        AtomicLong[] counts = new AtomicLong[subscribers];
-        Map<EntityBareJid, CountDownLatch> firstItem = new ConcurrentHashMap<>();
-        CountDownLatch warm = new CountDownLatch(robots * subscribers);
-        long capacity = (long) (robots * rateHz * (durationS + 30)) + 1000;
-        Window window = new Window();
-        for (int s = 0; s < subscribers; s++) {
-            String name = "bench-sub" + s;
-            server.register(name, PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
-            XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
-                    PrivateXmppServer.DEFAULT_PASSWORD).setResource("wb").build());
-            latencies[s] = new long[(int) Math.min(Integer.MAX_VALUE - 8, capacity)];
-            counts[s] = new AtomicLong();
-            int sub = s;
-            Map<EntityBareJid, Boolean> seen = new ConcurrentHashMap<>();
-            TelemetryManager.getInstanceFor(c).addListener(Resources.POSITION, (device, p) -> {
-                long now = nanosOfInstant(Instant.now());
-                if (seen.putIfAbsent(device, Boolean.TRUE) == null) {
-                    warm.countDown();
-                }
-                long stamp = nanosOfInstant(p.time());
-                if (window.contains(stamp)) {
-                    long k = counts[sub].getAndIncrement();
-                    if (k < latencies[sub].length) {
-                        latencies[sub][(int) k] = now - stamp;
-                    }
-                    delivered.increment();
-                } else {
-                    deliveredOutside.increment();
-                }
-            });
-            c.connect().login();
-            Roster.getInstanceFor(c).setSubscriptionMode(Roster.SubscriptionMode.accept_all);
-            subs.add(c);
-        }
-        List<XMPPTCPConnection> robotConnections = new ArrayList<>();
-        CountDownLatch mutual = new CountDownLatch(robots * subscribers * 2);
-        for (XMPPTCPConnection s : subs) {
-            Roster.getInstanceFor(s).addPresenceEventListener(countAvailable(mutual, "bench-robot"));
-        }
-        Map<EntityBareJid, String> accounts = new java.util.LinkedHashMap<>();
-        for (int r = 0; r < robots; r++) {
-            accounts.put(JidCreate.entityBareFrom("bench-robot" + r + "@" + PrivateXmppServer.DOMAIN),
-                    PrivateXmppServer.DEFAULT_PASSWORD);
-        }
-        server.registerAll(accounts); // one call for the fleet: in-band registration is closed
-        for (int r = 0; r < robots; r++) {
-            String name = "bench-robot" + r;
-            XMPPTCPConnection c = new XMPPTCPConnection(server.configuration(name, PrivateXmppServer.DOMAIN,
-                    PrivateXmppServer.DEFAULT_PASSWORD).setResource("onboard").build());
-            Roster roster = Roster.getInstanceFor(c);
-            roster.addSubscribeListener((from, request) -> SubscribeAnswer.ApproveAndAlsoRequestIfRequired);
-            roster.addPresenceEventListener(countAvailable(mutual, "bench-sub"));
-            c.connect().login();
-            robotConnections.add(c);
-            for (XMPPTCPConnection s : subs) {
-                EntityBareJid robotJid = c.getUser().asEntityBareJid();
-                Roster.getInstanceFor(s).createItemAndRequestSubscription(robotJid, name, null);
-            }
-        }
-        if (!mutual.await(120, TimeUnit.SECONDS)) {
-            throw new IllegalStateException("mutual subscriptions incomplete: " + mutual.getCount() + " missing");
-        }
-        // Publish until every subscriber has had an item from every robot: the robots' servers learn the
-        // subscribers' +notify from their entity caps asynchronously.
-        LongAdder offered = new LongAdder();
-        List<TelemetryPublication> publications = new ArrayList<>();
-        for (XMPPTCPConnection c : robotConnections) {
-            AtomicLong seq = new AtomicLong();
-            ControlMlManager.getInstanceFor(c).setTextForm(textForm);
-            publications.add(TelemetryManager.getInstanceFor(c).publish(Resources.POSITION, () -> {
-                Instant now = Instant.now();
-                if (window.contains(nanosOfInstant(now))) {
-                    offered.increment();
-                }
-                return new PoseEstimate(now, new Pose2D(seq.incrementAndGet(), 0, 0), PoseCovariance.ZERO);
-            }, rateHz));
-        }
-        if (!warm.await(120, TimeUnit.SECONDS)) {
-            throw new IllegalStateException("warm-up incomplete: " + warm.getCount() + " robot/subscriber pairs silent");
-        }
-        double setupS = (System.nanoTime() - setup0) / 1e9;
-        System.out.printf("[bench] setup (IBR, login, %d mutual subscriptions, caps warm-up) %.1f s%n", robots
-                * subscribers, setupS);
-        // the server with its descendants: ejabberd runs beam.smp under its control script
-        long cpu0 = ProcStat.cpuTicks(server.pid());
-        long self0 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
-                .getProcessCpuTime();
-        long wall0 = System.nanoTime();
-        window.open(nanosOfInstant(Instant.now()), TimeUnit.SECONDS.toNanos(durationS));
-        // The measurement is the passing of time itself: wait out the window (latch never counted down).
-        new CountDownLatch(1).await(durationS, TimeUnit.SECONDS);
-        long cpu1 = ProcStat.cpuTicks(server.pid());
-        long self1 = ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
-                .getProcessCpuTime();
-        double wallS = (System.nanoTime() - wall0) / 1e9;
-        publications.forEach(TelemetryPublication::stop);
-        // let items still in flight arrive: wait until the delivered count stops growing for 2 s (at most 15 s)
-        long last = -1;
-        long settle = System.nanoTime() + TimeUnit.SECONDS.toNanos(15);
-        while (delivered.sum() != last && System.nanoTime() < settle) {
-            last = delivered.sum();
-            new CountDownLatch(1).await(2, TimeUnit.SECONDS);
-        }
-        long expected = offered.sum() * subscribers;
-        long got = delivered.sum();
-        List<Long> all = new ArrayList<>();
-        for (int s = 0; s < subscribers; s++) {
-            long n = Math.min(counts[s].get(), latencies[s].length);
-            for (int i = 0; i < n; i++) {
-                all.add(latencies[s][i]);
-            }
-        }
-        long[] lat = all.stream().mapToLong(Long::longValue).sorted().toArray();
-        double serverCpuPct = 100.0 * (cpu1 - cpu0) / 100.0 / wallS; // /proc ticks are 1/100 s
-        double clientCpuPct = 100.0 * (self1 - self0) / 1e9 / wallS;
-        long failed = robotConnections.stream().mapToLong(c -> TelemetryManager.getInstanceFor(c).statistics()
-                .failed()).sum();
+        TelemetryRun.Result r = TelemetryRun.run(server, new TelemetryRun.Options(robots, subscribers, rateHz,
+                durationS, textForm, 1, 1, false), Map.of("server", server.pid()));
+        long[] lat = r.latenciesNs();
         System.out.printf("[bench] telemetry: offered %d items x %d subscribers = %d, delivered %d (%.2f %%), "
-                + "publish failures %d%n", offered.sum(), subscribers, expected, got, 100.0 * got / Math.max(1,
-                        expected), failed);
+                + "publish failures %d%n", r.sent(), subscribers, r.expected(), r.delivered(), 100.0 * r.delivered()
+                        / Math.max(1, r.expected()), r.failed());
         if (lat.length > 0) {
             System.out.printf("[bench] telemetry latency p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  max %.3f ms%n", ms(lat,
                     0.5), ms(lat, 0.9), ms(lat, 0.99), lat[lat.length - 1] / 1e6);
         }
+        double serverCpuPct = r.cpuPct().get("server");
         System.out.printf("[bench] CPU over the %.1f s window: server %.1f %% of one core, benchmark JVM (all %d "
-                + "clients) %.1f %%%n", wallS, serverCpuPct, robots + subscribers, clientCpuPct);
+                + "clients) %.1f %%%n", r.wallS(), serverCpuPct, robots + subscribers, r.clientCpuPct());
         figures.put("telemetry_robots", robots);
         figures.put("telemetry_subscribers", subscribers);
         figures.put("telemetry_rate_hz", rateHz);
         figures.put("telemetry_duration_s", durationS);
-        figures.put("telemetry_expected", expected);
-        figures.put("telemetry_delivered", got);
-        figures.put("telemetry_delivered_pct", round(100.0 * got / Math.max(1, expected)));
+        figures.put("telemetry_expected", r.expected());
+        figures.put("telemetry_delivered", r.delivered());
+        figures.put("telemetry_delivered_pct", round(100.0 * r.delivered() / Math.max(1, r.expected())));
         figures.put("telemetry_p50_ms", lat.length == 0 ? "null" : round(ms(lat, 0.5)));
         figures.put("telemetry_p99_ms", lat.length == 0 ? "null" : round(ms(lat, 0.99)));
         figures.put("server_cpu_pct", round(serverCpuPct));
-        figures.put("client_cpu_pct", round(clientCpuPct));
-        if (archive) {
-            archived(server, robotConnections, figures);
-        }
-        for (XMPPTCPConnection c : robotConnections) {
-            c.instantShutdown();
-        }
-        for (XMPPTCPConnection c : subs) {
-            c.instantShutdown();
-        }
-    }
-
-    /**
-     * Every value the robots published (in the window and around it: warm-up and settling included), against the
-     * values in the archive: rows of kind telemetry, one per publication stanza, and their distinct values (a value
-     * sent again after ejabberd refused its publish-options is one value, two stanzas). The archive writes every
-     * 200 ms: counted until the count stops growing for 1 s.
-     */
-    private static void archived(PrivateXmppServer server, List<XMPPTCPConnection> robots, Map<String, Object> figures)
-            throws Exception {
-        long sent = robots.stream().mapToLong(c -> {
-            var stats = TelemetryManager.getInstanceFor(c).statistics();
-            return stats.published() + stats.failed();
-        }).sum();
-        String sql = "SELECT count(*), count(DISTINCT (device, cm_id)) FROM sabot_archive WHERE kind = 'telemetry'";
-        String last = "";
-        String now = String.join("", server.archiveSql(sql));
-        long settle = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
-        while (!now.equals(last) && System.nanoTime() < settle) {
-            last = now;
-            new CountDownLatch(1).await(1, TimeUnit.SECONDS); // the database is another process: no event to wait on
-            now = String.join("", server.archiveSql(sql));
-        }
-        String[] counts = now.split("\\|");
-        long rows = Long.parseLong(counts[0].strip());
-        long values = Long.parseLong(counts[1].strip());
-        System.out.printf("[bench] archive: %d telemetry values sent (accepted or failed), %d archived (%d "
-                + "stanzas)%s%n", sent, values, rows, values == sent ? "" : ": MISSING " + (sent - values));
-        figures.put("archive_sent", sent);
-        figures.put("archived", values);
-        figures.put("archived_stanzas", rows);
-    }
-
-    /** The measurement window in epoch nanoseconds; closed until opened. */
-    private static final class Window {
-        private volatile long start = Long.MAX_VALUE;
-        private volatile long end = Long.MIN_VALUE;
-
-        void open(long from, long length) {
-            end = from + length;
-            start = from;
-        }
-
-        boolean contains(long t) {
-            return t >= start && t < end;
-        }
-    }
-
-    private static AbstractPresenceEventListener countAvailable(CountDownLatch latch, String prefix) {
-        Map<EntityBareJid, Boolean> seen = new ConcurrentHashMap<>();
-        return new AbstractPresenceEventListener() {
-            @Override
-            public void presenceAvailable(FullJid address, Presence availablePresence) {
-                EntityBareJid bare = address.asEntityBareJidIfPossible();
-                if (bare != null && bare.getLocalpart().toString().startsWith(prefix) && seen.putIfAbsent(bare, Boolean.TRUE)
-                        == null) {
-                    latch.countDown();
-                }
-            }
-        };
-    }
-
-    private static long nanosOfInstant(Instant t) {
-        return t.getEpochSecond() * 1_000_000_000L + t.getNano();
+        figures.put("client_cpu_pct", round(r.clientCpuPct()));
     }
 }

@@ -66,4 +66,32 @@ final class ProcStat {
         }
         return total;
     }
+
+    /**
+     * @return the resident memory of a process and its descendants, kB: their proportional set sizes (Pss of proc(5)'s
+     *         smaps_rollup: a page shared by n processes counts 1/n in each), so that memory they share (PostgreSQL's
+     *         shared buffers) counts once; 0 when it has ended
+     */
+    static long rssKb(long pid) {
+        ProcessHandle root = ProcessHandle.of(pid).orElse(null);
+        if (root == null) {
+            return 0;
+        }
+        List<ProcessHandle> tree = new ArrayList<>();
+        tree.add(root);
+        root.descendants().forEach(tree::add);
+        long total = 0;
+        for (ProcessHandle p : tree) {
+            try {
+                for (String line : Files.readAllLines(Paths.get("/proc", Long.toString(p.pid()), "smaps_rollup"))) {
+                    if (line.startsWith("Pss:")) {
+                        total += Long.parseLong(line.replaceAll("[^0-9]", ""));
+                    }
+                }
+            } catch (IOException | RuntimeException gone) {
+                // ended meanwhile
+            }
+        }
+        return total;
+    }
 }
