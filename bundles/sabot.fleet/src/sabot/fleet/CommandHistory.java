@@ -1,9 +1,6 @@
 package sabot.fleet;
 
-import java.time.Duration;
-import java.time.Instant;
 import java.util.List;
-import java.util.Objects;
 
 import org.jivesoftware.smack.SmackException.NoResponseException;
 import org.jivesoftware.smack.SmackException.NotConnectedException;
@@ -24,9 +21,9 @@ import sabot.fleet.internal.HistoryIqProvider;
 public final class CommandHistory {
 
     /** The protocol's namespace. */
-    public static final String NAMESPACE = "urn:sabot:archive:1";
+    public static final String NAMESPACE = HistoryIq.NAMESPACE;
     /** The request's and the answer's element. */
-    public static final String ELEMENT = "history";
+    public static final String ELEMENT = HistoryIq.ELEMENT;
     /** The most commands one request returns (the server refuses more with {@code bad-request}). */
     public static final int MAX = 500;
 
@@ -35,35 +32,6 @@ public final class CommandHistory {
     }
 
     private CommandHistory() {
-    }
-
-    /**
-     * One archived command.
-     *
-     * @param seq       its row in the archive (increasing)
-     * @param at        when the server took it
-     * @param stored    sent as a stored command (a message kept for a device that may be offline), else an IQ
-     * @param resource  its ControlML resource, e.g. {@code cm.goal}
-     * @param id        its ControlML id
-     * @param from      who sent it (full JID)
-     * @param answer    {@code result}, {@code error}, or empty: no answer archived
-     * @param condition an error's condition, else empty
-     * @param text      an error's text, else empty
-     * @param answerIn  how long the answer took at the server, or null without one
-     */
-    public record Command(long seq, Instant at, boolean stored, String resource, String id, String from,
-            String answer, String condition, String text, Duration answerIn) {
-
-        /** Checks the fields. */
-        public Command {
-            Objects.requireNonNull(at, "at");
-            Objects.requireNonNull(resource, "resource");
-            Objects.requireNonNull(id, "id");
-            Objects.requireNonNull(from, "from");
-            Objects.requireNonNull(answer, "answer");
-            Objects.requireNonNull(condition, "condition");
-            Objects.requireNonNull(text, "text");
-        }
     }
 
     /**
@@ -78,7 +46,7 @@ public final class CommandHistory {
      * @throws IllegalStateException when the server's answer has commands that cannot be read (a server of another
      *                               version)
      */
-    public static List<Command> read(XMPPConnection connection, EntityBareJid device, int max)
+    public static List<ArchivedCommand> read(XMPPConnection connection, EntityBareJid device, int max)
             throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
         if (max < 1 || max > MAX) {
             throw new IllegalArgumentException("max " + max + ": expected 1.." + MAX);

@@ -6,19 +6,23 @@ import org.jivesoftware.smack.packet.IQ;
 import org.jxmpp.jid.DomainBareJid;
 import org.jxmpp.jid.EntityBareJid;
 
-import sabot.fleet.CommandHistory;
-import sabot.fleet.CommandHistory.Command;
+import sabot.fleet.ArchivedCommand;
 
-/** The command history's IQ ({@link CommandHistory}): the request, or the server's answer with its commands. */
+/** The command history's IQ (sabot.fleet.CommandHistory): the request, or the server's answer with its commands. */
 public final class HistoryIq extends IQ {
+
+    /** The protocol's namespace. */
+    public static final String NAMESPACE = "urn:sabot:archive:1";
+    /** The request's and the answer's element. */
+    public static final String ELEMENT = "history";
 
     private final EntityBareJid device;
     private final int max;
-    private final List<Command> commands;
+    private final List<ArchivedCommand> commands;
     private final List<String> problems;
 
-    private HistoryIq(EntityBareJid device, int max, List<Command> commands, List<String> problems) {
-        super(CommandHistory.ELEMENT, CommandHistory.NAMESPACE);
+    private HistoryIq(EntityBareJid device, int max, List<ArchivedCommand> commands, List<String> problems) {
+        super(ELEMENT, NAMESPACE);
         this.device = device;
         this.max = max;
         this.commands = List.copyOf(commands);
@@ -34,12 +38,12 @@ public final class HistoryIq extends IQ {
     }
 
     /** @return an answer as read: its commands, and what could not be read */
-    static HistoryIq answer(List<Command> commands, List<String> problems) {
+    static HistoryIq answer(List<ArchivedCommand> commands, List<String> problems) {
         return new HistoryIq(null, 0, commands, problems);
     }
 
     /** @return the commands of an answer, newest first */
-    public List<Command> commands() {
+    public List<ArchivedCommand> commands() {
         return commands;
     }
 

@@ -13,7 +13,7 @@ import org.jivesoftware.smack.provider.IqProvider;
 import org.jivesoftware.smack.xml.XmlPullParser;
 import org.jivesoftware.smack.xml.XmlPullParserException;
 
-import sabot.fleet.CommandHistory.Command;
+import sabot.fleet.ArchivedCommand;
 
 /**
  * Reads the server's answer {@code <history device='...'><command seq='..' at='..' .../>...</history>}, and the
@@ -25,7 +25,7 @@ public final class HistoryIqProvider extends IqProvider<HistoryIq> {
     @Override
     public HistoryIq parse(XmlPullParser parser, int initialDepth, IqData iqData, XmlEnvironment xmlEnvironment)
             throws XmlPullParserException, IOException {
-        List<Command> commands = new ArrayList<>();
+        List<ArchivedCommand> commands = new ArrayList<>();
         List<String> problems = new ArrayList<>();
         while (true) {
             XmlPullParser.Event event = parser.next();
@@ -42,9 +42,9 @@ public final class HistoryIqProvider extends IqProvider<HistoryIq> {
         return HistoryIq.answer(commands, problems);
     }
 
-    private static Command command(XmlPullParser p) {
+    private static ArchivedCommand command(XmlPullParser p) {
         String ms = attribute(p, "ms");
-        return new Command(Long.parseLong(attribute(p, "seq")), Instant.parse(attribute(p, "at")), "message".equals(
+        return new ArchivedCommand(Long.parseLong(attribute(p, "seq")), Instant.parse(attribute(p, "at")), "message".equals(
                 attribute(p, "via")), attribute(p, "res"), attribute(p, "id"), attribute(p, "from"), attribute(p,
                         "answer"), attribute(p, "condition"), attribute(p, "text"), ms.isEmpty() ? null : Duration
                                 .ofNanos(new BigDecimal(ms).movePointRight(6).longValue()));

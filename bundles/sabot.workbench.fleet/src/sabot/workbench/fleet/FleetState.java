@@ -13,6 +13,7 @@ import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
+import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
 import sabot.model.geometry.Twist2D;
 
@@ -139,7 +140,7 @@ public interface FleetState {
      * @return completes with the commands, newest first; exceptionally with a {@link FleetCommandException} saying
      *         why not (the server keeps no archive, the account has no role of the lab, not connected)
      */
-    default CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+    default CompletableFuture<List<ArchivedCommand>> commandHistory(String robot, int max) {
         return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
                 "no command history here"));
     }

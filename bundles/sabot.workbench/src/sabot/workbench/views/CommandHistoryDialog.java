@@ -23,7 +23,7 @@ import org.eclipse.swt.widgets.Label;
 import org.eclipse.swt.widgets.Shell;
 import org.eclipse.swt.widgets.Table;
 
-import sabot.fleet.CommandHistory;
+import sabot.fleet.ArchivedCommand;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetState;
 
@@ -47,7 +47,7 @@ public final class CommandHistoryDialog extends Dialog {
     private final String robot;
     private TableViewer viewer;
     private Label status;
-    private List<CommandHistory.Command> shown = List.of();
+    private List<ArchivedCommand> shown = List.of();
     private String statusText = "";
 
     /**
@@ -64,7 +64,7 @@ public final class CommandHistoryDialog extends Dialog {
     }
 
     /** The texts of one row (for tests). */
-    public static List<String> texts(CommandHistory.Command c) {
+    public static List<String> texts(ArchivedCommand c) {
         Duration in = c.answerIn();
         String why = c.condition().isEmpty() ? c.text() : c.text().isEmpty() ? c.condition() : c.condition() + ": "
                 + c.text();
@@ -98,7 +98,7 @@ public final class CommandHistoryDialog extends Dialog {
             column.setLabelProvider(new ColumnLabelProvider() {
                 @Override
                 public String getText(Object element) {
-                    return texts((CommandHistory.Command) element).get(index);
+                    return texts((ArchivedCommand) element).get(index);
                 }
             });
         }
@@ -127,7 +127,7 @@ public final class CommandHistoryDialog extends Dialog {
     /** Reads the history again; the rows and the status line change when the answer comes. */
     public void read() {
         show(shown, "Reading the archive of " + robot + "…");
-        CompletableFuture<List<CommandHistory.Command>> answer = fleet.commandHistory(robot, MAX);
+        CompletableFuture<List<ArchivedCommand>> answer = fleet.commandHistory(robot, MAX);
         answer.whenComplete((commands, failure) -> {
             if (status.isDisposed()) {
                 return;
@@ -148,7 +148,7 @@ public final class CommandHistoryDialog extends Dialog {
         });
     }
 
-    private void show(List<CommandHistory.Command> commands, String text) {
+    private void show(List<ArchivedCommand> commands, String text) {
         shown = List.copyOf(commands);
         statusText = text;
         status.setText(text);
@@ -157,7 +157,7 @@ public final class CommandHistoryDialog extends Dialog {
     }
 
     /** @return the commands shown (UI thread) */
-    public List<CommandHistory.Command> shown() {
+    public List<ArchivedCommand> shown() {
         return shown;
     }
 

@@ -35,6 +35,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.fleet.AccessRules;
+import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
@@ -183,16 +184,16 @@ class ArchiveTest {
         assertEquals(ControlMlCondition.SET_NOT_PERMITTED, refused.cmCondition(), String.valueOf(refused));
 
         // at once: the server writes what it holds before it answers
-        List<CommandHistory.Command> latest = CommandHistory.read(observer, robotJid, 3);
+        List<ArchivedCommand> latest = CommandHistory.read(observer, robotJid, 3);
         assertEquals(3, latest.size(), String.valueOf(latest));
         assertTrue(latest.get(0).seq() > latest.get(1).seq() && latest.get(1).seq() > latest.get(2).seq(),
                 "not newest first: " + latest);
-        CommandHistory.Command denied = latest.get(0);
+        ArchivedCommand denied = latest.get(0);
         assertTrue(denied.from().startsWith(observerJid + "/"), denied.toString());
         assertEquals("error", denied.answer());
         assertEquals("set-not-permitted", denied.condition());
         assertFalse(denied.text().isEmpty(), denied.toString());
-        for (CommandHistory.Command c : latest.subList(1, 3)) {
+        for (ArchivedCommand c : latest.subList(1, 3)) {
             assertTrue(c.from().startsWith(operatorJid + "/"), c.toString());
             assertEquals("cm.goal", c.resource());
             assertEquals("result", c.answer());

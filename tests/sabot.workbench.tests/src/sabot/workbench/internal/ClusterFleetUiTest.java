@@ -36,7 +36,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.fleet.AccessRules;
-import sabot.fleet.CommandHistory;
+import sabot.fleet.ArchivedCommand;
 import sabot.fleet.PresenceLevels;
 import sabot.model.geometry.Pose2D;
 import sabot.workbench.account.XmppAccount;
@@ -130,7 +130,7 @@ class ClusterFleetUiTest {
         CommandHistoryDialog dialog = fleetView().openCommandHistory(jid);
         try {
             waitFor(() -> !dialog.shown().isEmpty(), 10, dialog::statusText);
-            CommandHistory.Command goal = dialog.shown().get(0);
+            ArchivedCommand goal = dialog.shown().get(0);
             List<String> row = CommandHistoryDialog.texts(goal);
             assertEquals("cm.goal", row.get(2), row.toString());
             assertEquals("result", row.get(3), row.toString());

@@ -27,7 +27,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
-import sabot.fleet.CommandHistory;
+import sabot.fleet.ArchivedCommand;
 import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
@@ -226,7 +226,7 @@ public final class ControlMlFleet implements FleetState {
     }
 
     @Override
-    public CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+    public CompletableFuture<List<ArchivedCommand>> commandHistory(String robot, int max) {
         return requests.commandHistory(robot, max);
     }
 

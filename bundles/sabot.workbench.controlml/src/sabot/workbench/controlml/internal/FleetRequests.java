@@ -32,6 +32,7 @@ import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
+import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceVCards;
@@ -219,11 +220,11 @@ final class FleetRequests {
 
     /** Pool thread: loads and parses the vCard; each failure as a {@link FleetCommandException} for the operator. */
     /** The robot's latest commands from the server's archive ({@link CommandHistory}), on the pool. */
-    CompletableFuture<List<CommandHistory.Command>> commandHistory(String robot, int max) {
+    CompletableFuture<List<ArchivedCommand>> commandHistory(String robot, int max) {
         return onPool(() -> fetchHistory(robot, max));
     }
 
-    private List<CommandHistory.Command> fetchHistory(String robot, int max) {
+    private List<ArchivedCommand> fetchHistory(String robot, int max) {
         FleetSession s = sessionFor(robot, false);
         try {
             return CommandHistory.read(s.connection(), JidCreate.entityBareFrom(robot), max);
