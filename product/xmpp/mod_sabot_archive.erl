@@ -203,7 +203,8 @@ attr(Name, El) -> fxml:get_tag_attr_s(Name, El).
 
 %%% --- the command history ---------------------------------------------------------------------------------------
 %% <history xmlns='urn:sabot:archive:1' device='BARE JID' [max='1..500'] [before='SEQ']/>: the device's commands (sets),
-%% newest first, each with its answer.
+%% newest first (by the time the server took them: a cluster's nodes number their rows as each writes them), each with
+%% its answer.
 
 %% The request reaches process_iq as XML (ejabberd's codec does not know the element).
 decode_iq_subel(El) ->
@@ -275,8 +276,12 @@ history_query(#xmlel{name = <<"history">>} = El) ->
             {ok, D, [<<"SELECT seq, to_char(at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"'), via, res, "
                        "cm_id, sender, coalesce(answer, ''), condition, text, coalesce(answer_ms::text, '') "
                        "FROM sabot_requests WHERE kind = 'set' AND device = ">>, literal(D),
-                     case Before of none -> <<>>; _ -> [<<" AND seq < ">>, integer_to_binary(Before)] end,
-                     <<" ORDER BY seq DESC LIMIT ">>, integer_to_binary(Max)]}
+                     case Before of
+                         none -> <<>>;
+                         _ -> [<<" AND (at, seq) < (SELECT at, seq FROM sabot_archive WHERE seq = ">>,
+                               integer_to_binary(Before), <<")">>]
+                     end,
+                     <<" ORDER BY at DESC, seq DESC LIMIT ">>, integer_to_binary(Max)]}
     end;
 history_query(_) ->
     {error, <<"expected <history xmlns='urn:sabot:archive:1' device='...'/>">>}.

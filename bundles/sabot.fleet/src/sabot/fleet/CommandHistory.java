@@ -48,10 +48,28 @@ public final class CommandHistory {
      */
     public static List<ArchivedCommand> read(XMPPConnection connection, EntityBareJid device, int max)
             throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
+        return read(connection, device, max, 0);
+    }
+
+    /**
+     * Reads the commands taken before one of them: the next page of {@link #read(XMPPConnection, EntityBareJid, int)}.
+     *
+     * @param before the {@link ArchivedCommand#seq()} of the oldest command read so far
+     */
+    public static List<ArchivedCommand> readBefore(XMPPConnection connection, EntityBareJid device, int max,
+            long before) throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
+        if (before < 1) {
+            throw new IllegalArgumentException("before " + before + ": expected a command's seq");
+        }
+        return read(connection, device, max, before);
+    }
+
+    private static List<ArchivedCommand> read(XMPPConnection connection, EntityBareJid device, int max, long before)
+            throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
         if (max < 1 || max > MAX) {
             throw new IllegalArgumentException("max " + max + ": expected 1.." + MAX);
         }
-        HistoryIq request = HistoryIq.request(connection.getXMPPServiceDomain(), device, max);
+        HistoryIq request = HistoryIq.request(connection.getXMPPServiceDomain(), device, max, before);
         HistoryIq answer = connection.sendIqRequestAndWaitForResponse(request);
         if (!answer.problems().isEmpty()) {
             throw new IllegalStateException("the server's command history of " + device + " has commands that could not"

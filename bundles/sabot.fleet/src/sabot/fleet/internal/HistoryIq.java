@@ -18,20 +18,26 @@ public final class HistoryIq extends IQ {
 
     private final EntityBareJid device;
     private final int max;
+    private final long before;
     private final List<ArchivedCommand> commands;
     private final List<String> problems;
 
-    private HistoryIq(EntityBareJid device, int max, List<ArchivedCommand> commands, List<String> problems) {
+    private HistoryIq(EntityBareJid device, int max, long before, List<ArchivedCommand> commands,
+            List<String> problems) {
         super(ELEMENT, NAMESPACE);
         this.device = device;
         this.max = max;
+        this.before = before;
         this.commands = List.copyOf(commands);
         this.problems = List.copyOf(problems);
     }
 
-    /** @return a get of {@code device}'s latest {@code max} commands, to the server's domain */
-    public static HistoryIq request(DomainBareJid server, EntityBareJid device, int max) {
-        HistoryIq iq = new HistoryIq(device, max, List.of(), List.of());
+    /**
+     * @param before 0, or the seq of a command: those taken before it
+     * @return a get of {@code device}'s latest {@code max} commands, to the server's domain
+     */
+    public static HistoryIq request(DomainBareJid server, EntityBareJid device, int max, long before) {
+        HistoryIq iq = new HistoryIq(device, max, before, List.of(), List.of());
         iq.setType(Type.get);
         iq.setTo(server);
         return iq;
@@ -39,7 +45,7 @@ public final class HistoryIq extends IQ {
 
     /** @return an answer as read: its commands, and what could not be read */
     static HistoryIq answer(List<ArchivedCommand> commands, List<String> problems) {
-        return new HistoryIq(null, 0, commands, problems);
+        return new HistoryIq(null, 0, 0, commands, problems);
     }
 
     /** @return the commands of an answer, newest first */
@@ -57,6 +63,9 @@ public final class HistoryIq extends IQ {
         xml.optAttribute("device", device);
         if (max > 0) {
             xml.attribute("max", max);
+        }
+        if (before > 0) {
+            xml.attribute("before", Long.toString(before));
         }
         xml.setEmptyElement();
         return xml;

@@ -186,8 +186,8 @@ class ArchiveTest {
         // at once: the server writes what it holds before it answers
         List<ArchivedCommand> latest = CommandHistory.read(observer, robotJid, 3);
         assertEquals(3, latest.size(), String.valueOf(latest));
-        assertTrue(latest.get(0).seq() > latest.get(1).seq() && latest.get(1).seq() > latest.get(2).seq(),
-                "not newest first: " + latest);
+        assertTrue(!latest.get(0).at().isBefore(latest.get(1).at()) && !latest.get(1).at().isBefore(latest.get(2)
+                .at()), "not newest first: " + latest);
         ArchivedCommand denied = latest.get(0);
         assertTrue(denied.from().startsWith(observerJid + "/"), denied.toString());
         assertEquals("error", denied.answer());
@@ -201,6 +201,10 @@ class ArchiveTest {
             assertTrue(c.answerIn() != null && !c.answerIn().isNegative(), c.toString());
         }
         assertEquals(4, CommandHistory.read(operator, robotJid, CommandHistory.MAX).size());
+        // the next page: the one command taken before the three
+        List<ArchivedCommand> older = CommandHistory.readBefore(operator, robotJid, 3, latest.get(2).seq());
+        assertEquals(1, older.size(), String.valueOf(older));
+        assertTrue(older.get(0).at().compareTo(latest.get(2).at()) <= 0, older + " after " + latest.get(2));
 
         // nobody outside the lab's roles; bad requests refused with why
         XMPPErrorException forbidden = assertThrows(XMPPErrorException.class, () -> CommandHistory.read(stranger,
