@@ -202,6 +202,18 @@ public interface FleetState {
     }
 
     /**
+     * The workbench's own count of its traffic with a robot since the connection was made: stanzas and bytes in and
+     * out, requests, errors by condition, round trips, telemetry ({@link TrafficStatistics}, docs/STATISTICS.md). A
+     * default for providers written before this method: none.
+     *
+     * @param robot bare JID
+     * @return a snapshot, computed when called (any thread); empty for a robot not followed or before a connection
+     */
+    default Optional<TrafficStatistics> traffic(String robot) {
+        return Optional.empty();
+    }
+
+    /**
      * Fetches the robot's identity from its vCard (JID, nickname, URL, location, UUID, the QR-code inventory image).
      * A default for providers written before this method: it refuses with
      * {@link sabot.controlml.ControlMlCondition#UNSUPPORTED_OPERATION}.

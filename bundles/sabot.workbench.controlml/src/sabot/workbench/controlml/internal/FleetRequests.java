@@ -51,6 +51,7 @@ final class FleetRequests {
     private final ExecutorService sender;
     private final Supplier<FleetSession> session;
     private final RobotRegistry registry;
+    private final FleetTraffic traffic;
     /** The commands waiting for offline robots, by id: completed with the robot's answer. */
     private final Map<String, CompletableFuture<Void>> queued = new ConcurrentHashMap<>();
 
@@ -65,7 +66,8 @@ final class FleetRequests {
      * @param sender the thread that sends stored commands, which wait for no answer ({@link #goToWhenOnline})
      */
     FleetRequests(ExecutorService pool, ExecutorService sender, Supplier<FleetSession> session,
-            RobotRegistry registry) {
+            RobotRegistry registry, FleetTraffic traffic) {
+        this.traffic = traffic;
         this.pool = pool;
         this.sender = sender;
         this.session = session;
@@ -208,7 +210,9 @@ final class FleetRequests {
         if (!p.isAvailable()) {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot + " is offline");
         }
+        long sent = traffic.requesting(robot);
         Outcome<T> o = call.on(s.manager(), p.getFrom());
+        traffic.answered(robot, sent, o instanceof Outcome.Failure<T> f ? f.error().cmCondition() : null);
         if (o instanceof Outcome.Failure<T> failure) {
             ControlMlError e = failure.error();
             throw new FleetCommandException(e.cmCondition() != null ? e.cmCondition() : ControlMlCondition.UNSPECIFIED,
