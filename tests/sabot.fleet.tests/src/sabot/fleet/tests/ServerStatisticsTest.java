@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.IOException;
+import java.time.Duration;
 import java.time.Instant;
 import java.time.temporal.ChronoUnit;
 import java.util.ArrayList;
@@ -13,6 +14,9 @@ import java.util.Map;
 import java.util.TreeMap;
 import java.util.concurrent.TimeUnit;
 
+import org.jivesoftware.smack.XMPPException.XMPPErrorException;
+import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Tag;
@@ -33,13 +37,16 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.fleet.AccessRules;
+import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 
 /**
  * {@code ./sabot stats} ({@code product/bin/sabot-stats}, docs/STATISTICS.md) on a private ejabberd with the archive:
  * the server's own figures from its admin API (the device's session), and per device the requests, answers, errors by
- * condition, answer times and telemetry the test's clients sent; bad arguments refused with why.
+ * condition, answer times and telemetry the test's clients sent; the same over XMPP ({@link ServerStatistics}) for the
+ * lab's roles only; bad arguments and requests refused with why.
  */
 @Tag("ejabberd")
 class ServerStatisticsTest {
@@ -123,9 +130,40 @@ class ServerStatisticsTest {
         assertEquals(Map.of("telemetry", 11), counts(device.getAsJsonObject("resources").getAsJsonObject(
                 "cm.position")));
 
+        // the same over XMPP (urn:sabot:archive:1), for an account of the lab's roles
+        ServerStatistics.Figures f = ServerStatistics.read(observer, robotJid, Duration.ofMinutes(5));
+        assertEquals(robotJid.toString(), f.device());
+        assertEquals(1, f.sessions());
+        assertEquals(List.of(9L, 2L, 7L, 0L, 9L, 6L, 3L, 9L, 11L, 29L), List.of(f.requests(), f.gets(), f.sets(), f
+                .stored(), f.answers(), f.results(), f.errors(), f.answered(), f.telemetry(), f.stanzas()), f.toString());
+        assertEquals(Map.of("access-denied", 1L, "set-not-permitted", 2L), f.errorsByCondition());
+        assertEquals(p50, f.answerP50Ms(), 0.05, f.toString());
+        assertEquals(p99, f.answerP99Ms(), 0.05, f.toString());
+        assertEquals(29L, f.stanzasByNode().values().stream().mapToLong(Long::longValue).sum());
+        assertTrue(f.telemetryAgeS() >= 0 && f.telemetryAgeS() < 60, f.toString());
+        XMPPErrorException forbidden = assertThrows(XMPPErrorException.class, () -> ServerStatistics.read(stranger,
+                robotJid, Duration.ofMinutes(5)));
+        assertEquals(StanzaError.Condition.forbidden, forbidden.getStanzaError().getCondition());
+        Map<Map<String, String>, String> badRequests = Map.of(
+                Map.of("device", "not a jid@@"), "device: expected a bare JID",
+                Map.of("device", robotJid.toString(), "seconds", "0"), "seconds: expected 1..604800",
+                Map.of("device", robotJid.toString(), "seconds", "604801"), "seconds: expected 1..604800",
+                Map.of("device", robotJid.toString(), "seconds", "x"), "seconds: expected 1..604800");
+        List<String> unexpectedAnswers = new ArrayList<>();
+        for (var request : badRequests.entrySet()) {
+            XMPPErrorException e = assertThrows(XMPPErrorException.class, () -> operator
+                    .sendIqRequestAndWaitForResponse(statisticsIq(request.getKey())));
+            if (e.getStanzaError().getCondition() != StanzaError.Condition.bad_request || !e.getStanzaError()
+                    .getDescriptiveText().contains(request.getValue())) {
+                unexpectedAnswers.add(request.getKey() + ": " + e.getStanzaError());
+            }
+        }
+        assertEquals(List.of(), unexpectedAnswers);
+
         // the text form: the server's figures, then the device's line with its errors by condition
         List<String> text = XMPP.statistics(robotJid.getLocalpart().toString(), "--since", before);
         String all = String.join("\n", text);
+        System.out.println("[figure] ./sabot stats " + robotJid.getLocalpart() + " --since " + before + ":\n" + all);
         assertTrue(text.get(0).startsWith("server: ejabberd, up "), all);
         assertTrue(all.contains("  " + robotJid + ": 9 requests (2 get, 7 set); 9 answers (6 result, 3 error: "
                 + "access-denied 1, set-not-permitted 2); answer p50 "), all);
@@ -156,6 +194,21 @@ class ServerStatisticsTest {
             }
         });
         assertEquals(List.of(), unexpected);
+    }
+
+    /** A statistics request with any attributes, as a client that does not use {@link ServerStatistics} may send. */
+    private static IQ statisticsIq(Map<String, String> attributes) {
+        IQ iq = new IQ(ServerStatistics.ELEMENT, CommandHistory.NAMESPACE) {
+            @Override
+            protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+                attributes.forEach(xml::attribute);
+                xml.setEmptyElement();
+                return xml;
+            }
+        };
+        iq.setType(IQ.Type.get);
+        iq.setTo(PrivateXmppServer.domainJid(PrivateXmppServer.DOMAIN));
+        return iq;
     }
 
     private static Map<String, Integer> counts(JsonObject o) {
