@@ -1,5 +1,6 @@
 package sabot.workbench.fleet;
 
+import java.time.Duration;
 import java.util.List;
 import java.util.Optional;
 import java.util.concurrent.CompletableFuture;
@@ -14,6 +15,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
 import sabot.model.geometry.Twist2D;
 
 /**
@@ -211,6 +213,20 @@ public interface FleetState {
      */
     default Optional<TrafficStatistics> traffic(String robot) {
         return Optional.empty();
+    }
+
+    /**
+     * Reads a robot's figures from the server's archive of ControlML stanzas (docs/STATISTICS.md): what every client
+     * sent it and what it sent, as the server archived it, over the last {@code window}.
+     *
+     * @param window whole seconds, 1 s..{@link ServerStatistics#MAX_WINDOW}
+     * @return completes with the figures; exceptionally with a {@link FleetCommandException} saying why not (the
+     *         server keeps no archive, the account has no role of the lab, not connected). A default for providers
+     *         written before this method: UNSUPPORTED_OPERATION.
+     */
+    default CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, Duration window) {
+        return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
+                "no server statistics here"));
     }
 
     /**

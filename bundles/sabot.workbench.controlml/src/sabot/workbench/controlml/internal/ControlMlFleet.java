@@ -28,6 +28,7 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
 import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
@@ -232,6 +233,11 @@ public final class ControlMlFleet implements FleetState {
     @Override
     public Optional<TrafficStatistics> traffic(String robot) {
         return traffic.snapshot(robot);
+    }
+
+    @Override
+    public CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, java.time.Duration window) {
+        return requests.serverStatistics(robot, window);
     }
 
     @Override

@@ -1,5 +1,6 @@
 package sabot.workbench.statistics.internal;
 
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.HashSet;
 import java.util.List;
@@ -32,6 +33,8 @@ import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.ControlMlCondition;
+import sabot.fleet.ServerStatistics;
+import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
@@ -43,12 +46,20 @@ import sabot.workbench.fleet.TrafficStatistics;
  * stanzas per second in and out, and the round-trip p99. Refreshed every {@link #REFRESH_MS} ms by a timer on the UI
  * thread, which reads in-memory snapshots only (no request, no wait on the network: the ControlML plug-in counts on
  * its own threads). The robot selected here, in the Fleet view or on the map is the one plotted.
+ * <p>
+ * Under the table, the server's figures of the selected robot over the last {@link #SERVER_WINDOW} (what every client
+ * sent it, as the server archived it: {@link FleetState#serverStatistics}), asked for every {@link #SERVER_REFRESH_MS}
+ * ms on the fleet's threads, one request at a time; a server without the archive says so once.
  */
 public final class TrafficView extends ViewPart {
 
     public static final String ID = "sabot.workbench.statistics.view";
     /** The refresh period: the rates are per second, over whole seconds. */
     public static final int REFRESH_MS = 1000;
+    /** How often the server's figures are asked for: a database query on the server each time. */
+    public static final int SERVER_REFRESH_MS = 10_000;
+    /** The server's figures' window. */
+    public static final Duration SERVER_WINDOW = Duration.ofMinutes(15);
 
     /** The table's columns: title, width in pixels, text of a snapshot. */
     private record Column(String title, int width, Function<TrafficStatistics, String> text) {
@@ -56,15 +67,15 @@ public final class TrafficView extends ViewPart {
 
     static final List<Column> COLUMNS = List.of(
             new Column("Robot", 170, TrafficStatistics::robot),
-            new Column("In msg/s", 70, s -> rate(s.stanzasInPerSecond())),
-            new Column("Out msg/s", 70, s -> rate(s.stanzasOutPerSecond())),
-            new Column("In B/s", 75, s -> bytes(s.bytesInPerSecond())),
-            new Column("Out B/s", 75, s -> bytes(s.bytesOutPerSecond())),
-            new Column("Requests", 70, s -> Long.toString(s.requests())),
-            new Column("Errors", 170, TrafficView::errors),
-            new Column("RTT p50 ms", 80, s -> ms(s.roundTripP50Ms())),
-            new Column("RTT p99 ms", 80, s -> ms(s.roundTripP99Ms())),
-            new Column("Telemetry Hz", 85, s -> rate(s.telemetryHz())),
+            new Column("In msg/s", 80, s -> rate(s.stanzasInPerSecond())),
+            new Column("Out msg/s", 85, s -> rate(s.stanzasOutPerSecond())),
+            new Column("In B/s", 80, s -> bytes(s.bytesInPerSecond())),
+            new Column("Out B/s", 80, s -> bytes(s.bytesOutPerSecond())),
+            new Column("Requests", 80, s -> Long.toString(s.requests())),
+            new Column("Errors", 300, TrafficView::errors),
+            new Column("RTT p50 ms", 95, s -> ms(s.roundTripP50Ms())),
+            new Column("RTT p99 ms", 95, s -> ms(s.roundTripP99Ms())),
+            new Column("Telemetry Hz", 105, s -> rate(s.telemetryHz())),
             new Column("Age s", 60, s -> Double.isNaN(s.telemetryAgeS()) ? "–" : String.format(Locale.ROOT, "%.1f",
                     s.telemetryAgeS())));
 
@@ -74,6 +85,13 @@ public final class TrafficView extends ViewPart {
     private FleetBinding binding;
     private TableViewer table;
     private Label summary;
+    private Label serverLine;
+    /** The robot whose server figures were last asked for, and when (System.nanoTime), UI thread only. */
+    private String serverAskedFor;
+    private long serverAskedAt;
+    private boolean serverAsking;
+    /** The server said it keeps no archive: not asked again for this robot. */
+    private boolean serverHasNoArchive;
     private Chart messages;
     private Chart roundTrip;
     private List<TrafficStatistics> rows = List.of();
@@ -86,6 +104,9 @@ public final class TrafficView extends ViewPart {
         parent.setLayout(new GridLayout(1, false));
         summary = new Label(parent, SWT.NONE);
         summary.setLayoutData(new GridData(SWT.FILL, SWT.TOP, true, false));
+        serverLine = new Label(parent, SWT.NONE);
+        serverLine.setLayoutData(new GridData(SWT.FILL, SWT.TOP, true, false));
+        serverLine.setText("server: –");
         SashForm split = new SashForm(parent, SWT.VERTICAL);
         split.setLayoutData(new GridData(SWT.FILL, SWT.FILL, true, true));
         table = new TableViewer(split, SWT.FULL_SELECTION | SWT.BORDER | SWT.V_SCROLL | SWT.SINGLE);
@@ -192,6 +213,65 @@ public final class TrafficView extends ViewPart {
                                 + TrafficStatistics.ROUND_TRIP_WINDOW_S + " s" + (selected == null ? ""
                                         : "; plotted: " + selected));
         plot(now);
+        askServer(fleet);
+    }
+
+    /** UI thread: asks for the selected robot's server figures when due; the answer comes back to the UI thread. */
+    private void askServer(FleetState fleet) {
+        long nanos = System.nanoTime();
+        boolean robotChanged = selected != null && !selected.equals(serverAskedFor);
+        if (fleet == null || selected == null || serverAsking || (!robotChanged && (serverHasNoArchive
+                || nanos - serverAskedAt < SERVER_REFRESH_MS * 1_000_000L))) {
+            return;
+        }
+        String robot = selected;
+        serverAskedFor = robot;
+        serverAskedAt = nanos;
+        serverAsking = true;
+        serverHasNoArchive = false;
+        Display display = serverLine.getDisplay();
+        fleet.serverStatistics(robot, SERVER_WINDOW).whenComplete((f, e) -> uiThread(display).execute(() -> {
+            serverAsking = false;
+            if (serverLine.isDisposed() || !robot.equals(selected)) {
+                return;
+            }
+            Throwable why = e instanceof java.util.concurrent.CompletionException c && c.getCause() != null ? c
+                    .getCause() : e;
+            if (why instanceof FleetCommandException fe && fe.condition() == ControlMlCondition.UNSUPPORTED_OPERATION) {
+                serverHasNoArchive = true;
+            }
+            serverLine.setText(why == null ? serverText(f) : "server: " + (why instanceof FleetCommandException fe ? fe
+                    .getMessage() : why.toString()));
+            serverLine.getParent().layout(true, false);
+        }));
+    }
+
+    /** The server's figures of a robot as one line. */
+    static String serverText(ServerStatistics.Figures f) {
+        StringBuilder b = new StringBuilder(String.format(Locale.ROOT, "server's archive, last %d min: %d requests, %d"
+                + " answers, %d errors", f.window().toMinutes(), f.requests(), f.answers(), f.errors()));
+        if (!f.errorsByCondition().isEmpty()) {
+            b.append(" (");
+            String sep = "";
+            for (Map.Entry<String, Long> e : new TreeMap<>(f.errorsByCondition()).entrySet()) {
+                b.append(sep).append(e.getKey()).append(' ').append(e.getValue());
+                sep = ", ";
+            }
+            b.append(')');
+        }
+        if (f.answered() > 0) {
+            b.append(String.format(Locale.ROOT, ", answer p50 %.1f ms p99 %.1f ms", f.answerP50Ms(), f.answerP99Ms()));
+        }
+        b.append(String.format(Locale.ROOT, ", telemetry %.2f Hz", f.telemetryHz()));
+        if (!Double.isNaN(f.telemetryAgeS())) {
+            b.append(String.format(Locale.ROOT, " (last %.1f s ago)", f.telemetryAgeS()));
+        }
+        return b.append(String.format(Locale.ROOT, ", %d session(s) now", f.sessions())).toString();
+    }
+
+    /** @return the line of the server's figures of the selected robot */
+    public String serverLine() {
+        return serverLine.getText();
     }
 
     private void plot(double now) {
