@@ -14,7 +14,8 @@ import sabot.controlml.ControlMlCondition;
  * requests and answers, telemetry notifications (PEP events come from the bare JID), presence. Its <em>bytes</em> are
  * the UTF-8 length of the stanza as Smack serialises it (the wire's bytes before TLS, give or take attribute order and
  * namespace declarations). Rates are per second over the last {@link #RATE_WINDOW_S} complete seconds; round trips
- * are over the last {@link #ROUND_TRIP_WINDOW_S} seconds.
+ * are over the last {@link #ROUND_TRIP_WINDOW_S} seconds, in slices of 10 s (the one under way included: between 50
+ * and 60 s of answers).
  *
  * @param robot                the robot's bare JID; never null
  * @param stanzasIn            stanzas received from it

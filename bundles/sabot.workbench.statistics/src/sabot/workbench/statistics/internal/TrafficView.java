@@ -181,14 +181,14 @@ public final class TrafficView extends ViewPart {
     private void refresh() {
         FleetState fleet = binding.fleet();
         double now = (System.nanoTime() - startNanos) / 1e9;
-        List<TrafficStatistics> now_ = new ArrayList<>();
+        List<TrafficStatistics> snapshots = new ArrayList<>();
         Set<String> followed = new HashSet<>();
         if (fleet != null) {
             for (RobotState r : binding.robots()) {
                 followed.add(r.jid());
                 Optional<TrafficStatistics> s = fleet.traffic(r.jid());
                 if (s.isPresent()) {
-                    now_.add(s.get());
+                    snapshots.add(s.get());
                     history.add(now, s.get());
                 }
             }
@@ -198,7 +198,7 @@ public final class TrafficView extends ViewPart {
                 history.remove(old.robot());
             }
         }
-        rows = List.copyOf(now_);
+        rows = List.copyOf(snapshots);
         refreshes++;
         table.setInput(rows);
         if (selected == null && !rows.isEmpty()) {
