@@ -4,12 +4,10 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.HashSet;
 import java.util.List;
-import java.util.Locale;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
 import java.util.TreeMap;
-import java.util.function.Function;
 
 import org.eclipse.jface.viewers.ArrayContentProvider;
 import org.eclipse.jface.viewers.ColumnLabelProvider;
@@ -33,7 +31,6 @@ import org.eclipse.ui.IWorkbenchPart;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.ControlMlCondition;
-import sabot.fleet.ServerStatistics;
 import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
@@ -60,24 +57,6 @@ public final class TrafficView extends ViewPart {
     public static final int SERVER_REFRESH_MS = 10_000;
     /** The server's figures' window. */
     public static final Duration SERVER_WINDOW = Duration.ofMinutes(15);
-
-    /** The table's columns: title, width in pixels, text of a snapshot. */
-    private record Column(String title, int width, Function<TrafficStatistics, String> text) {
-    }
-
-    static final List<Column> COLUMNS = List.of(
-            new Column("Robot", 170, TrafficStatistics::robot),
-            new Column("In msg/s", 80, s -> rate(s.stanzasInPerSecond())),
-            new Column("Out msg/s", 85, s -> rate(s.stanzasOutPerSecond())),
-            new Column("In B/s", 80, s -> bytes(s.bytesInPerSecond())),
-            new Column("Out B/s", 80, s -> bytes(s.bytesOutPerSecond())),
-            new Column("Requests", 80, s -> Long.toString(s.requests())),
-            new Column("Errors", 300, TrafficView::errors),
-            new Column("RTT p50 ms", 95, s -> ms(s.roundTripP50Ms())),
-            new Column("RTT p99 ms", 95, s -> ms(s.roundTripP99Ms())),
-            new Column("Telemetry Hz", 105, s -> rate(s.telemetryHz())),
-            new Column("Age s", 60, s -> Double.isNaN(s.telemetryAgeS()) ? "–" : String.format(Locale.ROOT, "%.1f",
-                    s.telemetryAgeS())));
 
     private final TrafficHistory history = new TrafficHistory();
     private final ISelectionListener selectionListener = this::selectionChanged;
@@ -112,7 +91,7 @@ public final class TrafficView extends ViewPart {
         table = new TableViewer(split, SWT.FULL_SELECTION | SWT.BORDER | SWT.V_SCROLL | SWT.SINGLE);
         table.getTable().setHeaderVisible(true);
         table.getTable().setLinesVisible(true);
-        for (Column c : COLUMNS) {
+        for (TrafficTexts.Column c : TrafficTexts.COLUMNS) {
             TableViewerColumn v = new TableViewerColumn(table, c.title().equals("Robot") || c.title().equals(
                     "Errors") ? SWT.LEFT : SWT.RIGHT);
             v.getColumn().setText(c.title());
@@ -240,33 +219,10 @@ public final class TrafficView extends ViewPart {
             if (why instanceof FleetCommandException fe && fe.condition() == ControlMlCondition.UNSUPPORTED_OPERATION) {
                 serverHasNoArchive = true;
             }
-            serverLine.setText(why == null ? serverText(f) : "server: " + (why instanceof FleetCommandException fe ? fe
-                    .getMessage() : why.toString()));
+            String text = why instanceof FleetCommandException fe ? fe.getMessage() : String.valueOf(why);
+            serverLine.setText(why == null ? TrafficTexts.server(f) : "server: " + text);
             serverLine.getParent().layout(true, false);
         }));
-    }
-
-    /** The server's figures of a robot as one line. */
-    static String serverText(ServerStatistics.Figures f) {
-        StringBuilder b = new StringBuilder(String.format(Locale.ROOT, "server's archive, last %d min: %d requests, %d"
-                + " answers, %d errors", f.window().toMinutes(), f.requests(), f.answers(), f.errors()));
-        if (!f.errorsByCondition().isEmpty()) {
-            b.append(" (");
-            String sep = "";
-            for (Map.Entry<String, Long> e : new TreeMap<>(f.errorsByCondition()).entrySet()) {
-                b.append(sep).append(e.getKey()).append(' ').append(e.getValue());
-                sep = ", ";
-            }
-            b.append(')');
-        }
-        if (f.answered() > 0) {
-            b.append(String.format(Locale.ROOT, ", answer p50 %.1f ms p99 %.1f ms", f.answerP50Ms(), f.answerP99Ms()));
-        }
-        b.append(String.format(Locale.ROOT, ", telemetry %.2f Hz", f.telemetryHz()));
-        if (!Double.isNaN(f.telemetryAgeS())) {
-            b.append(String.format(Locale.ROOT, " (last %.1f s ago)", f.telemetryAgeS()));
-        }
-        return b.append(String.format(Locale.ROOT, ", %d session(s) now", f.sessions())).toString();
     }
 
     /** @return the line of the server's figures of the selected robot */
@@ -300,7 +256,8 @@ public final class TrafficView extends ViewPart {
     }
 
     private void selectionChanged(IWorkbenchPart part, ISelection selection) {
-        if (part != this && selection instanceof IStructuredSelection s && s.getFirstElement() instanceof RobotState r) {
+        if (part != this && selection instanceof IStructuredSelection s
+                && s.getFirstElement() instanceof RobotState r) {
             select(r.jid());
         }
     }
@@ -315,8 +272,8 @@ public final class TrafficView extends ViewPart {
     /** @return the cells of the table's row of a robot, by column title; empty when it has none */
     public Map<String, String> cells(String robot) {
         Map<String, String> m = new TreeMap<>();
-        rows.stream().filter(s -> s.robot().equals(robot)).findFirst().ifPresent(s -> COLUMNS.forEach(c -> m.put(c
-                .title(), c.text().apply(s))));
+        rows.stream().filter(s -> s.robot().equals(robot)).findFirst().ifPresent(s -> TrafficTexts.COLUMNS.forEach(
+                c -> m.put(c.title(), c.text().apply(s))));
         return m;
     }
 
@@ -358,32 +315,5 @@ public final class TrafficView extends ViewPart {
             binding.dispose();
         }
         super.dispose();
-    }
-
-    private static String rate(double perSecond) {
-        return String.format(Locale.ROOT, "%.1f", perSecond);
-    }
-
-    private static String bytes(double perSecond) {
-        return perSecond >= 10_000 ? String.format(Locale.ROOT, "%.1f k", perSecond / 1000) : String.format(
-                Locale.ROOT, "%.0f", perSecond);
-    }
-
-    private static String ms(double ms) {
-        return Double.isNaN(ms) ? "–" : String.format(Locale.ROOT, ms < 10 ? "%.2f" : "%.1f", ms);
-    }
-
-    /** "3: access-denied 1, timeout 2", or "0". */
-    static String errors(TrafficStatistics s) {
-        if (s.errors().isEmpty()) {
-            return "0";
-        }
-        StringBuilder b = new StringBuilder().append(s.errorCount()).append(": ");
-        String sep = "";
-        for (Map.Entry<ControlMlCondition, Long> e : new TreeMap<>(s.errors()).entrySet()) {
-            b.append(sep).append(e.getKey().element()).append(' ').append(e.getValue());
-            sep = ", ";
-        }
-        return b.toString();
     }
 }
