@@ -16,7 +16,8 @@
 %%%
 %%% It also answers the command history of a device (urn:sabot:archive:1, docs/ARCHIVE.md): an IQ get to the server's
 %%% domain from an account in one of the groups of the option readers (the lab's roles), answered from the view
-%%% sabot_requests after every node's archiver has written what it held.
+%%% sabot_requests after every node's archiver has written what it held; and a device's statistics over a window
+%%% (the same namespace, the same readers: docs/STATISTICS.md), from the same table and view.
 -module(mod_sabot_archive).
 -behaviour(gen_mod).
 -behaviour(gen_server).
@@ -33,6 +34,8 @@
 -define(NS_ARCHIVE, <<"urn:sabot:archive:1">>).
 -define(HISTORY_MAX, 500).
 -define(HISTORY_DEFAULT, 50).
+-define(STATISTICS_MAX_S, 604800). % a week: the archive keeps 30 days by default, a window is a recent one
+-define(STATISTICS_DEFAULT_S, 900).
 -define(TELEMETRY_NODE_PREFIX, <<"urn:sabot:controlml:1:telemetry:">>).
 -define(FLUSH_MS, 200).
 -define(BATCH, 1000).
@@ -211,7 +214,7 @@ decode_iq_subel(El) ->
     El.
 
 process_iq(#iq{type = set, lang = Lang} = IQ) ->
-    xmpp:make_error(IQ, xmpp:err_not_allowed(<<"the command history is read with a get">>, Lang));
+    xmpp:make_error(IQ, xmpp:err_not_allowed(<<"the archive is read with a get">>, Lang));
 process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = IQ) ->
     Host = To#jid.lserver,
     Readers = gen_mod:get_module_opt(Host, ?MODULE, readers),
@@ -221,8 +224,10 @@ process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = 
                    end, Readers) of
         false ->
             xmpp:make_error(IQ, xmpp:err_forbidden(
-                iolist_to_binary([<<"the command history is for the lab's roles (the groups ">>,
+                iolist_to_binary([<<"the archive is for the lab's roles (the groups ">>,
                                   lists:join(<<", ">>, Readers), <<")">>]), Lang));
+        true when is_record(El, xmlel), El#xmlel.name == <<"statistics">> ->
+            statistics(IQ, Host, El, Lang);
         true ->
             case history_query(element(El)) of
                 {error, Text} ->
@@ -242,7 +247,73 @@ process_iq(#iq{type = get, from = From, to = To, lang = Lang, sub_els = [El]} = 
             end
     end;
 process_iq(#iq{lang = Lang} = IQ) ->
-    xmpp:make_error(IQ, xmpp:err_bad_request(<<"expected one history element">>, Lang)).
+    xmpp:make_error(IQ, xmpp:err_bad_request(<<"expected one history or statistics element">>, Lang)).
+
+%%% --- a device's statistics ----------------------------------------------------------------------------------------
+%% <statistics xmlns='urn:sabot:archive:1' device='BARE JID' [seconds='1..604800']/>: over the last SECONDS (default
+%% 900) what ./sabot stats says of the device (docs/STATISTICS.md), as attributes, with one <error condition count/>
+%% per ControlML condition and one <node name count/> per cluster node; sessions: the device's sessions now.
+statistics(IQ, Host, El, Lang) ->
+    case statistics_query(El) of
+        {error, Text} ->
+            xmpp:make_error(IQ, xmpp:err_bad_request(Text, Lang));
+        {ok, Device, Seconds, Where} ->
+            flush_cluster(Host),
+            Counts = ejabberd_sql:sql_query(Host, [<<"SELECT count(*) FILTER (WHERE kind IN ('get', 'set'))::text, "
+                "count(*) FILTER (WHERE kind = 'get')::text, count(*) FILTER (WHERE kind = 'set')::text, "
+                "count(*) FILTER (WHERE kind = 'set' AND via = 'message')::text, "
+                "count(*) FILTER (WHERE kind IN ('result', 'error'))::text, count(*) FILTER (WHERE kind = 'result')::text, "
+                "count(*) FILTER (WHERE kind = 'error')::text, count(*) FILTER (WHERE kind = 'telemetry')::text, "
+                "count(*)::text, "
+                "(SELECT count(*)::text FROM sabot_requests q ">>, Where, <<" AND q.answer_ms IS NOT NULL), "
+                "(SELECT coalesce(round(percentile_cont(0.5) WITHIN GROUP (ORDER BY q.answer_ms)::numeric, 1)::text, '') "
+                "FROM sabot_requests q ">>, Where, <<" AND q.answer_ms IS NOT NULL), "
+                "(SELECT coalesce(round(percentile_cont(0.99) WITHIN GROUP (ORDER BY q.answer_ms)::numeric, 1)::text, '') "
+                "FROM sabot_requests q ">>, Where, <<" AND q.answer_ms IS NOT NULL), "
+                "(SELECT coalesce(round(extract(epoch FROM now() - max(t.at))::numeric, 1)::text, '') FROM sabot_archive t "
+                "WHERE t.device = ">>, literal(Device), <<" AND t.kind = 'telemetry') "
+                "FROM sabot_archive q ">>, Where]),
+            Errors = ejabberd_sql:sql_query(Host, [<<"SELECT coalesce(NULLIF(condition, ''), 'unspecified'), count(*)::text "
+                "FROM sabot_archive q ">>, Where, <<" AND kind = 'error' GROUP BY 1 ORDER BY 1">>]),
+            Nodes = ejabberd_sql:sql_query(Host, [<<"SELECT node, count(*)::text FROM sabot_archive q ">>, Where,
+                                                  <<" GROUP BY 1 ORDER BY 1">>]),
+            case {Counts, Errors, Nodes} of
+                {{selected, _, [Row]}, {selected, _, ErrorRows}, {selected, _, NodeRows}} ->
+                    {User, Server, _} = jid:tolower(jid:decode(Device)),
+                    Sessions = length(ejabberd_sm:get_user_resources(User, Server)),
+                    Names = [<<"requests">>, <<"gets">>, <<"sets">>, <<"stored">>, <<"answers">>, <<"results">>,
+                             <<"errors">>, <<"telemetry">>, <<"stanzas">>, <<"answered">>, <<"p50">>, <<"p99">>,
+                             <<"age">>],
+                    Attrs = [{<<"xmlns">>, ?NS_ARCHIVE}, {<<"device">>, Device},
+                             {<<"seconds">>, integer_to_binary(Seconds)},
+                             {<<"sessions">>, integer_to_binary(Sessions)}]
+                        ++ [{K, V} || {K, V} <- lists:zip(Names, Row), is_binary(V), V /= <<>>],
+                    xmpp:make_iq_result(IQ, #xmlel{name = <<"statistics">>, attrs = Attrs,
+                        children = [#xmlel{name = <<"error">>, attrs = [{<<"condition">>, C}, {<<"count">>, N}]}
+                                    || [C, N] <- ErrorRows]
+                                   ++ [#xmlel{name = <<"node">>, attrs = [{<<"name">>, C}, {<<"count">>, N}]}
+                                       || [C, N] <- NodeRows]});
+                Error ->
+                    ?ERROR_MSG("Sabot archive: the statistics of ~ts not read: ~p", [Device, Error]),
+                    xmpp:make_error(IQ, xmpp:err_internal_server_error(<<"the archive could not be read">>, Lang))
+            end
+    end.
+
+statistics_query(El) ->
+    Device = try jid:decode(attr(<<"device">>, El)) of
+                 #jid{luser = U, lresource = <<>>} = J when U /= <<>> -> {ok, jid:encode(J)};
+                 _ -> error
+             catch _:_ -> error
+             end,
+    Seconds = int_attr(<<"seconds">>, El, ?STATISTICS_DEFAULT_S),
+    case {Device, Seconds} of
+        {error, _} -> {error, <<"device: expected a bare JID (robot@sabot.local)">>};
+        {_, S} when not is_integer(S); S < 1; S > ?STATISTICS_MAX_S ->
+            {error, iolist_to_binary(io_lib:format("seconds: expected 1..~B", [?STATISTICS_MAX_S]))};
+        {{ok, D}, S} ->
+            {ok, D, S, [<<"WHERE q.device = ">>, literal(D), <<" AND q.at >= now() - interval '1 second' * ">>,
+                        integer_to_binary(S)]}
+    end.
 
 %% Every node's archiver writes what it holds: a history then has every command the cluster took before the request
 %% (a node that does not answer within a second is left out, and logged).

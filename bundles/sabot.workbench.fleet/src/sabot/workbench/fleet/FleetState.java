@@ -1,5 +1,6 @@
 package sabot.workbench.fleet;
 
+import java.time.Duration;
 import java.util.List;
 import java.util.Optional;
 import java.util.concurrent.CompletableFuture;
@@ -15,6 +16,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
 import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
 import sabot.model.geometry.Twist2D;
 
 /**
@@ -200,6 +202,32 @@ public interface FleetState {
                         && c.getCause() != null ? c.getCause() : failure);
             }
         });
+    }
+
+    /**
+     * The workbench's own count of its traffic with a robot since the connection was made: stanzas and bytes in and
+     * out, requests, errors by condition, round trips, telemetry ({@link TrafficStatistics}, docs/STATISTICS.md). A
+     * default for providers written before this method: none.
+     *
+     * @param robot bare JID
+     * @return a snapshot, computed when called (any thread); empty for a robot not followed or before a connection
+     */
+    default Optional<TrafficStatistics> traffic(String robot) {
+        return Optional.empty();
+    }
+
+    /**
+     * Reads a robot's figures from the server's archive of ControlML stanzas (docs/STATISTICS.md): what every client
+     * sent it and what it sent, as the server archived it, over the last {@code window}.
+     *
+     * @param window whole seconds, 1 s..{@link ServerStatistics#MAX_WINDOW}
+     * @return completes with the figures; exceptionally with a {@link FleetCommandException} saying why not (the
+     *         server keeps no archive, the account has no role of the lab, not connected). A default for providers
+     *         written before this method: UNSUPPORTED_OPERATION.
+     */
+    default CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, Duration window) {
+        return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
+                "no server statistics here"));
     }
 
     /**

@@ -25,7 +25,8 @@ public final class OperationPerspective implements IPerspectiveFactory {
      * are named here, each plug-in's {@code ID} constant).
      */
     static final List<String> PLUGIN_VIEWS = List.of("sabot.workbench.joystick.view", "sabot.workbench.pid.view",
-            "sabot.workbench.remotefs.view", "sabot.workbench.identity.view", "sabot.workbench.diagnostics.view");
+            "sabot.workbench.remotefs.view", "sabot.workbench.identity.view", "sabot.workbench.diagnostics.view",
+            "sabot.workbench.statistics.view");
 
     @Override
     public void createInitialLayout(IPageLayout layout) {

@@ -597,6 +597,20 @@ public final class PrivateXmppServer implements BeforeAllCallback, AfterAllCallb
     }
 
     /**
+     * The server's statistics as {@code ./sabot stats} gives them: {@code product/bin/sabot-stats} with this server's
+     * state directory and {@code arguments} (docs/STATISTICS.md).
+     *
+     * @return its lines
+     * @throws IOException with its error line when it fails
+     */
+    public List<String> statistics(String... arguments) throws IOException, InterruptedException {
+        List<String> command = new ArrayList<>(List.of("--run", runDir.toString()));
+        command.addAll(List.of(arguments));
+        String out = runCommand("sabot-stats", "", command.toArray(String[]::new));
+        return out.isEmpty() ? List.of() : List.of(out.split("\n"));
+    }
+
+    /**
      * Runs SQL in the archive's database ({@link #sqlArchive()}; {@code sabot-xmpp sql}).
      *
      * @return its rows, fields separated by {@code |}

@@ -28,6 +28,7 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.ArchivedCommand;
+import sabot.fleet.ServerStatistics;
 import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
@@ -37,6 +38,7 @@ import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.QueuedCommand;
 import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
+import sabot.workbench.fleet.TrafficStatistics;
 
 /**
  * The faceless ControlML plug-in: the workbench's one XMPP connection (the account of the preferences), the robots of
@@ -74,6 +76,7 @@ public final class ControlMlFleet implements FleetState {
     private final FleetRequests requests;
     private final FleetTelemetry telemetry;
     private final RobotMaps maps;
+    private final FleetTraffic traffic;
     private final FleetConnection connection;
     private final IPreferenceChangeListener accountChanged = e -> {
         if (e.getKey().startsWith(XmppAccountStore.KEY_PREFIX)) {
@@ -91,12 +94,13 @@ public final class ControlMlFleet implements FleetState {
         ScheduledExecutorService connector = Executors.newSingleThreadScheduledExecutor(named(
                 "sabot-fleet-connection"));
         registry = new RobotRegistry(clock, notifier);
-        requests = new FleetRequests(requestPool, storedCommands, this::session, registry);
-        telemetry = new FleetTelemetry(clock, registry, requests, connector, this::session);
+        traffic = new FleetTraffic(System::nanoTime, jid -> registry.robot(jid) != null);
+        requests = new FleetRequests(requestPool, storedCommands, this::session, registry, traffic);
+        telemetry = new FleetTelemetry(clock, registry, requests, traffic, connector, this::session);
         FleetRoster roster = new FleetRoster(registry, telemetry, connector, this::session);
         maps = new RobotMaps(this);
         connection = new FleetConnection(connector, named("sabot-fleet-liveness"), backoff, requestTimeout, registry,
-                roster, telemetry, maps, requests);
+                roster, telemetry, maps, requests, traffic);
     }
 
     private FleetSession session() {
@@ -223,6 +227,17 @@ public final class ControlMlFleet implements FleetState {
     @Override
     public CompletableFuture<RobotIdentity> identity(String robot) {
         return requests.identity(robot);
+    }
+
+    /** {@inheritDoc} Counted by {@link FleetTraffic} on the session's threads; computed here. */
+    @Override
+    public Optional<TrafficStatistics> traffic(String robot) {
+        return traffic.snapshot(robot);
+    }
+
+    @Override
+    public CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, java.time.Duration window) {
+        return requests.serverStatistics(robot, window);
     }
 
     @Override

@@ -49,6 +49,7 @@ final class FleetConnection {
     private final ThreadFactory watchThreads;
     private final Backoff backoff;
     private final FleetRequests requests;
+    private final FleetTraffic traffic;
     /** Connection thread: which of the account's servers the next attempt goes to (modulo their number). */
     private int serverIndex;
     private final Duration requestTimeout;
@@ -76,8 +77,9 @@ final class FleetConnection {
      */
     FleetConnection(ScheduledExecutorService connector, ThreadFactory watchThreads, Backoff backoff,
             Duration requestTimeout, RobotRegistry registry, FleetRoster roster, FleetTelemetry telemetry,
-            RobotMaps maps, FleetRequests requests) {
+            RobotMaps maps, FleetRequests requests, FleetTraffic traffic) {
         this.requests = requests;
+        this.traffic = traffic;
         this.connector = connector;
         this.watchThreads = watchThreads;
         this.backoff = backoff;
@@ -183,6 +185,7 @@ final class FleetConnection {
             r.setRosterLoadedAtLogin(false);
             FleetSession s = new FleetSession(c, manager, r, generation.incrementAndGet());
             telemetry.listen(s); // before login: +notify goes into the first presence's entity caps
+            traffic.listen(c);
             SubscriptionGate.onWorkbench(c);
             roster.listen(s);
             c.addConnectionListener(new ConnectionListener() {

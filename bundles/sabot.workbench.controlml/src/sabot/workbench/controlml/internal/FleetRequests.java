@@ -34,6 +34,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
 import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceVCards;
 import sabot.identity.IdentityResult;
@@ -52,6 +53,7 @@ final class FleetRequests {
     private final ExecutorService sender;
     private final Supplier<FleetSession> session;
     private final RobotRegistry registry;
+    private final FleetTraffic traffic;
     /** The commands waiting for offline robots, by id: completed with the robot's answer. */
     private final Map<String, CompletableFuture<Void>> queued = new ConcurrentHashMap<>();
 
@@ -66,7 +68,8 @@ final class FleetRequests {
      * @param sender the thread that sends stored commands, which wait for no answer ({@link #goToWhenOnline})
      */
     FleetRequests(ExecutorService pool, ExecutorService sender, Supplier<FleetSession> session,
-            RobotRegistry registry) {
+            RobotRegistry registry, FleetTraffic traffic) {
+        this.traffic = traffic;
         this.pool = pool;
         this.sender = sender;
         this.session = session;
@@ -209,7 +212,9 @@ final class FleetRequests {
         if (!p.isAvailable()) {
             throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, robot + " is offline");
         }
+        long sent = traffic.requesting(robot);
         Outcome<T> o = call.on(s.manager(), p.getFrom());
+        traffic.answered(robot, sent, o instanceof Outcome.Failure<T> f ? f.error().cmCondition() : null);
         if (o instanceof Outcome.Failure<T> failure) {
             ControlMlError e = failure.error();
             throw new FleetCommandException(e.cmCondition() != null ? e.cmCondition() : ControlMlCondition.UNSPECIFIED,
@@ -225,9 +230,28 @@ final class FleetRequests {
     }
 
     private List<ArchivedCommand> fetchHistory(String robot, int max) {
+        return fromArchive(robot, "command history", s -> CommandHistory.read(s.connection(), JidCreate.entityBareFrom(
+                robot), max));
+    }
+
+    /** The robot's figures from the server's archive ({@link ServerStatistics}), on the pool. */
+    CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, java.time.Duration window) {
+        return onPool(() -> fromArchive(robot, "server statistics", s -> ServerStatistics.read(s.connection(),
+                JidCreate.entityBareFrom(robot), window)));
+    }
+
+    /** A read of the server's archive (urn:sabot:archive:1) through the session. */
+    @FunctionalInterface
+    private interface ArchiveRead<T> {
+        T on(FleetSession s) throws XmppStringprepException, XMPPException.XMPPErrorException, SmackException,
+                InterruptedException;
+    }
+
+    /** Runs a read of the archive; each failure as a {@link FleetCommandException} for the operator. */
+    private <T> T fromArchive(String robot, String what, ArchiveRead<T> read) {
         FleetSession s = sessionFor(robot, false);
         try {
-            return CommandHistory.read(s.connection(), JidCreate.entityBareFrom(robot), max);
+            return read.on(s);
         } catch (XmppStringprepException e) {
             throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, "'" + robot + "' is not a JID: " + e
                     .getMessage());
@@ -242,15 +266,16 @@ final class FleetRequests {
             throw new FleetCommandException(c, "the server: " + (error.getDescriptiveText() != null ? error
                     .getDescriptiveText() : error.getCondition().toString()));
         } catch (SmackException.NoResponseException e) {
-            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no command history of " + robot + " within "
+            throw new FleetCommandException(ControlMlCondition.TIMEOUT, "no " + what + " of " + robot + " within "
                     + s.connection().getReplyTimeout() + " ms");
         } catch (SmackException e) {
-            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, "command history of " + robot + ": "
-                    + e);
+            throw new FleetCommandException(ControlMlCondition.NOT_CONNECTED, what + " of " + robot + ": " + e);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
-            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, "command history of " + robot
-                    + ": interrupted");
+            throw new FleetCommandException(ControlMlCondition.UNSPECIFIED, what + " of " + robot + ": interrupted");
+        } catch (IllegalArgumentException e) {
+            throw new FleetCommandException(ControlMlCondition.INVALID_VALUE, what + " of " + robot + ": " + e
+                    .getMessage());
         }
     }
 

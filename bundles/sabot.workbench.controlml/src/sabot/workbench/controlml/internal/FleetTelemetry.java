@@ -39,6 +39,7 @@ final class FleetTelemetry {
     private final Clock clock;
     private final RobotRegistry registry;
     private final FleetRequests requests;
+    private final FleetTraffic traffic;
     private final ScheduledExecutorService connector;
     private final Supplier<FleetSession> current;
 
@@ -46,8 +47,9 @@ final class FleetTelemetry {
      * @param connector the connection thread, where the subscriptions are made
      * @param current   the session now live, or null
      */
-    FleetTelemetry(Clock clock, RobotRegistry registry, FleetRequests requests, ScheduledExecutorService connector,
-            Supplier<FleetSession> current) {
+    FleetTelemetry(Clock clock, RobotRegistry registry, FleetRequests requests, FleetTraffic traffic,
+            ScheduledExecutorService connector, Supplier<FleetSession> current) {
+        this.traffic = traffic;
         this.clock = clock;
         this.registry = registry;
         this.requests = requests;
@@ -60,14 +62,20 @@ final class FleetTelemetry {
         ControlMlManager m = s.manager();
         m.telemetry().addListener(Resources.POSITION, (device, pose) -> {
             long receivedNanos = System.nanoTime(); // the lag's receipt: monotonic (RobotState.poseLag)
+            traffic.telemetry(device.toString());
             registry.update(device.toString(), r -> r.withPose(pose, clock.instant(), receivedNanos));
         });
-        m.telemetry().addListener(Resources.VELOCITY, (device, v) -> registry.update(device.toString(), r -> r
-                .withVelocity(v.twist(), clock.instant())));
-        m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> registry.update(device.toString(), r -> r
-                .withObstacles(o, clock.instant())));
+        m.telemetry().addListener(Resources.VELOCITY, (device, v) -> {
+            traffic.telemetry(device.toString());
+            registry.update(device.toString(), r -> r.withVelocity(v.twist(), clock.instant()));
+        });
+        m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> {
+            traffic.telemetry(device.toString());
+            registry.update(device.toString(), r -> r.withObstacles(o, clock.instant()));
+        });
         m.telemetry().addListener(Resources.MISSION, (device, mission) -> {
             String jid = device.toString();
+            traffic.telemetry(jid);
             RobotState before = registry.robot(jid);
             registry.update(jid, r -> r.withMission(mission, clock.instant()));
             // a new mission (or one seen for the first time) has a new plan

@@ -14,7 +14,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
- * The workbench's UI plug-ins (joystick, remote files, identity, PID tuning) install from the built update site into a
+ * The workbench's UI plug-ins (joystick, remote files, identity, PID tuning, traffic statistics) install from the built update site into a
  * copy of the materialized workbench with the p2 director, as {@code ./sabot install FEATURE} does; each announces
  * itself at the next start. Uninstalled again, the workbench still starts and closes cleanly without them (plug-ins
  * are optional, the core is not). Starts real workbench windows: needs the X display of ./sabot test (Xvfb).
@@ -26,7 +26,8 @@ class UiPluginInstallTest {
             "sabot.workbench.joystick.feature", "Sabot joystick plug-in",
             "sabot.workbench.remotefs.feature", "Sabot remote files plug-in",
             "sabot.workbench.identity.feature", "Sabot identity plug-in",
-            "sabot.workbench.pid.feature", "Sabot PID tuning plug-in");
+            "sabot.workbench.pid.feature", "Sabot PID tuning plug-in",
+            "sabot.workbench.statistics.feature", "Sabot statistics plug-in");
 
     @TempDir
     Path dir;
@@ -41,7 +42,7 @@ class UiPluginInstallTest {
         director("-installIU", ius(), workbench);
         String bundles = Files.readString(workbench.resolve(bundlesInfo));
         for (String b : List.of("sabot.workbench.joystick", "sabot.workbench.remotefs", "sabot.workbench.identity",
-                "sabot.workbench.pid")) {
+                "sabot.workbench.pid", "sabot.workbench.statistics")) {
             assertTrue(bundles.lines().anyMatch(l -> l.startsWith(b + ",") && l.endsWith(",4,true")), b
                     + " not in bundles.info as started:\n" + bundles);
         }

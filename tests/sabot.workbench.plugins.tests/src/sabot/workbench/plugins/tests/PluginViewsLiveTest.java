@@ -70,10 +70,14 @@ import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotIdentity;
 import sabot.workbench.fleet.RobotState;
+import sabot.workbench.fleet.TrafficStatistics;
+import sabot.controlml.ControlMlCondition;
+import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.identity.internal.IdentityView;
 import sabot.workbench.joystick.internal.JoystickView;
 import sabot.workbench.pid.internal.PidView;
 import sabot.workbench.remotefs.internal.RemoteFilesView;
+import sabot.workbench.statistics.internal.TrafficView;
 import sabot.workbench.robotview.RobotView;
 
 /**
@@ -401,6 +405,76 @@ class PluginViewsLiveTest {
         identity.saveQr(saved);
         assertArrayEquals(card.qrPng(), Files.readAllBytes(saved));
         assertEquals(card.uid(), QrInventory.decode(Files.readAllBytes(saved)).orElseThrow().uid());
+    }
+
+    /**
+     * The Traffic view (statistics plug-in) counts the workbench's own traffic with the live robot: requests the test
+     * sends, the one the robot refuses by its condition, round trips, telemetry; it plots the robot's rates and p99
+     * and refreshes at 1 Hz without holding the UI thread.
+     */
+    @Test
+    @Order(6)
+    void trafficViewCountsRequestsErrorsRoundTripsAndTelemetryOfTheLiveRobot() throws Exception {
+        TrafficView traffic = open(TrafficView.ID, TrafficView.class);
+        FleetState fleet = fleet();
+        waitFor(() -> traffic.rows().stream().anyMatch(r -> r.robot().equals(ROBOT_JID) && r.telemetryHz() > 0),
+                30, () -> "no telemetry counted: " + traffic.rows());
+        TrafficStatistics before = fleet.traffic(ROBOT_JID).orElseThrow();
+        int gets = 10;
+        for (int i = 0; i < gets; i++) {
+            fleet.get(ROBOT_JID, Resources.LIMITS).get(20, TimeUnit.SECONDS);
+        }
+        // a refusal by the robot: gains it cannot hold (kp is a whole number on the board)
+        java.util.concurrent.ExecutionException refused = org.junit.jupiter.api.Assertions.assertThrows(
+                java.util.concurrent.ExecutionException.class, () -> fleet.set(ROBOT_JID, Resources.PID, new PidGains(
+                        List.of(new MotorGains(0, 225.01, 0, 0)))).get(20, TimeUnit.SECONDS));
+        ControlMlCondition condition = ((FleetCommandException) refused.getCause()).condition();
+        assertEquals(ControlMlCondition.INVALID_VALUE, condition, refused.getCause().getMessage());
+
+        TrafficStatistics after = fleet.traffic(ROBOT_JID).orElseThrow();
+        assertTrue(after.requests() - before.requests() >= gets + 1, before + " -> " + after);
+        assertEquals(before.errors().getOrDefault(condition, 0L) + 1, after.errors().get(condition), String.valueOf(
+                after.errors()));
+        assertTrue(after.roundTrips() >= gets + 1, after.toString());
+        assertTrue(after.roundTripP50Ms() > 0 && after.roundTripP50Ms() <= after.roundTripP99Ms()
+                && after.roundTripP99Ms() < 20_000, after.toString());
+        assertTrue(after.stanzasOut() - before.stanzasOut() >= gets + 1, "each request is a stanza out: " + after);
+        assertTrue(after.bytesOut() > after.stanzasOut() * 50, "bytes of the serialised stanzas: " + after);
+        // the robot publishes at most 10 + 10 + 1 + 2 Hz (position, velocity, mission, obstacles: onboard defaults);
+        // each item is a stanza in
+        assertTrue(after.telemetryHz() > 1 && after.telemetryHz() <= 23 * 1.2, after.toString());
+        assertTrue(after.stanzasInPerSecond() >= after.telemetryHz() * 0.8, after.toString());
+        assertTrue(after.telemetryAgeS() < 1, after.toString());
+
+        // the view shows the same, and plots the robot
+        // (the plug-in's other tests' requests and refusals are counted too: the same connection)
+        java.util.regex.Pattern invalid = java.util.regex.Pattern.compile("invalid-value (\\d+)");
+        waitFor(() -> {
+            Map<String, String> cells = traffic.cells(ROBOT_JID);
+            java.util.regex.Matcher m = invalid.matcher(cells.getOrDefault("Errors", ""));
+            return m.find() && Long.parseLong(m.group(1)) >= after.errors().get(condition) && Long.parseLong(cells
+                    .get("Requests")) >= after.requests();
+        }, 5, () -> "view: " + traffic.cells(ROBOT_JID) + "; FleetState: " + after);
+        assertEquals(ROBOT_JID, traffic.selected());
+        long refreshesBefore = traffic.refreshes();
+        waitFor(() -> traffic.plotted("in") >= 10 && traffic.plotted("p99") >= 3, 30, () -> "plotted: in "
+                + traffic.plotted("in") + ", p99 " + traffic.plotted("p99"));
+        long refreshes = traffic.refreshes() - refreshesBefore;
+        System.out.printf(Locale.ROOT, "[figure] Traffic view: %d refreshes, slowest %.2f ms on the UI thread; %s%n",
+                traffic.refreshes(), traffic.slowestRefreshNanos() / 1e6, traffic.cells(ROBOT_JID));
+        assertTrue(refreshes >= 1, "no refresh while waiting");
+        assertTrue(traffic.slowestRefreshNanos() < 100_000_000L, "a refresh held the UI thread "
+                + traffic.slowestRefreshNanos() / 1e6 + " ms");
+        // the server's figures: this Prosody keeps no archive, and the view says so (ServerStatisticsTest: ejabberd's)
+        waitFor(() -> traffic.serverLine().contains("keeps no archive"), 15, traffic::serverLine);
+        IWorkbenchPage page = page();
+        org.eclipse.ui.IWorkbenchPartReference ref = page.getReference(traffic);
+        page.setPartState(ref, IWorkbenchPage.STATE_MAXIMIZED);
+        try {
+            capture(traffic.content(), "traffic-statistics.png");
+        } finally {
+            page.setPartState(ref, IWorkbenchPage.STATE_RESTORED);
+        }
     }
 
     // ------------------------------------------------------------------------------------------------ helpers

@@ -1,0 +1,59 @@
+package sabot.fleet.internal;
+
+import org.jivesoftware.smack.packet.IQ;
+import org.jxmpp.jid.DomainBareJid;
+import org.jxmpp.jid.EntityBareJid;
+
+import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerStatistics;
+import sabot.fleet.ServerStatistics.Figures;
+
+/** The statistics' IQ ({@link ServerStatistics}): the request, or the server's answer with the figures. */
+public final class StatisticsIq extends IQ {
+
+    private final EntityBareJid device;
+    private final long seconds;
+    private final Figures figures;
+    private final String problem;
+
+    private StatisticsIq(EntityBareJid device, long seconds, Figures figures, String problem) {
+        super(ServerStatistics.ELEMENT, CommandHistory.NAMESPACE);
+        this.device = device;
+        this.seconds = seconds;
+        this.figures = figures;
+        this.problem = problem;
+    }
+
+    /** @return a get of {@code device}'s figures over the last {@code seconds}, to the server's domain */
+    public static StatisticsIq request(DomainBareJid server, EntityBareJid device, long seconds) {
+        StatisticsIq iq = new StatisticsIq(device, seconds, null, null);
+        iq.setType(Type.get);
+        iq.setTo(server);
+        return iq;
+    }
+
+    /** @return an answer as read: its figures, or why they could not be read */
+    static StatisticsIq answer(Figures figures, String problem) {
+        return new StatisticsIq(null, 0, figures, problem);
+    }
+
+    /** @return the figures of an answer; null when they could not be read ({@link #problem()}) */
+    public Figures figures() {
+        return figures;
+    }
+
+    /** @return why the answer could not be read, or null */
+    public String problem() {
+        return problem;
+    }
+
+    @Override
+    protected IQChildElementXmlStringBuilder getIQChildElementBuilder(IQChildElementXmlStringBuilder xml) {
+        xml.optAttribute("device", device);
+        if (seconds > 0) {
+            xml.attribute("seconds", Long.toString(seconds));
+        }
+        xml.setEmptyElement();
+        return xml;
+    }
+}
