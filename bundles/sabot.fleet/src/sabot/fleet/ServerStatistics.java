@@ -1,8 +1,6 @@
 package sabot.fleet;
 
 import java.time.Duration;
-import java.util.Map;
-import java.util.Objects;
 
 import org.jivesoftware.smack.SmackException.NoResponseException;
 import org.jivesoftware.smack.SmackException.NotConnectedException;
@@ -23,7 +21,7 @@ import sabot.fleet.internal.StatisticsIqProvider;
 public final class ServerStatistics {
 
     /** The request's and the answer's element, in {@link CommandHistory#NAMESPACE}. */
-    public static final String ELEMENT = "statistics";
+    public static final String ELEMENT = StatisticsIq.ELEMENT;
     /** The longest window the server accepts (a week); longer ones are refused with {@code bad-request}. */
     public static final Duration MAX_WINDOW = Duration.ofDays(7);
 
@@ -32,48 +30,6 @@ public final class ServerStatistics {
     }
 
     private ServerStatistics() {
-    }
-
-    /**
-     * A device's figures over a window ending when the server answered.
-     *
-     * @param device            its bare JID
-     * @param window            the window's length
-     * @param sessions          its sessions on the server now (a robot online has one)
-     * @param requests          requests to it (gets and sets, at once or stored)
-     * @param gets              of those, gets
-     * @param sets              of those, sets
-     * @param stored            of the sets, commands stored for it as messages (docs/CONTROLML.md section 5)
-     * @param answers           its answers (results and errors)
-     * @param results           of those, results
-     * @param errors            of those, errors
-     * @param errorsByCondition the errors by ControlML condition (else the stanza error's; {@code unspecified} without
-     *                          one); never null
-     * @param answered          requests of the window with an archived answer
-     * @param answerP50Ms       median time from a request to its answer at the server, ms; NaN without one
-     * @param answerP99Ms       99th percentile of the same (interpolated), ms; NaN without one
-     * @param telemetry         telemetry publications it sent
-     * @param telemetryAgeS     seconds since its latest publication (in the window or not); NaN without one
-     * @param stanzas           every archived row of it (requests, answers, publications)
-     * @param stanzasByNode     those by the cluster node that took them; never null
-     */
-    public record Figures(String device, Duration window, int sessions, long requests, long gets, long sets,
-            long stored, long answers, long results, long errors, Map<String, Long> errorsByCondition, long answered,
-            double answerP50Ms, double answerP99Ms, long telemetry, double telemetryAgeS, long stanzas,
-            Map<String, Long> stanzasByNode) {
-
-        /** Checks the fields. */
-        public Figures {
-            Objects.requireNonNull(device, "device");
-            Objects.requireNonNull(window, "window");
-            errorsByCondition = Map.copyOf(errorsByCondition);
-            stanzasByNode = Map.copyOf(stanzasByNode);
-        }
-
-        /** @return telemetry publications per second over the window */
-        public double telemetryHz() {
-            return telemetry / (window.toMillis() / 1000.0);
-        }
     }
 
     /**
@@ -86,7 +42,7 @@ public final class ServerStatistics {
      *                               server keeps no archive (Prosody, or ejabberd without {@code --archive sql})
      * @throws IllegalStateException when the server's answer cannot be read (a server of another version)
      */
-    public static Figures read(XMPPConnection connection, EntityBareJid device, Duration window)
+    public static ServerFigures read(XMPPConnection connection, EntityBareJid device, Duration window)
             throws XMPPErrorException, NoResponseException, NotConnectedException, InterruptedException {
         long seconds = window.toSeconds();
         if (seconds < 1 || window.compareTo(MAX_WINDOW) > 0 || window.toNanosPart() != 0) {

@@ -4,20 +4,21 @@ import org.jivesoftware.smack.packet.IQ;
 import org.jxmpp.jid.DomainBareJid;
 import org.jxmpp.jid.EntityBareJid;
 
-import sabot.fleet.CommandHistory;
-import sabot.fleet.ServerStatistics;
-import sabot.fleet.ServerStatistics.Figures;
+import sabot.fleet.ServerFigures;
 
-/** The statistics' IQ ({@link ServerStatistics}): the request, or the server's answer with the figures. */
+/** The statistics' IQ (sabot.fleet.ServerStatistics): the request, or the server's answer with the figures. */
 public final class StatisticsIq extends IQ {
+
+    /** The request's and the answer's element, in the archive's namespace ({@link HistoryIq#NAMESPACE}). */
+    public static final String ELEMENT = "statistics";
 
     private final EntityBareJid device;
     private final long seconds;
-    private final Figures figures;
+    private final ServerFigures figures;
     private final String problem;
 
-    private StatisticsIq(EntityBareJid device, long seconds, Figures figures, String problem) {
-        super(ServerStatistics.ELEMENT, CommandHistory.NAMESPACE);
+    private StatisticsIq(EntityBareJid device, long seconds, ServerFigures figures, String problem) {
+        super(ELEMENT, HistoryIq.NAMESPACE);
         this.device = device;
         this.seconds = seconds;
         this.figures = figures;
@@ -33,12 +34,12 @@ public final class StatisticsIq extends IQ {
     }
 
     /** @return an answer as read: its figures, or why they could not be read */
-    static StatisticsIq answer(Figures figures, String problem) {
+    static StatisticsIq answer(ServerFigures figures, String problem) {
         return new StatisticsIq(null, 0, figures, problem);
     }
 
     /** @return the figures of an answer; null when they could not be read ({@link #problem()}) */
-    public Figures figures() {
+    public ServerFigures figures() {
         return figures;
     }
 

@@ -11,7 +11,7 @@ import org.jivesoftware.smack.provider.IqProvider;
 import org.jivesoftware.smack.xml.XmlPullParser;
 import org.jivesoftware.smack.xml.XmlPullParserException;
 
-import sabot.fleet.ServerStatistics.Figures;
+import sabot.fleet.ServerFigures;
 
 /**
  * Reads the server's answer {@code <statistics device='..' seconds='..' requests='..' ...><error condition count/>
@@ -50,7 +50,7 @@ public final class StatisticsIqProvider extends IqProvider<StatisticsIq> {
             return StatisticsIq.answer(null, problem); // a request (echoed in an error), not an answer
         }
         try {
-            Figures f = new Figures(attributes.get("device"), Duration.ofSeconds(Long.parseLong(attributes.get(
+            ServerFigures f = new ServerFigures(attributes.get("device"), Duration.ofSeconds(Long.parseLong(attributes.get(
                     "seconds"))), (int) count(attributes, "sessions"), count(attributes, "requests"), count(attributes,
                             "gets"), count(attributes, "sets"), count(attributes, "stored"), count(attributes,
                                     "answers"), count(attributes, "results"), count(attributes, "errors"), errors,

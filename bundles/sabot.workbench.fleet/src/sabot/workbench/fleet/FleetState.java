@@ -16,6 +16,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
 import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerFigures;
 import sabot.fleet.ServerStatistics;
 import sabot.model.geometry.Twist2D;
 
@@ -225,7 +226,7 @@ public interface FleetState {
      *         server keeps no archive, the account has no role of the lab, not connected). A default for providers
      *         written before this method: UNSUPPORTED_OPERATION.
      */
-    default CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, Duration window) {
+    default CompletableFuture<ServerFigures> serverStatistics(String robot, Duration window) {
         return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
                 "no server statistics here"));
     }

@@ -38,6 +38,7 @@ import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.fleet.AccessRules;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerFigures;
 import sabot.fleet.ServerStatistics;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
@@ -131,7 +132,7 @@ class ServerStatisticsTest {
                 "cm.position")));
 
         // the same over XMPP (urn:sabot:archive:1), for an account of the lab's roles
-        ServerStatistics.Figures f = ServerStatistics.read(observer, robotJid, Duration.ofMinutes(5));
+        ServerFigures f = ServerStatistics.read(observer, robotJid, Duration.ofMinutes(5));
         assertEquals(robotJid.toString(), f.device());
         assertEquals(1, f.sessions());
         assertEquals(List.of(9L, 2L, 7L, 0L, 9L, 6L, 3L, 9L, 11L, 29L), List.of(f.requests(), f.gets(), f.sets(), f

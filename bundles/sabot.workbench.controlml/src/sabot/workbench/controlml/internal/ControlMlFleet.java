@@ -28,7 +28,7 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.ArchivedCommand;
-import sabot.fleet.ServerStatistics;
+import sabot.fleet.ServerFigures;
 import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
@@ -236,7 +236,7 @@ public final class ControlMlFleet implements FleetState {
     }
 
     @Override
-    public CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, java.time.Duration window) {
+    public CompletableFuture<ServerFigures> serverStatistics(String robot, java.time.Duration window) {
         return requests.serverStatistics(robot, window);
     }
 

@@ -34,6 +34,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
 import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
+import sabot.fleet.ServerFigures;
 import sabot.fleet.ServerStatistics;
 import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceVCards;
@@ -235,7 +236,7 @@ final class FleetRequests {
     }
 
     /** The robot's figures from the server's archive ({@link ServerStatistics}), on the pool. */
-    CompletableFuture<ServerStatistics.Figures> serverStatistics(String robot, java.time.Duration window) {
+    CompletableFuture<ServerFigures> serverStatistics(String robot, java.time.Duration window) {
         return onPool(() -> fromArchive(robot, "server statistics", s -> ServerStatistics.read(s.connection(),
                 JidCreate.entityBareFrom(robot), window)));
     }

@@ -7,7 +7,7 @@ import java.util.TreeMap;
 import java.util.function.Function;
 
 import sabot.controlml.ControlMlCondition;
-import sabot.fleet.ServerStatistics;
+import sabot.fleet.ServerFigures;
 import sabot.workbench.fleet.TrafficStatistics;
 
 /** What the Traffic view writes (plain Java: no SWT): its table's columns and the server's line. */
@@ -49,7 +49,7 @@ final class TrafficTexts {
     }
 
     /** The server's figures of a robot as one line. */
-    static String server(ServerStatistics.Figures f) {
+    static String server(ServerFigures f) {
         StringBuilder b = new StringBuilder(String.format(Locale.ROOT, "server's archive, last %d min: %d requests, %d"
                 + " answers, %d errors", f.window().toMinutes(), f.requests(), f.answers(), f.errors()));
         if (!f.errorsByCondition().isEmpty()) {
