@@ -380,3 +380,40 @@ sabot_archive_sql() { # DIR PSQL-ARGUMENTS...
     PGPASSWORD=$(cat "$pg/password") psql -X -q -h 127.0.0.1 -p "$(cat "$pg/port")" -U ejabberd -d ejabberd \
         -v ON_ERROR_STOP=1 "$@"
 }
+
+# The archive's command-line arguments, shared by sabot-log and sabot-stats (docs/ARCHIVE.md, docs/STATISTICS.md).
+SABOT_ARCHIVE_TIME_HINT="expected an ISO 8601 time (2026-11-29T08:00:00Z) or an age like 90s, 15m, 2h, 7d"
+# A TIME argument (ISO 8601, or an age: that long ago) as "age:N unit" or "at:ISO"; fails on anything else.
+sabot_archive_time() { # VALUE
+    local unit
+    if [[ "$1" =~ ^([0-9]{1,7})([smhd])$ ]]; then
+        case "${BASH_REMATCH[2]}" in s) unit=seconds ;; m) unit=minutes ;; h) unit=hours ;; d) unit=days ;; esac
+        echo "age:${BASH_REMATCH[1]} $unit"
+    elif [[ "$1" =~ ^[0-9]{4}-[0-9]{2}-[0-9]{2}([T\ ][0-9]{2}:[0-9]{2}(:[0-9]{2}(\.[0-9]{1,9})?)?)?(Z|[+-][0-9]{2}(:?[0-9]{2})?)?$ ]]; then
+        echo "at:$1"
+    else
+        return 1
+    fi
+}
+# A TIME from sabot_archive_time, held in the psql variable NAME, as an SQL expression (DEFAULT when empty): the value
+# reaches SQL as a psql variable (:'NAME' quotes it), never spliced into the query's text.
+sabot_archive_bound() { # NAME VALUE DEFAULT
+    case "$2" in
+        "") echo "$3" ;;
+        age:*) echo "now() - :'$1'::interval" ;;
+        at:*) echo ":'$1'::timestamptz" ;;
+    esac
+}
+# A device argument as a bare JID (USER alone: @sabot.local); fails on anything else.
+sabot_archive_device() { # ARGUMENT
+    [[ "$1" =~ ^[A-Za-z0-9._-]+(@[A-Za-z0-9.-]+)?$ ]] || return 1
+    if [[ "$1" == *@* ]]; then echo "$1"; else echo "$1@$SABOT_RIG_DOMAIN"; fi
+}
+# Dies with why unless DIR's server keeps an archive whose PostgreSQL is running.
+sabot_archive_running() { # DIR
+    [ -s "$1/pg/port" ] && [ -s "$1/pg/password" ] \
+        || sabot_die "no archive in $1: start the server with it (./sabot xmpp start --server ejabberd --archive sql)"
+    local port; port=$(cat "$1/pg/port")
+    ( { exec {fd}<>"/dev/tcp/127.0.0.1/$port"; } 2>/dev/null ) \
+        || sabot_die "the archive's PostgreSQL (127.0.0.1:$port) is not running: it runs with the server (./sabot xmpp start --server ejabberd --archive sql)"
+}
