@@ -175,6 +175,7 @@ class ArchiveTest {
         XMPP.grant(operatorJid, Role.OPERATOR);
         XMPP.grant(observerJid, Role.OBSERVER);
         FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, operator, Role.OPERATOR);
+        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, observer, Role.OBSERVER);
         ControlMlManager op = ControlMlManager.getInstanceFor(operator);
         for (int i = 1; i <= 3; i++) {
             assertTrue(op.set(robot.getUser(), Resources.GOAL, new Goal(new Pose2D(i, 0, 0), 0.1, 0.1)).isSuccess());
