@@ -9,7 +9,7 @@ import java.util.Map;
 import org.junit.jupiter.api.Test;
 
 import sabot.controlml.ControlMlCondition;
-import sabot.fleet.ServerStatistics;
+import sabot.fleet.ServerFigures;
 import sabot.workbench.fleet.TrafficStatistics;
 
 /** The Traffic view's plot memory and texts (plain Java: no display). */
@@ -63,7 +63,7 @@ class TrafficHistoryTest {
 
     @Test
     void serverLineSaysTheArchivesFigures() {
-        ServerStatistics.Figures f = new ServerStatistics.Figures(ROBOT, Duration.ofMinutes(15), 1, 9, 2, 7, 0, 9, 6,
+        ServerFigures f = new ServerFigures(ROBOT, Duration.ofMinutes(15), 1, 9, 2, 7, 0, 9, 6,
                 3, Map.of("set-not-permitted", 2L, "access-denied", 1L), 9, 3.4, 121.2, 1800, 0.4, 2718, Map.of(
                         "ejabberd@lab", 2718L));
         assertEquals("server's archive, last 15 min: 9 requests, 9 answers, 3 errors (access-denied 1, "
