@@ -161,21 +161,14 @@ class ArchiveTest {
 
     @Test
     void theCommandHistoryIsForTheLabsRolesNewestFirstWithEachAnswer() throws Exception {
-        EntityBareJid robotJid = XMPP.register("hist-robot", PrivateXmppServer.DOMAIN, PASSWORD);
-        EntityBareJid operatorJid = XMPP.register("hist-operator", PrivateXmppServer.DOMAIN, PASSWORD);
-        EntityBareJid observerJid = XMPP.register("hist-observer", PrivateXmppServer.DOMAIN, PASSWORD);
-        XMPP.register("hist-stranger", PrivateXmppServer.DOMAIN, PASSWORD);
-        XMPPTCPConnection robot = login("hist-robot");
-        XMPPTCPConnection operator = login("hist-operator");
-        XMPPTCPConnection observer = login("hist-observer");
-        XMPPTCPConnection stranger = login("hist-stranger");
-        AccessPolicy policy = AccessRules.labGroups().on(robot);
-        FleetOnServerTest.goalDevice(robot, policy);
-        XMPP.enrolRobot(robotJid);
-        XMPP.grant(operatorJid, Role.OPERATOR);
-        XMPP.grant(observerJid, Role.OBSERVER);
-        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, operator, Role.OPERATOR);
-        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, observer, Role.OBSERVER);
+        ArchiveLab lab = ArchiveLab.on(XMPP, "hist", PASSWORD);
+        EntityBareJid robotJid = lab.robotJid();
+        EntityBareJid operatorJid = lab.operatorJid();
+        EntityBareJid observerJid = lab.observerJid();
+        XMPPTCPConnection robot = lab.robot();
+        XMPPTCPConnection operator = lab.operator();
+        XMPPTCPConnection observer = lab.observer();
+        XMPPTCPConnection stranger = lab.stranger();
         ControlMlManager op = ControlMlManager.getInstanceFor(operator);
         for (int i = 1; i <= 3; i++) {
             assertTrue(op.set(robot.getUser(), Resources.GOAL, new Goal(new Pose2D(i, 0, 0), 0.1, 0.1)).isSuccess());

@@ -17,7 +17,6 @@ import java.util.concurrent.TimeUnit;
 import org.jivesoftware.smack.XMPPException.XMPPErrorException;
 import org.jivesoftware.smack.packet.IQ;
 import org.jivesoftware.smack.packet.StanzaError;
-import org.jivesoftware.smack.roster.Roster;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
@@ -28,15 +27,12 @@ import com.google.gson.JsonElement;
 import com.google.gson.JsonObject;
 import com.google.gson.JsonParser;
 
-import sabot.controlml.AccessPolicy;
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.ControlMlManager;
 import sabot.controlml.Resources;
-import sabot.controlml.Role;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
-import sabot.fleet.AccessRules;
 import sabot.fleet.CommandHistory;
 import sabot.fleet.ServerFigures;
 import sabot.fleet.ServerStatistics;
@@ -60,21 +56,12 @@ class ServerStatisticsTest {
 
     @Test
     void statisticsCountWhatTheClientsSentWithErrorsByCondition() throws Exception {
-        EntityBareJid robotJid = XMPP.register("stats-robot", PrivateXmppServer.DOMAIN, PASSWORD);
-        EntityBareJid operatorJid = XMPP.register("stats-operator", PrivateXmppServer.DOMAIN, PASSWORD);
-        EntityBareJid observerJid = XMPP.register("stats-observer", PrivateXmppServer.DOMAIN, PASSWORD);
-        XMPP.register("stats-stranger", PrivateXmppServer.DOMAIN, PASSWORD);
-        XMPPTCPConnection robot = login("stats-robot");
-        XMPPTCPConnection operator = login("stats-operator");
-        XMPPTCPConnection observer = login("stats-observer");
-        XMPPTCPConnection stranger = login("stats-stranger");
-        AccessPolicy policy = AccessRules.labGroups().on(robot);
-        FleetOnServerTest.goalDevice(robot, policy);
-        XMPP.enrolRobot(robotJid);
-        XMPP.grant(operatorJid, Role.OPERATOR);
-        XMPP.grant(observerJid, Role.OBSERVER);
-        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, operator, Role.OPERATOR);
-        FleetOnServerTest.awaitRole(Roster.getInstanceFor(robot), policy, observer, Role.OBSERVER);
+        ArchiveLab lab = ArchiveLab.on(XMPP, "stats", PASSWORD);
+        EntityBareJid robotJid = lab.robotJid();
+        XMPPTCPConnection robot = lab.robot();
+        XMPPTCPConnection operator = lab.operator();
+        XMPPTCPConnection observer = lab.observer();
+        XMPPTCPConnection stranger = lab.stranger();
         String before = Instant.now().minus(1, ChronoUnit.SECONDS).toString();
 
         // 4 goals and 2 gets from the operator; 2 goals refused to the observer, 1 to a stranger
@@ -218,10 +205,6 @@ class ServerStatisticsTest {
             m.put(e.getKey(), e.getValue().getAsInt());
         }
         return m;
-    }
-
-    private static XMPPTCPConnection login(String localpart) throws Exception {
-        return XMPP.connect(XMPP.configuration(localpart, PrivateXmppServer.DOMAIN, PASSWORD).build());
     }
 
     /**

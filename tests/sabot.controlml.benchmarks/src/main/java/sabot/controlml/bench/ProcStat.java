@@ -49,22 +49,7 @@ final class ProcStat {
 
     /** @return utime + stime of a process and its descendants, ticks of 1/100 s; 0 when it has ended */
     static long cpuTicks(long pid) {
-        ProcessHandle root = ProcessHandle.of(pid).orElse(null);
-        if (root == null) {
-            return 0;
-        }
-        List<ProcessHandle> tree = new ArrayList<>();
-        tree.add(root);
-        root.descendants().forEach(tree::add);
-        long total = 0;
-        for (ProcessHandle p : tree) {
-            try {
-                total += ticks(Paths.get("/proc", Long.toString(p.pid()), "stat"));
-            } catch (IOException | RuntimeException gone) {
-                // ended meanwhile
-            }
-        }
-        return total;
+        return sumOverTree(pid, p -> ticks(Paths.get("/proc", Long.toString(p), "stat")));
     }
 
     /**
@@ -73,6 +58,25 @@ final class ProcStat {
      *         shared buffers) counts once; 0 when it has ended
      */
     static long rssKb(long pid) {
+        return sumOverTree(pid, p -> {
+            long kb = 0;
+            for (String line : Files.readAllLines(Paths.get("/proc", Long.toString(p), "smaps_rollup"))) {
+                if (line.startsWith("Pss:")) {
+                    kb += Long.parseLong(line.replaceAll("[^0-9]", ""));
+                }
+            }
+            return kb;
+        });
+    }
+
+    /** A figure read from one process's files in /proc. */
+    @FunctionalInterface
+    private interface ProcFigure {
+        long of(long pid) throws IOException;
+    }
+
+    /** @return {@code figure} summed over a process and its descendants (one that ends meanwhile counts 0) */
+    private static long sumOverTree(long pid, ProcFigure figure) {
         ProcessHandle root = ProcessHandle.of(pid).orElse(null);
         if (root == null) {
             return 0;
@@ -83,11 +87,7 @@ final class ProcStat {
         long total = 0;
         for (ProcessHandle p : tree) {
             try {
-                for (String line : Files.readAllLines(Paths.get("/proc", Long.toString(p.pid()), "smaps_rollup"))) {
-                    if (line.startsWith("Pss:")) {
-                        total += Long.parseLong(line.replaceAll("[^0-9]", ""));
-                    }
-                }
+                total += figure.of(p.pid());
             } catch (IOException | RuntimeException gone) {
                 // ended meanwhile
             }
