@@ -375,6 +375,13 @@ async def run(args: argparse.Namespace) -> int:
                   + (f" ({report.skipped} ticks skipped: answers slower than a period)" if report.skipped else "")
                   + f"; answer round trip p50 {percentile(trips, 0.5):.1f} ms p99 {percentile(trips, 0.99):.1f} ms"
                   f" max {max(trips):.1f} ms")
+        elif args.command == "lease":
+            answer = await client.request(robot, "set", "cm.telemetry", cm.lease(args.seconds, args.rates),
+                                          args.timeout)
+            seconds, granted = cm.telemetry_rates(answer.value)
+            print(f"lease of {robot} for {seconds:g} s: " + ", ".join(f"{r} {hz:g} Hz" for r, hz in granted.items())
+                  if seconds > 0 else f"no lease on {robot}: " + ", ".join(f"{r} {hz:g} Hz (base)"
+                                                                          for r, hz in granted.items()))
         elif args.command == "watch":
             n = 0
             next_tick = time.monotonic()
@@ -440,6 +447,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     w = sub.add_parser("watch", help="print pose, mission and presence once a second")
     w.add_argument("robot")
     w.add_argument("--count", type=int, default=0, help="lines to print (default: until interrupted)")
+    le = sub.add_parser("lease", help="lease faster telemetry (docs/CONTROLML.md section 6): RES=HZ ..., for a while")
+    le.add_argument("robot")
+    le.add_argument("rates", nargs="*", metavar="RES=HZ", help="e.g. cm.position=10 (none, or --seconds 0: end the "
+                    "lease)")
+    le.add_argument("--seconds", type=float, default=30.0, help="the lease asked for (default 30; the robot may cut "
+                    "it); 0 ends it")
     j = sub.add_parser("joystick", help="drive by joystick: a twist (m/s, rad/s) at a rate for a duration, then stop")
     j.add_argument("robot")
     j.add_argument("linear", type=float, help="linear speed, m/s (|v| <= 10; the robot clamps to its limits)")
@@ -480,6 +493,19 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
             p.error(f"joystick: --rate {args.rate:g} must be in (0, {MAX_JOYSTICK_RATE:g}] Hz")
         if not (math.isfinite(args.duration) and args.duration > 0):
             p.error(f"joystick: --duration {args.duration:g} must be a finite number of seconds > 0")
+    if args.command == "lease":
+        rates = {}
+        for item in args.rates:
+            res, _, hz = item.partition("=")
+            try:
+                rates[res] = float(hz)
+            except ValueError:
+                p.error(f"lease: '{item}' is not RES=HZ")
+        try:
+            cm.lease(args.seconds, rates)
+        except cm.PayloadError as e:
+            p.error(f"lease: {e}")
+        args.rates = rates
     if args.command == "watch" and args.count < 0:
         p.error("--count must be >= 0")
     return args

@@ -52,6 +52,7 @@ UNIT_ALIASES: dict[str, tuple[str, float]] = {
     "ms": ("s", 0.001), "min": ("s", 60.0),
     "cm/s": ("m/s", 0.01), "km/h": ("m/s", 1000.0 / 3600.0),
     "deg/s": ("rad/s", math.pi / 180.0),
+    "/s": ("Hz", 1.0), "/min": ("Hz", 1.0 / 60.0),
 }
 
 
@@ -277,6 +278,47 @@ def velocity(linear: float, angular: float, time: str) -> dict:
         if not math.isfinite(value) or abs(value) > bound:
             raise PayloadError(f"{name} {value} {unit} must be finite and within +-{bound:g} {unit}")
     return {"time": time, "linear": float(linear), "angular": float(angular)}
+
+
+MAX_LEASE_S, MAX_RATE_HZ, MAX_STREAMS = 3600.0, 100.0, 16  # cm.telemetry's ranges (section 4)
+_RES_RE = re.compile(r"cm(\.[a-z][a-z0-9\-]{0,30}){1,4}")
+
+
+def lease(seconds: float, rates: dict[str, float]) -> ET.Element:
+    """The payload of a cm.telemetry set (section 6, "Leases"): a lease of ``seconds`` (0 ends it) of these rates in
+    Hz by resource name; refuses what every device would refuse (an hour or more, over 100 Hz, over 16 resources)."""
+    if not (math.isfinite(seconds) and 0 <= seconds <= MAX_LEASE_S):
+        raise PayloadError(f"lease {seconds} s must be 0..{MAX_LEASE_S:g} s")
+    if len(rates) > MAX_STREAMS:
+        raise PayloadError(f"at most {MAX_STREAMS} resources in one lease, not {len(rates)}")
+    record = _swe("DataRecord")
+    _swe("field", record, {"name": "lease"}).append(_scalar("Quantity", "s", seconds))
+    _swe("field", record, {"name": "count"}).append(_scalar("Count", None, len(rates)))
+    for i, (res, hz) in enumerate(rates.items()):
+        if not _RES_RE.fullmatch(res):
+            raise PayloadError(f"'{res}' is not a resource name")
+        if not (math.isfinite(hz) and 0 <= hz <= MAX_RATE_HZ):
+            raise PayloadError(f"{res}: rate {hz} Hz must be 0..{MAX_RATE_HZ:g} Hz")
+        stream = _swe("DataRecord")
+        _swe("field", stream, {"name": "resource"}).append(_scalar("Text", None, res))
+        _swe("field", stream, {"name": "rate"}).append(_scalar("Quantity", "Hz", hz))
+        _swe("field", record, {"name": f"stream{i}"}).append(stream)
+    return record
+
+
+def telemetry_rates(value: dict) -> tuple[float, dict[str, float]]:
+    """Reads a decoded cm.telemetry record (a get's answer, or a lease's): the lease in s and each resource's rate
+    in Hz."""
+    def number(m: Any, unit: str) -> float:
+        m = canonical(m) if isinstance(m, Measure) else Measure(float(m), unit)
+        if m.uom != unit:
+            raise PayloadError(f"{m.uom} is not a unit of {unit}")
+        return m.value
+    n = value["count"]
+    if set(value) != {"lease", "count"} | {f"stream{i}" for i in range(n)}:
+        raise PayloadError(f"cm.telemetry fields are lease, count and stream0..stream{n - 1}, not {sorted(value)}")
+    return number(value["lease"], "s"), {value[f"stream{i}"]["resource"]: number(value[f"stream{i}"]["rate"], "Hz")
+                                          for i in range(n)}
 
 
 # ---------------------------------------------------------------------------------------------------------------

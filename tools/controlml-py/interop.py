@@ -4,7 +4,8 @@ docs/controlml.xsd and docs/IDENTITY.md) against a ControlML device on a real XM
 
 It expects a device prepared as tests/sabot.controlml.tests' InteropSuiteTest prepares it (see its Javadoc): every
 resource served by a device that keeps what it is set, except cm.map (not served); cm.mission sets refused by the
-word in their `detail`; cm.position published at a fixed rate with x = 1, 2, 3, ...; the operator may set, the
+word in their `detail`; cm.position published with x = 1, 2, 3, ... at 20 Hz, leased up to 40 Hz for at most
+10 s (cm.telemetry); the operator may set, the
 viewer may get, the stranger nothing; its vCard and QR inventory published for the serial given.
 
 One line per check, "PASS name" or "FAIL name: why"; the last line is "interop: N passed, N failed". Exit 0 only when
@@ -337,6 +338,36 @@ async def replay(op: Peer, robot: str) -> None:
           one.reason == "busy" and two.type == "result", f"{one} / {two}")
 
 
+async def leases(viewer: Peer, stranger: Peer, robot: str) -> None:
+    """Section 6's leases: an observer leases faster telemetry, the device grants up to its full rate and its longest
+    lease, ends the lease on request; refusals change nothing."""
+    async def rates(peer: Peer) -> tuple[float, dict[str, float]] | None:
+        a = await peer.raw(robot, "get", cm.control_ml("get", peer.ids.next(), "cm.telemetry"))
+        return cm.telemetry_rates(cm.decode(a.cm).value) if a.type == "result" and a.cm is not None else None
+
+    before = await rates(viewer)
+    check("cm.telemetry tells the base rate and the longest lease", before == (10.0, {"cm.position": 20.0}),
+          str(before))
+    a = await viewer.raw(robot, "set", cm.control_ml("set", viewer.ids.next(), "cm.telemetry",
+                                                     cm.lease(60, {"cm.position": 100})))
+    granted = cm.telemetry_rates(cm.decode(a.cm).value) if a.type == "result" and a.cm is not None else None
+    check("an observer's lease is granted up to the full rate and the longest lease",
+          granted == (10.0, {"cm.position": 40.0}), str(a))
+    check("a lease raises the rate", await rates(viewer) == (10.0, {"cm.position": 40.0}))
+    refusal("a lease of a resource the device does not publish", await viewer.raw(robot, "set", cm.control_ml(
+        "set", viewer.ids.next(), "cm.telemetry", cm.lease(10, {"cm.goal": 5}))), "invalid-value")
+    wrong = cm.lease(10, {"cm.position": 5})
+    wrong.find(f".//{{{cm.SWE_NS}}}field[@name='rate']/{{{cm.SWE_NS}}}Quantity/{{{cm.SWE_NS}}}uom").set("code", "m")
+    refusal("a lease's rate in metres", await viewer.raw(robot, "set", cm.control_ml(
+        "set", viewer.ids.next(), "cm.telemetry", wrong)), "wrong-unit")
+    refusal("a stranger's lease", await stranger.raw(robot, "set", cm.control_ml(
+        "set", stranger.ids.next(), "cm.telemetry", cm.lease(10, {"cm.position": 40}))), "access-denied")
+    check("refused leases change nothing", await rates(viewer) == (10.0, {"cm.position": 40.0}))
+    a = await viewer.raw(robot, "set", cm.control_ml("set", viewer.ids.next(), "cm.telemetry", cm.lease(0, {})))
+    check("a lease of 0 s ends the lease: the base rate again",
+          a.type == "result" and await rates(viewer) == (10.0, {"cm.position": 20.0}), str(a))
+
+
 async def telemetry(args, robot: str) -> None:
     """Section 6's recipe, twice: a first session that subscribes, and the same client coming back."""
     robot_bare = slixmpp.JID(robot).bare
@@ -473,6 +504,7 @@ async def main(args) -> None:
     await refusals(op, viewer, stranger, robot)
     await replay(op, robot)
     await identity(op, args, robot)
+    await leases(viewer, stranger, robot)
     print("... disconnecting", flush=True)
     await asyncio.gather(*(p.disconnect() for p in (op, viewer, stranger)))
     print("... disconnected", flush=True)

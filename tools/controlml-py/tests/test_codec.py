@@ -295,3 +295,34 @@ class ReadingTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class LeaseTest(unittest.TestCase):
+    """Section 6's cm.telemetry record, written and read as the Java device writes and reads it."""
+
+    def test_a_lease_is_a_record_of_streams_and_reads_back(self):
+        payload = cm.lease(30, {"cm.position": 10, "cm.mission": 0.5})
+        fields = [f.get("name") for f in payload]
+        self.assertEqual(["lease", "count", "stream0", "stream1"], fields)
+        self.assertEqual((30.0, {"cm.position": 10.0, "cm.mission": 0.5}),
+                         cm.telemetry_rates(cm.decode_component(payload)))
+
+    def test_other_units_of_frequency_and_time_are_converted(self):
+        payload = cm.lease(1, {"cm.position": 30})
+        ns = "{" + cm.SWE_NS + "}"
+        payload.find(f".//{ns}field[@name='rate']/{ns}Quantity/{ns}uom").set("code", "/min")
+        payload.find(f"{ns}field[@name='lease']/{ns}Quantity/{ns}uom").set("code", "min")
+        self.assertEqual((60.0, {"cm.position": 0.5}), cm.telemetry_rates(cm.decode_component(payload)))
+
+    def test_bad_leases_are_refused_before_sending(self):
+        for seconds, rates in ((-1, {}), (3601, {}), (10, {"cm.position": 101}), (10, {"cm.position": -1}),
+                               (10, {"Position": 1}), (10, {f"cm.r{i}": 1 for i in range(17)})):
+            with self.subTest(seconds=seconds, rates=rates), self.assertRaises(cm.PayloadError):
+                cm.lease(seconds, rates)
+
+    def test_a_record_with_other_fields_is_refused(self):
+        value = cm.decode_component(cm.lease(10, {"cm.position": 1}))
+        value["extra"] = 1
+        with self.assertRaises(cm.PayloadError):
+            cm.telemetry_rates(value)
+

@@ -17,7 +17,9 @@ import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicLong;
 
 import org.jivesoftware.smack.Manager;
+import org.jivesoftware.smack.SmackException.NoResponseException;
 import org.jivesoftware.smack.SmackException.NotConnectedException;
+import org.jivesoftware.smack.XMPPException.XMPPErrorException;
 import org.jivesoftware.smack.StanzaCollector;
 import org.jivesoftware.smack.XMPPConnection;
 import org.jivesoftware.smack.filter.StanzaFilter;
@@ -329,6 +331,11 @@ public final class ControlMlManager extends Manager {
             return Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from " + device + " within "
                     + requestTimeout.toMillis() + " ms");
         }
+        return interpret(device, request, answer);
+    }
+
+    /** An answer IQ to {@code request} as the requester sees it: the result element, or why there is none. */
+    private static Outcome<ControlMlElement> interpret(Jid device, ControlMlElement request, IQ answer) {
         if (answer.getType() == IQ.Type.error) {
             if (answer instanceof ControlMlIQ cmError && cmError.element().failure() != null) {
                 // the control-ml element's failure is complete (condition, reason, text) and in our own namespace
@@ -352,6 +359,50 @@ public final class ControlMlManager extends Manager {
                     + request.id());
         }
         return Outcome.success(element);
+    }
+
+    /**
+     * Sets a resource without waiting: the answer completes the future (on one of Smack's threads; hand long work
+     * off), with a timeout after the {@link #setRequestTimeout request timeout}. For requests a client sends many of
+     * and need not wait for, e.g. a workbench's telemetry leases ({@link TelemetryWatcher}).
+     *
+     * @return the future outcome, as {@link #set} would return it
+     */
+    public <T> CompletableFuture<Outcome<T>> setAsync(Jid device, Resource<T, ?> resource, T value) {
+        ControlMlElement request = stamped(ControlMlElement.request(ControlMlType.SET, ids.next(), resource.name(),
+                resource.codec().encode(Objects.requireNonNull(value, "value"))).withTextForm(textForm));
+        ControlMlIQ iq = new ControlMlIQ(request);
+        iq.setTo(device);
+        String stanzaId = iq.setStanzaId();
+        synchronized (sentStanzaIds) {
+            sentStanzaIds.put(stanzaId, Boolean.TRUE);
+        }
+        CompletableFuture<Outcome<T>> future = new CompletableFuture<>();
+        long timeout = requestTimeout.toMillis();
+        try {
+            connection().sendIqRequestAsync(iq, timeout).onSuccess(answer -> future.complete(answered(resource,
+                    device, request, answer))).onError(e -> {
+                        if (e instanceof XMPPErrorException x && x.getStanza() instanceof IQ answer) {
+                            future.complete(answered(resource, device, request, answer));
+                        } else if (e instanceof NoResponseException) {
+                            future.complete(Outcome.failure(ControlMlCondition.TIMEOUT, "no answer from " + device
+                                    + " within " + timeout + " ms"));
+                        } else {
+                            future.complete(Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not sent: " + e));
+                        }
+                    });
+        } catch (RuntimeException e) {
+            future.complete(Outcome.failure(ControlMlCondition.NOT_CONNECTED, "not connected: " + e.getMessage()));
+        }
+        return future;
+    }
+
+    private <T> Outcome<T> answered(Resource<T, ?> resource, Jid device, ControlMlElement request, IQ answer) {
+        Outcome<ControlMlElement> element = interpret(device, request, answer);
+        if (element instanceof Outcome.Failure<ControlMlElement> f) {
+            return Outcome.failure(f.error());
+        }
+        return decodeAnswer(resource, ControlMlType.SET, element.orElseThrow());
     }
 
     private <T> Outcome<T> decodeAnswer(Resource<T, ?> resource, ControlMlType type, ControlMlElement answer) {

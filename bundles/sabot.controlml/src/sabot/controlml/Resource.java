@@ -195,6 +195,15 @@ public final class Resource<T, Q> {
         return this;
     }
 
+    /**
+     * Lets observers set a resource of section 4: only {@code cm.telemetry}, whose set (a lease) asks for telemetry
+     * and changes nothing on the robot (section 9's table).
+     */
+    Resource<T, Q> setByObservers() {
+        this.setRole = Role.OBSERVER;
+        return this;
+    }
+
     private static Role checkedSetRole(String name, Role role) {
         if (role == null || role == Role.NONE || role == Role.OBSERVER) {
             throw new IllegalArgumentException(name + ": a set needs the operator or the maintainer role, not "

@@ -20,6 +20,7 @@ import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TaskList;
+import sabot.controlml.payload.TelemetryRates;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
@@ -75,6 +76,13 @@ public final class Resources {
     /** {@code cm.role} (get): the requester's own role on the device; every device answers it. */
     public static final Resource<AccessRole, NoQuery> ROLE = new Resource<>("cm.role", AccessRole.CODEC, null, true,
             false, "the requester's role on this device");
+    /**
+     * {@code cm.telemetry} (get: the rate of each telemetry resource now; set: a watcher's lease of faster rates,
+     * section 6). Observers may set it: a lease asks for telemetry and changes nothing on the robot.
+     */
+    public static final Resource<TelemetryRates, NoQuery> TELEMETRY = new Resource<TelemetryRates, NoQuery>(
+            "cm.telemetry", TelemetryRates.CODEC, null, true, true, "telemetry rates; a set leases faster ones for a "
+                    + "while").setByObservers();
     /** {@code cm.fs.list} (get with a path): directory listing. */
     public static final Resource<DirectoryListing, FileQuery> FS_LIST = new Resource<>("cm.fs.list",
             DirectoryListing.CODEC, FileQuery.CODEC, true, false, "remote FS: list a directory");
@@ -92,7 +100,7 @@ public final class Resources {
 
     static {
         for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, PID, LIMITS, MISSION,
-                TASKS, ROLE, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
+                TASKS, ROLE, TELEMETRY, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
             BY_NAME.put(r.name(), r);
         }
     }

@@ -109,20 +109,17 @@ public final class TelemetryManager extends Manager {
 
 
     /**
-     * Publishes a resource's value to this device's PEP node {@link ControlMl#telemetryNode} at a fixed rate. Each
+     * Publishes a resource's value to this device's PEP node {@link ControlMl#telemetryNode} at a rate, which
+     * {@link TelemetryPublication#setRate} changes (a device serving leases, {@link TelemetryLeases}, does). Each
      * publication is sent without waiting for the server's acknowledgement (counted in {@link #statistics()}); a
      * null from {@code source} skips that tick.
      *
-     * @param rateHz publications per second, &gt; 0 and at most 1000
+     * @param rateHz publications per second, 0 (none until the rate is changed) to 1000
      * @return the running publication
      */
     public <T> TelemetryPublication publish(Resource<T, ?> resource, Supplier<? extends T> source,
             double rateHz) {
-        if (!(rateHz > 0 && rateHz <= 1000)) {
-            throw new IllegalArgumentException("rate must be in (0, 1000] Hz, was " + rateHz);
-        }
-        long period = Math.round(1e9 / rateHz);
-        ScheduledFuture<?> task;
+        checkRate(rateHz);
         synchronized (this) {
             if (scheduler == null) {
                 ScheduledThreadPoolExecutor s = new ScheduledThreadPoolExecutor(1, r -> {
@@ -134,41 +131,121 @@ public final class TelemetryManager extends Manager {
                 scheduler = s;
             }
             activePublications.incrementAndGet();
-            task = scheduler.scheduleAtFixedRate(() -> {
-                T value = source.get();
-                if (value != null) {
-                    publishNow(resource, value);
-                }
-            }, 0, period, TimeUnit.NANOSECONDS);
+            Publication<T> p = new Publication<>(resource, source, scheduler);
+            p.setRate(rateHz);
+            return p;
         }
-        return new TelemetryPublication() {
-            private boolean stopped;
+    }
 
-            @Override
-            public String resource() {
-                return resource.name();
+    /**
+     * Serves {@code cm.telemetry} on this device: resources {@link TelemetryLeases#offer offered} there are published at
+     * a base rate, and faster while a watcher leases them (section 6, "Leases").
+     *
+     * @param maxLeaseSeconds the longest lease granted, in (0, 3600]
+     * @return the leases; close them to stop their publications and the {@code cm.telemetry} handlers
+     */
+    public TelemetryLeases serveLeases(double maxLeaseSeconds) {
+        return new TelemetryLeases(controlMl, this, connection(), maxLeaseSeconds);
+    }
+
+    /**
+     * Leases devices' telemetry at the rates this client looks at (section 6, "Leases"): one watcher per client.
+     *
+     * @param leaseSeconds the lease asked for, in (0, 3600]; renewed at half of what each device grants
+     * @return the watcher; close it to end its leases
+     */
+    public TelemetryWatcher watcher(double leaseSeconds) {
+        return new TelemetryWatcher(controlMl, leaseSeconds, connection().getXMPPServiceDomain().toString());
+    }
+
+    private static void checkRate(double rateHz) {
+        if (!(rateHz >= 0 && rateHz <= 1000)) {
+            throw new IllegalArgumentException("rate must be in [0, 1000] Hz, was " + rateHz);
+        }
+    }
+
+    /** One resource's periodic publication on the manager's scheduler; its rate can change while it runs. */
+    private final class Publication<T> implements TelemetryPublication {
+        private final Resource<T, ?> resource;
+        private final Supplier<? extends T> source;
+        private final ScheduledExecutorService on;
+        // guarded by TelemetryManager.this
+        private ScheduledFuture<?> task;
+        private double rate;
+        private long period;
+        private boolean stopped;
+        /** System.nanoTime() of the last tick; a rate change keeps the next one a new period after it. */
+        private volatile long lastTick = System.nanoTime() - TimeUnit.DAYS.toNanos(1);
+
+        Publication(Resource<T, ?> resource, Supplier<? extends T> source, ScheduledExecutorService on) {
+            this.resource = resource;
+            this.source = source;
+            this.on = on;
+        }
+
+        private void tick() {
+            lastTick = System.nanoTime();
+            T value = source.get();
+            if (value != null) {
+                publishNow(resource, value);
             }
+        }
 
-            @Override
-            public long periodNanos() {
+        @Override
+        public String resource() {
+            return resource.name();
+        }
+
+        @Override
+        public long periodNanos() {
+            synchronized (TelemetryManager.this) {
                 return period;
             }
+        }
 
-            @Override
-            public void stop() {
-                synchronized (TelemetryManager.this) {
-                    if (stopped) {
-                        return;
-                    }
-                    stopped = true;
+        @Override
+        public double rate() {
+            synchronized (TelemetryManager.this) {
+                return rate;
+            }
+        }
+
+        @Override
+        public void setRate(double rateHz) {
+            checkRate(rateHz);
+            synchronized (TelemetryManager.this) {
+                if (stopped || (rateHz == rate && task != null)) {
+                    return;
+                }
+                if (task != null) {
                     task.cancel(false);
-                    if (activePublications.decrementAndGet() == 0 && scheduler != null) {
-                        scheduler.shutdown();
-                        scheduler = null;
-                    }
+                    task = null;
+                }
+                rate = rateHz;
+                period = rateHz == 0 ? 0 : Math.round(1e9 / rateHz);
+                if (period > 0) {
+                    long delay = Math.max(0, lastTick + period - System.nanoTime());
+                    task = on.scheduleAtFixedRate(this::tick, delay, period, TimeUnit.NANOSECONDS);
                 }
             }
-        };
+        }
+
+        @Override
+        public void stop() {
+            synchronized (TelemetryManager.this) {
+                if (stopped) {
+                    return;
+                }
+                stopped = true;
+                if (task != null) {
+                    task.cancel(false);
+                }
+                if (activePublications.decrementAndGet() == 0 && scheduler != null) {
+                    scheduler.shutdown();
+                    scheduler = null;
+                }
+            }
+        }
     }
 
     /**

@@ -31,6 +31,7 @@ import sabot.controlml.ControlMlType;
 import sabot.controlml.Outcome;
 import sabot.controlml.RequestIdGenerator;
 import sabot.controlml.Resources;
+import sabot.controlml.TelemetryWatcher;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
@@ -166,6 +167,9 @@ class ConnectionTest extends RigTest {
             });
             Outcome<Void> follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
             assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
+            // a watching workbench leases the position at the robot's full rate (unwatched: its base rate, 0.2 Hz)
+            TelemetryWatcher lease = watcher.telemetry().watcher(30);
+            lease.watch(rig.robot, Map.of(Resources.POSITION, 10.0));
 
             byte[] content = new byte[70_000];
             new Random(13).nextBytes(content);
@@ -190,6 +194,7 @@ class ConnectionTest extends RigTest {
             assertArrayEquals(content, back, "read back through the robot");
 
             assertTrue(tenPoses.await(10, TimeUnit.SECONDS), "the watcher got " + poses.get() + " poses");
+            lease.close();
         }
     }
 

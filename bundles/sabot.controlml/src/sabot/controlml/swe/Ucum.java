@@ -29,7 +29,8 @@ public final class Ucum {
             Map.entry("rad2", Map.of("rad2", 1.0)),
             Map.entry("%", Map.of("%", 1.0, "1", 100.0)),
             Map.entry("1", Map.of("1", 1.0)),
-            Map.entry("By", Map.of("By", 1.0)));
+            Map.entry("By", Map.of("By", 1.0)),
+            Map.entry("Hz", Map.of("Hz", 1.0, "/s", 1.0, "/min", 1.0 / 60.0)));
 
     private Ucum() {
     }

@@ -3,10 +3,12 @@ package sabot.workbench.fleet;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
+import java.util.Set;
 import java.util.concurrent.ConcurrentSkipListMap;
 import java.util.concurrent.Executor;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicLong;
 
 import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
@@ -35,6 +37,11 @@ public final class FleetBinding implements FleetListener {
     private volatile List<String> accessRequests = List.of();
     private volatile List<QueuedCommand> queued = List.of();
     private volatile boolean disposed;
+    /** This view's name towards {@link FleetState#watch}: unique in the workbench. */
+    private final String viewer = "view-" + VIEWERS.incrementAndGet();
+    private static final AtomicLong VIEWERS = new AtomicLong();
+    private Set<String> watched = Set.of(); // guarded by this
+    private double watchedHz; // guarded by this
 
     /**
      * Starts observing at once (the present state arrives with the first refresh).
@@ -56,6 +63,11 @@ public final class FleetBinding implements FleetListener {
             public FleetState addingService(ServiceReference<FleetState> reference) {
                 FleetState fleet = context.getService(reference);
                 fleet.addListener(FleetBinding.this);
+                synchronized (FleetBinding.this) {
+                    if (!watched.isEmpty()) {
+                        fleet.watch(viewer, watched, watchedHz); // what this view said before the service came
+                    }
+                }
                 return fleet;
             }
 
@@ -154,9 +166,36 @@ public final class FleetBinding implements FleetListener {
         }
     }
 
+    /**
+     * Tells the fleet which robots this view shows and how often it needs their telemetry ({@link FleetState#watch});
+     * said again to a fleet service that comes later, and ended by {@link #dispose}. A call that changes nothing
+     * costs nothing: a view may call it at every frame.
+     *
+     * @param robots bare JIDs; empty: none
+     * @param hz     Hz, e.g. {@link FleetState#SHOWN_HZ} or {@link FleetState#LISTED_HZ}
+     */
+    public synchronized void watch(Set<String> robots, double hz) {
+        if (disposed || (robots.equals(watched) && hz == watchedHz)) {
+            return;
+        }
+        watched = Set.copyOf(robots);
+        watchedHz = hz;
+        FleetState fleet = fleet();
+        if (fleet != null) {
+            fleet.watch(viewer, watched, hz);
+        }
+    }
+
     /** Stops observing (the view is closing); no refresh runs afterwards. */
     public void dispose() {
-        disposed = true;
+        synchronized (this) {
+            disposed = true;
+            FleetState fleet = fleet();
+            if (fleet != null && !watched.isEmpty()) {
+                fleet.watch(viewer, Set.of(), 0);
+            }
+            watched = Set.of();
+        }
         tracker.close();
     }
 }

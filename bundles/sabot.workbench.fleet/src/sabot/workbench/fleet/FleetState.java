@@ -3,6 +3,7 @@ package sabot.workbench.fleet;
 import java.time.Duration;
 import java.util.List;
 import java.util.Optional;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 
 import org.osgi.annotation.versioning.ProviderType;
@@ -14,6 +15,7 @@ import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.NoQuery;
+import sabot.controlml.payload.TelemetryRates;
 import sabot.fleet.ArchivedCommand;
 import sabot.fleet.CommandHistory;
 import sabot.fleet.ServerFigures;
@@ -203,6 +205,25 @@ public interface FleetState {
                         && c.getCause() != null ? c.getCause() : failure);
             }
         });
+    }
+
+    /** The rate a view that draws robots asks of those it shows: as fast as each publishes (a robot caps a lease). */
+    double SHOWN_HZ = TelemetryRates.MAX_RATE_HZ;
+    /** The rate a view that lists robots asks: once a second. */
+    double LISTED_HZ = 1;
+
+    /**
+     * Says which robots a view shows and how often it needs their telemetry (docs/CONTROLML.md section 6, "Leases"):
+     * the fleet leases each robot's telemetry at the highest rate any view asks of it, renews the leases while the
+     * views ask, and lets them end when none does (the robot falls back to its base rate). Views call it through
+     * {@link FleetBinding#watch}. A default for providers written before this method: nothing (robots publish at the
+     * rate they are configured for).
+     *
+     * @param viewer a name unique to the view; a later call replaces its robots and rate
+     * @param robots bare JIDs; empty: the view shows none
+     * @param hz     Hz, &gt; 0 unless {@code robots} is empty
+     */
+    default void watch(String viewer, Set<String> robots, double hz) {
     }
 
     /**

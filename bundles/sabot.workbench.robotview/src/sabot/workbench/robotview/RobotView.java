@@ -1,6 +1,7 @@
 package sabot.workbench.robotview;
 
 import java.util.List;
+import java.util.Set;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
@@ -185,6 +186,9 @@ public abstract class RobotView extends ViewPart {
     public final void choose(String jid) {
         boolean changed = !Objects.equals(jid, robot);
         robot = jid;
+        if (binding != null) {
+            binding.watch(jid == null ? Set.of() : Set.of(jid), FleetState.SHOWN_HZ);
+        }
         if (changed) {
             role = null;
             refreshRole();
@@ -331,6 +335,8 @@ public abstract class RobotView extends ViewPart {
             chooser.setItems(robots.stream().map(r -> r.name() + " (" + r.jid() + ")").toArray(String[]::new));
             chooser.getParent().layout();
         }
+        // a view about one robot shows its telemetry as it comes (docs/CONTROLML.md section 6, "Leases")
+        binding.watch(robot == null ? Set.of() : Set.of(robot), FleetState.SHOWN_HZ);
         RobotState chosen = robotState();
         boolean online = chosen != null && chosen.availability() != Availability.OFFLINE;
         if (online && !robotOnline && role == null) {

@@ -3,11 +3,13 @@ package sabot.workbench.views;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
+import java.util.HashSet;
 import java.util.Comparator;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Function;
 
@@ -286,7 +288,30 @@ public final class FleetView extends ViewPart {
         getSite().getService(IContextService.class).activateContext(WorkspaceView.FLEET_CONTEXT);
         getSite().getPage().addSelectionListener(otherViews);
         fleet = new FleetBinding(table.getDisplay()::asyncExec, this::fleetChanged);
+        table.getVerticalBar().addListener(SWT.Selection, e -> watchVisibleRows());
+        table.addListener(SWT.Resize, e -> watchVisibleRows());
         tick();
+    }
+
+    /**
+     * Leases the telemetry of the robots in the table's visible rows at {@link FleetState#LISTED_HZ} (docs/CONTROLML.md
+     * section 6, "Leases"): a list of a thousand robots costs the rows an operator sees. Called when the rows or the
+     * scroll position change.
+     */
+    private void watchVisibleRows() {
+        Table t = viewer.getTable();
+        if (t.isDisposed() || fleet == null) {
+            return;
+        }
+        int top = t.getTopIndex();
+        int rows = t.getClientArea().height / Math.max(1, t.getItemHeight()) + 1; // a row partly shown counts
+        Set<String> shown = new HashSet<>();
+        for (int i = top; i < Math.min(t.getItemCount(), top + rows); i++) {
+            if (t.getItem(i).getData() instanceof RobotState r) {
+                shown.add(r.jid());
+            }
+        }
+        fleet.watch(shown, FleetState.LISTED_HZ);
     }
 
     /** @return the fleet the view shows, or null while none is there */
@@ -337,6 +362,7 @@ public final class FleetView extends ViewPart {
         if (!t.equals(filterText)) {
             filterText = t;
             viewer.refresh();
+            watchVisibleRows();
         }
     }
 
@@ -353,6 +379,7 @@ public final class FleetView extends ViewPart {
         t.setSortColumn(t.getColumn(column));
         t.setSortDirection(descending ? SWT.DOWN : SWT.UP);
         viewer.refresh();
+        watchVisibleRows();
     }
 
     /** Refreshes the ages and the greying of stale robots: one cell a row, without the label providers. */
@@ -381,6 +408,7 @@ public final class FleetView extends ViewPart {
         if (!queued.equals(shownQueued)) {
             shownQueued = queued; // rows whose robots' states did not change show them too
             viewer.refresh();
+            watchVisibleRows();
         }
         List<RobotState> robots = fleet.robots();
         if (presenceOrMembershipChanged(robots)) {
@@ -442,6 +470,7 @@ public final class FleetView extends ViewPart {
             viewer.update(changed.toArray(), null);
         } else {
             viewer.refresh(); // keeps the selection (the comparer knows robots by JID)
+            watchVisibleRows();
         }
     }
 

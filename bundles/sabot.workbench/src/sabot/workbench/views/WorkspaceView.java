@@ -3,9 +3,11 @@ package sabot.workbench.views;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
+import java.util.HashSet;
 import java.util.List;
 import java.util.Locale;
 import java.util.Objects;
+import java.util.Set;
 
 import org.eclipse.jface.action.IStatusLineManager;
 import org.eclipse.jface.viewers.ISelection;
@@ -68,6 +70,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     /** Footprint radius drawn, metres: the planner's default robot radius ({@code planner.robotRadius}). */
     public static final double FOOTPRINT_RADIUS_M = 0.25;
+    /** Beyond the visible map, the distance within which a robot's telemetry is still leased: a second's travel. */
+    static final double WATCH_MARGIN_M = 1;
     /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
     public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
@@ -484,6 +488,28 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             }
         }
         waiters.painted(drawn.live(), d);
+        watchShown(area);
+    }
+
+    /**
+     * Leases the telemetry of the robots this view shows (docs/CONTROLML.md section 6): those on the visible part of
+     * the map (with a margin of a footprint and a second's travel), the selected one, and those whose position is not
+     * known yet; the others fall back to their base rate.
+     */
+    private void watchShown(Rectangle area) {
+        double margin = FOOTPRINT_RADIUS_M + WATCH_MARGIN_M;
+        double minX = viewport.toMapX(0) - margin;
+        double maxX = viewport.toMapX(area.width) + margin;
+        double minY = viewport.toMapY(area.height) - margin;
+        double maxY = viewport.toMapY(0) + margin;
+        Set<String> shown = new HashSet<>();
+        for (RobotState r : fleet.robots()) {
+            if (r.pose() == null || r.jid().equals(selected) || (r.pose().pose().x() >= minX && r.pose().pose()
+                    .x() <= maxX && r.pose().pose().y() >= minY && r.pose().pose().y() <= maxY)) {
+                shown.add(r.jid());
+            }
+        }
+        fleet.watch(shown, FleetState.SHOWN_HZ);
     }
 
     @Override

@@ -18,6 +18,7 @@ import java.util.Map;
 import java.util.TimeZone;
 import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
@@ -52,13 +53,17 @@ import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.Role;
 import sabot.controlml.StaleCommandPolicy;
+import sabot.controlml.TelemetryLeases;
 import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;
+import sabot.controlml.TelemetryWatcher;
 import sabot.controlml.payload.AccessRole;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.PayloadCodec;
 import sabot.controlml.payload.PoseEstimate;
+import sabot.controlml.payload.TelemetryRates;
+import sabot.controlml.payload.TelemetryRates.StreamRate;
 import sabot.model.geometry.Pose2D;
 import sabot.testsupport.xmpp.PrivateXmppServer;
 import sabot.testsupport.xmpp.Subscriptions;
@@ -726,6 +731,99 @@ abstract class ControlMlOnServerTest {
 
     static PoseEstimate poseAt(double x) {
         return new PoseEstimate(Samples.T, new Pose2D(x, 0, 0), Samples.POSE.covariance());
+    }
+
+    /**
+     * Section 6's leases through the server: a robot publishes at its base rate until a watcher (an observer) leases
+     * a faster one, keeps it while the watcher renews, and falls back when the lease is ended, runs out, or the
+     * watcher goes offline; a lease of something the robot does not publish, or from a stranger, changes nothing.
+     */
+    @Test
+    void telemetryIsFastOnlyWhileAWatcherLeasesIt(TestInfo info) throws Exception {
+        XMPPTCPConnection wb = workbench(info);
+        BlockingQueue<Long> arrivals = new LinkedBlockingQueue<>();
+        Robot robot = robot(server().login(unique(info, "robot")), Map.of());
+        TelemetryManager.getInstanceFor(wb).addListener(Resources.POSITION, (device, pose) -> arrivals.offer(System
+                .nanoTime()));
+        wb.connect().login();
+        XMPPTCPConnection stranger = server().login(unique(info, "stranger"));
+        robot.manager().setAccessPolicy(j -> j.asBareJid().equals(wb.getUser().asBareJid()) ? Role.OBSERVER
+                : Role.NONE);
+        Subscriptions.mutual(wb, robot.connection(), Duration.ofSeconds(TIMEOUT_S));
+        ControlMlManager watcher = ControlMlManager.getInstanceFor(wb);
+        AtomicInteger tick = new AtomicInteger();
+        try (TelemetryLeases leases = robot.manager().telemetry().serveLeases(2)) {
+            leases.offer(Resources.POSITION, () -> poseAt(tick.incrementAndGet()), 2, 25);
+            followOncePublished(watcher, robot.jid().asEntityBareJidIfPossible());
+            assertEquals(new TelemetryRates(2, List.of(new StreamRate("cm.position", 2))), watcher.get(robot.jid(),
+                    Resources.TELEMETRY).orElseThrow(), "base rate, the longest lease");
+            assertTrue(secondsFor(arrivals, 3) > 0.8, "3 items at the base rate of 2 Hz take a second");
+
+            // refused, nothing changed: a resource the robot does not publish, a stranger
+            Outcome<TelemetryRates> notPublished = watcher.set(robot.jid(), Resources.TELEMETRY, new TelemetryRates(
+                    1, List.of(new StreamRate("cm.position", 25), new StreamRate("cm.obstacles", 5))));
+            assertEquals(ControlMlCondition.INVALID_VALUE, notPublished.errorOrNull().cmCondition());
+            assertTrue(notPublished.errorOrNull().text().contains("cm.obstacles is not published"), notPublished
+                    ::toString);
+            assertEquals(ControlMlCondition.ACCESS_DENIED, ControlMlManager.getInstanceFor(stranger).set(robot.jid(),
+                    Resources.TELEMETRY, new TelemetryRates(1, List.of(new StreamRate("cm.position", 25))))
+                    .errorOrNull().cmCondition());
+            assertEquals(0, leases.watchers());
+            assertEquals(2, leases.rates().stream("cm.position").rate());
+
+            // a lease: granted up to the full rate, cut to the longest lease
+            TelemetryRates granted = watcher.set(robot.jid(), Resources.TELEMETRY, new TelemetryRates(60, List.of(
+                    new StreamRate("cm.position", 100)))).orElseThrow();
+            assertEquals(new TelemetryRates(2, List.of(new StreamRate("cm.position", 25))), granted);
+            arrivals.clear();
+            assertTrue(secondsFor(arrivals, 10) < 0.8, "10 items at 25 Hz take 0.4 s");
+            // ... it runs out (2 s, not renewed): the base rate again
+            long until = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+            while (leases.watchers() > 0 && System.nanoTime() < until) {
+                arrivals.poll(100, TimeUnit.MILLISECONDS);
+            }
+            assertEquals(0, leases.watchers(), "the lease ran out");
+            assertEquals(2, leases.rates().stream("cm.position").rate());
+
+            // a watcher renews for longer than one lease: fast all along; ended by closing it
+            try (TelemetryWatcher w = watcher.telemetry().watcher(2)) {
+                w.watch(robot.jid(), Map.of(Resources.POSITION, 20.0));
+                waitFor(() -> leases.watchers() == 1, "lease taken");
+                long renewedUntil = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(3500);
+                while (System.nanoTime() < renewedUntil) {
+                    assertEquals(1, leases.watchers(), "renewed before it runs out");
+                    assertEquals(20, leases.rates().stream("cm.position").rate());
+                    arrivals.poll(100, TimeUnit.MILLISECONDS);
+                }
+            }
+            waitFor(() -> leases.watchers() == 0, "a closed watcher ends its leases");
+
+            // the watcher going offline ends its lease at once
+            assertTrue(watcher.set(robot.jid(), Resources.TELEMETRY, new TelemetryRates(2, List.of(new StreamRate(
+                    "cm.position", 25)))).isSuccess());
+            assertEquals(1, leases.watchers());
+            wb.disconnect();
+            waitFor(() -> leases.watchers() == 0 && leases.rates().stream("cm.position").rate() == 2,
+                    "offline: base rate");
+        }
+    }
+
+    /** @return the seconds until {@code n} more items arrived */
+    private static double secondsFor(BlockingQueue<Long> arrivals, int n) throws InterruptedException {
+        long start = System.nanoTime();
+        for (int i = 0; i < n; i++) {
+            assertNotNull(arrivals.poll(TIMEOUT_S, TimeUnit.SECONDS), "telemetry item " + i + " of " + n);
+        }
+        return (System.nanoTime() - start) / 1e9;
+    }
+
+    private static void waitFor(java.util.function.BooleanSupplier condition, String what)
+            throws InterruptedException {
+        long until = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
+        while (!condition.getAsBoolean()) {
+            assertTrue(System.nanoTime() < until, what);
+            Thread.sleep(10);
+        }
     }
 
     /** Follows a robot's cm.position telemetry once its first publication has created the node. */

@@ -28,7 +28,7 @@ import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.Role;
-import sabot.controlml.TelemetryPublication;
+import sabot.controlml.TelemetryLeases;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.DeviceProfile;
@@ -50,7 +50,7 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * The device: every resource of the catalogue served as {@link RecordingDevice} does, except {@code cm.map} (not
  * served, for unsupported-operation); a {@code cm.mission} set refused with the reason its {@code detail} names
  * ({@code busy-once}: busy the first time only; {@code throw}: the handler throws); {@code cm.position} published at
- * 20 Hz with x = 1, 2, 3, ...; operator may set, viewer may get, everyone else nothing; the vCard and QR inventory of
+ * 20 Hz with x = 1, 2, 3, ..., leased up to 40 Hz for at most 10 s ({@code cm.telemetry}); operator may set, viewer may get, everyone else nothing; the vCard and QR inventory of
  * {@link #SERIAL}, with a non-ASCII part.
  */
 abstract class InteropSuiteTest {
@@ -108,8 +108,9 @@ abstract class InteropSuiteTest {
         AtomicLong tick = new AtomicLong();
         List<String> output = new java.util.concurrent.CopyOnWriteArrayList<>();
         int exit;
-        try (TelemetryPublication telemetry = device.telemetry().publish(Resources.POSITION, () -> new PoseEstimate(
-                Samples.T, new Pose2D(tick.incrementAndGet(), 0, 0), Samples.POSE.covariance()), 20)) {
+        try (TelemetryLeases telemetry = device.telemetry().serveLeases(10)) {
+            telemetry.offer(Resources.POSITION, () -> new PoseEstimate(Samples.T, new Pose2D(tick.incrementAndGet(), 0,
+                    0), Samples.POSE.covariance()), 20, 40);
             exit = runSuite(List.of("--port", Integer.toString(server().port()), "--ca-file", server().caFile()
                     .toString(), "--domain", PrivateXmppServer.DOMAIN,
                     "--robot", robot.getUser().toString(), "--operator", "operator-" + suffix, "--viewer", "viewer-"

@@ -2,6 +2,7 @@ package sabot.controlml.tests;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Files;
@@ -58,8 +59,12 @@ class RolesTest {
     @Test
     void eachSetNeedsAtLeastTheOperatorAndAnotherBundlesResourceTheMaintainerUnlessItSaysSo() {
         for (Resource<?, ?> r : Resources.all()) {
-            assertTrue(r.setRole().includes(Role.OPERATOR), r.name());
+            // a lease asks for telemetry an observer receives anyway (section 6): the one set of an observer
+            assertTrue(r.setRole().includes(r == Resources.TELEMETRY ? Role.OBSERVER : Role.OPERATOR), r.name());
         }
+        assertEquals(Role.OBSERVER, Resources.TELEMETRY.setRole());
+        assertThrows(IllegalArgumentException.class, () -> Resource.builder("cm.test.z", Goal.CODEC).settable()
+                .setBy(Role.OBSERVER), "another bundle's resource: a set needs the operator at least");
         assertEquals(Role.MAINTAINER, Resource.builder("cm.test.x", Goal.CODEC).settable().build().setRole());
         assertEquals(Role.OPERATOR, Resource.builder("cm.test.y", Goal.CODEC).settable().setBy(Role.OPERATOR)
                 .build().setRole());

@@ -25,6 +25,8 @@ import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
+import sabot.controlml.payload.TelemetryRates;
+import sabot.controlml.payload.TelemetryRates.StreamRate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
@@ -59,6 +61,8 @@ final class Samples {
             Map.entry(Resources.TASKS, new TaskList(List.of(new TaskInfo("localizer", "sabot.onboard.motion",
                     "0.1.0", "active"), new TaskInfo("remotefs", "sabot.onboard.remotefs", "0.1.0", "resolved")))),
             Map.entry(Resources.ROLE, new AccessRole(Role.OPERATOR)),
+            Map.entry(Resources.TELEMETRY, new TelemetryRates(30, List.of(new StreamRate("cm.position", 10),
+                    new StreamRate("cm.mission", 0.5)))),
             Map.entry(Resources.FS_LIST, new DirectoryListing("maps", List.of(new FileEntry("lab.pgm", 10240, false),
                     new FileEntry("old", 0, true)))),
             Map.entry(Resources.FS_READ, new FileChunk("maps/lab.yaml", 0, DATA, FileChunk.sha256Hex(DATA), true)),

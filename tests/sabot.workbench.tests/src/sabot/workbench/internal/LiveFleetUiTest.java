@@ -56,6 +56,7 @@ import org.osgi.framework.FrameworkUtil;
 import org.jxmpp.jid.impl.JidCreate;
 import org.osgi.framework.ServiceReference;
 
+import sabot.controlml.Resources;
 import sabot.controlml.Role;
 import sabot.identity.DeviceIdentityManager;
 import sabot.identity.DeviceProfile;
@@ -206,6 +207,21 @@ class LiveFleetUiTest {
         // the attempt the refusal had scheduled is not made after the account changed: it would replace the session
         waitFor(() -> System.nanoTime() - t0 > TimeUnit.SECONDS.toNanos(3), 10, () -> "three seconds");
         assertEquals(1, HOLD.logins(), "logins since the lab CA was set");
+
+        // telemetry at the rate the views look at (docs/CONTROLML.md section 6, "Leases"): the robot on the map at its
+        // full rate (10 Hz, the product's default), off the map at the Fleet table's 1 Hz, on the map again at 10 Hz
+        BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
+        FleetState service = context.getService(context.getServiceReference(FleetState.class));
+        waitFor(() -> positionRate(service) == 10, 10, () -> "the robot on the map is not leased at its full rate: "
+                + positionRate(service) + " Hz");
+        workspace.viewport().panByPixels(100 * workspace.canvas().getSize().x, 0);
+        flush();
+        waitFor(() -> positionRate(service) == FleetState.LISTED_HZ, 10, () -> "the robot off the map is not at the "
+                + "Fleet table's rate: " + positionRate(service) + " Hz");
+        workspace.centreOn(ROBOT_JID);
+        flush();
+        waitFor(() -> positionRate(service) == 10, 10, () -> "back on the map, not at its full rate: " + positionRate(
+                service) + " Hz");
 
         // the filter above the table: on the robot's name, presence and mission, ignoring case
         FleetView fleet = fleetView();
@@ -774,6 +790,15 @@ class LiveFleetUiTest {
             if (!d.readAndDispatch()) {
                 d.sleep();
             }
+        }
+    }
+
+    /** @return the rate the robot publishes its position at now, as it says (cm.telemetry), or -1 */
+    private static double positionRate(FleetState fleet) {
+        try {
+            return fleet.get(ROBOT_JID, Resources.TELEMETRY).get(5, TimeUnit.SECONDS).stream("cm.position").rate();
+        } catch (Exception e) {
+            return -1;
         }
     }
 

@@ -3,7 +3,9 @@ package sabot.workbench.controlml.internal;
 import java.time.Clock;
 import java.time.Duration;
 import java.util.List;
+import java.util.Map;
 import java.util.Optional;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
@@ -77,6 +79,7 @@ public final class ControlMlFleet implements FleetState {
     private final FleetTelemetry telemetry;
     private final RobotMaps maps;
     private final FleetTraffic traffic;
+    private final FleetWatch watch;
     private final FleetConnection connection;
     private final IPreferenceChangeListener accountChanged = e -> {
         if (e.getKey().startsWith(XmppAccountStore.KEY_PREFIX)) {
@@ -96,7 +99,8 @@ public final class ControlMlFleet implements FleetState {
         registry = new RobotRegistry(clock, notifier);
         traffic = new FleetTraffic(System::nanoTime, jid -> registry.robot(jid) != null);
         requests = new FleetRequests(requestPool, storedCommands, this::session, registry, traffic);
-        telemetry = new FleetTelemetry(clock, registry, requests, traffic, connector, this::session);
+        watch = new FleetWatch(this::session);
+        telemetry = new FleetTelemetry(clock, registry, requests, traffic, watch, connector, this::session);
         FleetRoster roster = new FleetRoster(registry, telemetry, connector, this::session);
         maps = new RobotMaps(this);
         connection = new FleetConnection(connector, named("sabot-fleet-liveness"), backoff, requestTimeout, registry,
@@ -123,10 +127,21 @@ public final class ControlMlFleet implements FleetState {
             node.removePreferenceChangeListener(accountChanged);
         }
         connection.stop();
+        watch.sessionClosed();
         requestPool.shutdownNow();
         storedCommands.shutdownNow();
         notifier.shutdown();
         LOG.info("ControlML plug-in stopped");
+    }
+
+    @Override
+    public void watch(String viewer, Set<String> robots, double hz) {
+        watch.watch(viewer, robots, hz);
+    }
+
+    /** @return the rate each robot's telemetry is leased at now (for tests) */
+    Map<String, Double> leased() {
+        return watch.leased();
     }
 
     @Override

@@ -40,6 +40,7 @@ final class FleetTelemetry {
     private final RobotRegistry registry;
     private final FleetRequests requests;
     private final FleetTraffic traffic;
+    private final FleetWatch watch;
     private final ScheduledExecutorService connector;
     private final Supplier<FleetSession> current;
 
@@ -48,8 +49,9 @@ final class FleetTelemetry {
      * @param current   the session now live, or null
      */
     FleetTelemetry(Clock clock, RobotRegistry registry, FleetRequests requests, FleetTraffic traffic,
-            ScheduledExecutorService connector, Supplier<FleetSession> current) {
+            FleetWatch watch, ScheduledExecutorService connector, Supplier<FleetSession> current) {
         this.traffic = traffic;
+        this.watch = watch;
         this.clock = clock;
         this.registry = registry;
         this.requests = requests;
@@ -89,11 +91,15 @@ final class FleetTelemetry {
 
     /**
      * Connection thread: subscribes explicitly to the robot's telemetry nodes (XEP-0060; {@code +notify} alone is not
-     * dependable on ejabberd). A node that does not exist yet is asked for again a second later.
+     * dependable on ejabberd). A node that does not exist yet is asked for again a second later. The robot's lease
+     * (what the views look at) is sent again at the first attempt: a robot that restarted has forgotten it.
      */
     void follow(FleetSession s, String jid, int attempt) {
         if (current.get() != s) {
             return;
+        }
+        if (attempt == 0) {
+            watch.online(s, jid);
         }
         EntityBareJid robot;
         try {

@@ -33,7 +33,8 @@ import sabot.controlml.ResourceRegistry;
 import sabot.controlml.Resources;
 import sabot.controlml.Role;
 import sabot.pidstep.controlml.PidStep;
-import sabot.controlml.TelemetryPublication;
+import sabot.controlml.TelemetryLeases;
+import sabot.controlml.payload.TelemetryRates;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
@@ -82,7 +83,8 @@ public final class ControlMlEndpoint {
     private final RobotMotion motion;
     private final ControlMlSettings.Config config;
     private final Map<ServiceReference<OnboardTask>, OnboardTask> tasks = new ConcurrentHashMap<>();
-    private final List<TelemetryPublication> publications = new ArrayList<>();
+    /** The telemetry publications and their leases (cm.telemetry); guarded by this. */
+    private TelemetryLeases leases;
     private final MotionListener presence = this::missionChanged;
     private volatile ControlMlManager manager;
     /** {@code cm.pid.step} in the session's registry: not a resource of the protocol, this robot adds it. */
@@ -105,6 +107,11 @@ public final class ControlMlEndpoint {
         checkRate("velocityRate", config.velocityRate());
         checkRate("missionRate", config.missionRate());
         checkRate("obstaclesRate", config.obstaclesRate());
+        checkRate("baseRate", config.baseRate());
+        if (!(config.leaseMax() >= 1 && config.leaseMax() <= TelemetryRates.MAX_LEASE_S)) {
+            throw new IllegalArgumentException("controlml.leaseMax must be 1 to " + TelemetryRates.MAX_LEASE_S
+                    + " s, was " + config.leaseMax());
+        }
     }
 
     private static void checkRate(String setting, double hz) {
@@ -120,7 +127,9 @@ public final class ControlMlEndpoint {
         manager = session.controlMl();
         stepTestRegistration = manager.resources().register(PidStep.RESOURCE);
         registerHandlers(manager);
-        synchronized (publications) {
+        synchronized (this) {
+            leases = manager.telemetry().serveLeases(config.leaseMax());
+            // every node at the base rate too: a watcher's explicit subscription needs the node to exist (section 6)
             publish(Resources.POSITION, motion::pose, config.positionRate());
             publish(Resources.VELOCITY, motion::velocity, config.velocityRate());
             publish(Resources.MISSION, motion::mission, config.missionRate());
@@ -128,9 +137,10 @@ public final class ControlMlEndpoint {
         }
         motion.addListener(presence);
         showCurrentMission(); // the listener reports changes only
-        LOG.info("ControlML endpoint serving {} resources for {}; telemetry position {} Hz, velocity {} Hz, "
-                + "mission {} Hz, obstacles {} Hz", SERVED.size(), session.jid(), config.positionRate(), config
-                        .velocityRate(), config.missionRate(), config.obstaclesRate());
+        LOG.info("ControlML endpoint serving {} resources for {}; telemetry while leased (at most {} s): position {} "
+                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz; else {} Hz", SERVED.size(), session.jid(), config
+                        .leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(), config
+                                .obstaclesRate(), config.baseRate());
     }
 
     /** Stops telemetry and presence updates and unregisters the handlers. */
@@ -142,9 +152,9 @@ public final class ControlMlEndpoint {
         }
         manager.removeHandlers(PidStep.RESOURCE);
         stepTestRegistration.close();
-        synchronized (publications) {
-            publications.forEach(TelemetryPublication::stop);
-            publications.clear();
+        synchronized (this) {
+            leases.close(); // its publications and cm.telemetry's handlers
+            leases = null;
         }
         motion.removeListener(presence);
         LOG.info("ControlML endpoint of {} stopped", session.jid());
@@ -275,9 +285,10 @@ public final class ControlMlEndpoint {
 
     // ---------------------------------------------------------------------------------------------- telemetry
 
-    private <T> void publish(Resource<T, ?> resource, Supplier<T> read, double rateHz) {
-        if (rateHz > 0) {
-            publications.add(manager.telemetry().publish(resource, new OnlineSource<>(resource, read), rateHz));
+    /** Publishes a resource at the base rate, faster while leased, up to {@code fullHz} (0: never). */
+    private <T> void publish(Resource<T, ?> resource, Supplier<T> read, double fullHz) {
+        if (fullHz > 0) {
+            leases.offer(resource, new OnlineSource<>(resource, read), Math.min(config.baseRate(), fullHz), fullHz);
         }
     }
 

@@ -19,6 +19,7 @@ import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.controlml.ControlMl;
 import sabot.controlml.Role;
+import sabot.controlml.payload.TelemetryRates;
 import sabot.fleet.AccessRules;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.ServerTrust;
@@ -67,6 +68,9 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
     static final double DEFAULT_STALE_COMMAND_AFTER_S = ControlMl.DEFAULT_STALE_COMMAND_S;
     /** Default liveness interval, s: a silent link is noticed within 2¼ of it, so that a moving robot brakes. */
     static final double DEFAULT_LIVENESS_S = LinkWatch.DEFAULT_INTERVAL_S;
+    /** Telemetry while nobody watches: every 5 s (docs/CONTROLML.md section 6, "Leases"). */
+    static final double DEFAULT_BASE_RATE_HZ = 0.2;
+    static final double DEFAULT_LEASE_MAX_S = 60;
     /** The lab's groups, the defaults of the group settings (one source: {@link AccessRules#LAB_GROUPS}). */
     static final String LAB_OBSERVERS = AccessRules.OBSERVERS_GROUP, LAB_OPERATORS = AccessRules.OPERATORS_GROUP,
             LAB_MAINTAINERS = AccessRules.MAINTAINERS_GROUP;
@@ -89,7 +93,7 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
             + "robot's XMPP account, its reconnection, who may command it, and the telemetry rates.")
     public @interface Config {
         /** Highest telemetry rate, Hz. */
-        double MAX_RATE_HZ = 100;
+        double MAX_RATE_HZ = TelemetryRates.MAX_RATE_HZ;
 
         @AttributeDefinition(name = "Server", description = "The XMPP server: a host name or an IP address; several,"
                 + " comma-separated, for the nodes of a cluster on one port (docs/CLUSTER.md): the session keeps to one"
@@ -160,20 +164,32 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         double liveness() default DEFAULT_LIVENESS_S;
 
         @AttributeDefinition(name = "Position telemetry rate", description = "Hz at which cm.position is published "
-                + "to subscribers; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+                + "while a watcher leases it (the most a lease gets); 0: not published.", min = "0", max = ""
+                        + MAX_RATE_HZ)
         double positionRate() default 10;
 
-        @AttributeDefinition(name = "Velocity telemetry rate", description = "Hz at which cm.velocity is published; "
-                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        @AttributeDefinition(name = "Velocity telemetry rate", description = "Hz at which cm.velocity is published "
+                + "while leased; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
         double velocityRate() default 10;
 
-        @AttributeDefinition(name = "Mission telemetry rate", description = "Hz at which cm.mission is published; 0: "
-                + "not published.", min = "0", max = "" + MAX_RATE_HZ)
+        @AttributeDefinition(name = "Mission telemetry rate", description = "Hz at which cm.mission is published "
+                + "while leased; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
         double missionRate() default 1;
 
-        @AttributeDefinition(name = "Obstacles telemetry rate", description = "Hz at which cm.obstacles is published; "
-                + "0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        @AttributeDefinition(name = "Obstacles telemetry rate", description = "Hz at which cm.obstacles is published "
+                + "while leased; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
         double obstaclesRate() default 2;
+
+        @AttributeDefinition(name = "Telemetry base rate", description = "Hz at which each telemetry resource is "
+                + "published while nobody leases it (never above that resource's rate): a robot nobody watches "
+                + "still shows where it is and what it does. 0: only while leased (a watcher's explicit "
+                + "subscription then waits for a lease to create the node).", min = "0", max = "" + MAX_RATE_HZ)
+        double baseRate() default DEFAULT_BASE_RATE_HZ;
+
+        @AttributeDefinition(name = "Longest telemetry lease", description = "Seconds a watcher's lease of faster "
+                + "telemetry lasts at most before it must be renewed (a longer one is cut to it).", min = "1",
+                max = "" + TelemetryRates.MAX_LEASE_S)
+        double leaseMax() default DEFAULT_LEASE_MAX_S;
     }
 
 

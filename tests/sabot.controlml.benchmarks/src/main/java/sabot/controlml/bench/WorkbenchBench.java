@@ -66,6 +66,8 @@ public final class WorkbenchBench {
     private double rate = 10;
     /** Velocity telemetry rate, Hz; negative: as {@link #rate}. */
     private double velocityRate = -1;
+    /** The load robots' rate while the workbench leases nothing faster; below 0: {@link #rate} (no leases needed). */
+    private double baseRate = -1;
     private long seed = 1;
     private Path product;
     private Path out;
@@ -103,6 +105,7 @@ public final class WorkbenchBench {
                 case "--minutes" -> { minutes = positive(a, v, 24 * 60); i++; }
                 case "--rate" -> { rate = Double.parseDouble(need(a, v)); i++; }
                 case "--velocity-rate" -> { velocityRate = Double.parseDouble(need(a, v)); i++; }
+                case "--base-rate" -> { baseRate = Double.parseDouble(need(a, v)); i++; }
                 case "--seed" -> { seed = Long.parseLong(need(a, v)); i++; }
                 case "--memory" -> memory = true;
                 case "--shared-cpus" -> layout = "shared";
@@ -120,7 +123,7 @@ public final class WorkbenchBench {
                 case "--out" -> { out = Paths.get(need(a, v)); i++; }
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot bench workbench [--robots N (1)] [--server prosody|ejabberd] "
-                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, 0: off; unset: as shipped)] [--load-nice N (0..19, 0)] "
+                            + "[--seconds S (30)] [--warmup S (90)] [--rate HZ (10)] [--velocity-rate HZ (= rate)] [--base-rate HZ (= rate; the robots' rate while the workbench leases nothing faster)] [--seed N (1)] [--layout split|workbench-alone|shared (split)] [--shared-cpus (= --layout shared)] [--background-nice N (0..19, 0: off; unset: as shipped)] [--load-nice N (0..19, 0)] "
                             + "| --memory [--robots N] [--minutes M (60)]");
                     System.exit(0);
                 }
@@ -177,6 +180,7 @@ public final class WorkbenchBench {
         figures.put("robots", robots);
         figures.put("rate_hz", rate);
         figures.put("velocity_rate_hz", velocityRate < 0 ? rate : velocityRate);
+        figures.put("base_rate_hz", baseRate < 0 ? rate : baseRate);
         figures.put("background_nice", backgroundNice == null ? "as shipped" : backgroundNice);
         figures.put("load_nice", loadNice);
         try (PrivateXmppServer server = PrivateXmppServer.of(kind).start()) {
@@ -199,7 +203,8 @@ public final class WorkbenchBench {
             try (LoadProcess load = LoadProcess.start(server.port(), server.caFile(), loadNice, dir.resolve("load.log"), List.of(
                     "--robots", Integer.toString(robots), "--password", "robot-pw", "--operator", operator.toString(),
                     "--rate", Double.toString(rate), "--velocity-rate", Double.toString(velocityRate < 0 ? rate
-                            : velocityRate), "--seed", Long.toString(seed)))) {
+                            : velocityRate), "--base-rate", Double.toString(baseRate < 0 ? rate : baseRate), "--seed",
+                    Long.toString(seed)))) {
                 System.out.printf(Locale.ROOT, "[bench] %s: %d load robots online in %.1f s (seed %d)%n", kind.name()
                         .toLowerCase(Locale.ROOT), robots, (System.nanoTime() - l0) / 1e9, seed);
                 Path probe = dir.resolve("paint-probe.csv");

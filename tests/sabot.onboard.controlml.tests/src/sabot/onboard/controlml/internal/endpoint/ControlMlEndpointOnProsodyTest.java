@@ -68,6 +68,8 @@ import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.RecordBuilder;
 import sabot.controlml.payload.TaskInfo;
+import sabot.controlml.payload.TelemetryRates;
+import sabot.controlml.payload.TelemetryRates.StreamRate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
@@ -96,6 +98,8 @@ class ControlMlEndpointOnProsodyTest {
     private static final double VELOCITY_HZ = 10;
     private static final double MISSION_HZ = 5;
     private static final double OBSTACLES_HZ = 4;
+    /** The rate of each telemetry resource nobody leases (controlml.baseRate). */
+    private static final double BASE_HZ = 2;
     private static final String MARKER = "sabot.test.endpoint";
     private static final AtomicInteger ROBOTS = new AtomicInteger();
     private static final AtomicLong REQUEST_IDS = new AtomicLong(1);
@@ -191,6 +195,8 @@ class ControlMlEndpointOnProsodyTest {
         settings.put("velocityRate", VELOCITY_HZ);
         settings.put("missionRate", MISSION_HZ);
         settings.put("obstaclesRate", OBSTACLES_HZ);
+        settings.put("baseRate", BASE_HZ);
+        settings.put("leaseMax", 5.0);
         configuration.update(settings);
         assertEquals("added", robot.listenerEvents.poll(TIMEOUT_S, TimeUnit.SECONDS), "endpoint activated");
     }
@@ -478,14 +484,36 @@ class ControlMlEndpointOnProsodyTest {
     // ------------------------------------------------------------------------------------------------ telemetry
 
     @Test
-    void telemetryArrivesAtTheConfiguredRates() throws Exception {
+    void telemetryArrivesAtTheBaseRateAndAtTheConfiguredRatesWhileLeased() throws Exception {
         follow();
-        Map<String, Double> rates = Map.of("cm.position", POSITION_HZ, "cm.velocity", VELOCITY_HZ, "cm.mission",
-                MISSION_HZ, "cm.obstacles", OBSTACLES_HZ);
+        assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", BASE_HZ), new StreamRate(
+                "cm.velocity", BASE_HZ), new StreamRate("cm.mission", BASE_HZ), new StreamRate("cm.obstacles",
+                        BASE_HZ))), workbench.get(robotJid, Resources.TELEMETRY).orElseThrow(), "nobody leases");
+        assertRates(Map.of("cm.position", BASE_HZ, "cm.mission", BASE_HZ));
+
+        List<StreamRate> asked = new ArrayList<>();
+        for (String r : List.of("cm.position", "cm.velocity", "cm.mission", "cm.obstacles")) {
+            asked.add(new StreamRate(r, TelemetryRates.MAX_RATE_HZ));
+        }
+        TelemetryRates granted = workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(60, asked))
+                .orElseThrow();
+        assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", POSITION_HZ), new StreamRate(
+                "cm.velocity", VELOCITY_HZ), new StreamRate("cm.mission", MISSION_HZ), new StreamRate("cm.obstacles",
+                        OBSTACLES_HZ))), granted, "the configured rates, for at most controlml.leaseMax");
+        assertRates(Map.of("cm.position", POSITION_HZ, "cm.velocity", VELOCITY_HZ, "cm.mission", MISSION_HZ,
+                "cm.obstacles", OBSTACLES_HZ));
+
+        assertTrue(workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(0, List.of())).isSuccess());
+        assertEquals(BASE_HZ, workbench.get(robotJid, Resources.TELEMETRY).orElseThrow().stream("cm.position")
+                .rate(), "the lease ended");
+    }
+
+    /** Each resource's items arrive at its rate (within 25 %), over about a second of publications. */
+    private void assertRates(Map<String, Double> rates) throws InterruptedException {
         arrivals.values().forEach(BlockingQueue::clear);
         for (Map.Entry<String, Double> e : rates.entrySet()) {
             BlockingQueue<Long> times = arrivals.get(e.getKey());
-            int intervals = (int) Math.round(e.getValue()); // about one second of publications
+            int intervals = (int) Math.max(2, Math.round(e.getValue()));
             long first = take(times, e.getKey());
             long last = first;
             for (int i = 0; i < intervals; i++) {
@@ -493,7 +521,7 @@ class ControlMlEndpointOnProsodyTest {
             }
             double measured = intervals / ((last - first) / 1e9);
             assertTrue(Math.abs(measured - e.getValue()) <= 0.25 * e.getValue(), () -> e.getKey() + " at "
-                    + measured + " Hz, configured " + e.getValue() + " Hz");
+                    + measured + " Hz, expected " + e.getValue() + " Hz");
         }
     }
 
@@ -507,8 +535,7 @@ class ControlMlEndpointOnProsodyTest {
         long reads = robot.telemetryReads();
         long failed = robotManager.telemetry().statistics().failed();
 
-        awaitOnlineChecks(session.onlineChecks.get() + 2 * Math.round(POSITION_HZ + VELOCITY_HZ + MISSION_HZ
-                + OBSTACLES_HZ)); // about two seconds of ticks
+        awaitOnlineChecks(session.onlineChecks.get() + Math.round(2 * 4 * BASE_HZ)); // about two seconds of ticks
 
         assertEquals(reads, robot.telemetryReads(), "nothing read for telemetry while offline");
         assertEquals(failed, robotManager.telemetry().statistics().failed(), "no failed publication while offline");

@@ -27,7 +27,7 @@ import sabot.controlml.ControlMlManager;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.Role;
-import sabot.controlml.TelemetryPublication;
+import sabot.controlml.TelemetryLeases;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.LimitsPayload;
@@ -73,13 +73,17 @@ public final class FleetLoad implements AutoCloseable {
     private final List<Robot> robots = new ArrayList<>();
     private final Instant epoch = Instant.now();
 
+    /** The longest telemetry lease a load robot grants (Sabot Onboard's default). */
+    static final double LEASE_MAX_S = 60;
+
     /** One simulated robot: its connection and its circle. */
     final class Robot {
         final String name;
         final XMPPTCPConnection connection;
         final ControlMlManager manager;
         final double cx, cy, radius, omega, phase;
-        final List<TelemetryPublication> publications = new ArrayList<>();
+        /** Its telemetry: at the base rate, faster while the operator's workbench leases it (CONTROLML.md §6). */
+        TelemetryLeases leases;
         private Goal goal;
         private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "");
         private Instant missionStart;
@@ -166,7 +170,9 @@ public final class FleetLoad implements AutoCloseable {
         }
 
         void close() {
-            publications.forEach(TelemetryPublication::stop);
+            if (leases != null) {
+                leases.close();
+            }
             connection.instantShutdown();
         }
     }
@@ -199,6 +205,17 @@ public final class FleetLoad implements AutoCloseable {
      */
     public static FleetLoad start(int port, ServerTrust trust, int count, String prefix, String password,
             BareJid operator, double rateHz, double velocityRateHz, long seed, Path map) throws Exception {
+        return start(port, trust, count, prefix, password, operator, rateHz, velocityRateHz, rateHz, seed, map);
+    }
+
+    /**
+     * As {@link #start(int, ServerTrust, int, String, String, BareJid, double, double, long, Path)}, each robot
+     * publishing at most at {@code baseRateHz} while no workbench leases faster telemetry (docs/CONTROLML.md section
+     * 6, "Leases"): {@code rateHz} and {@code velocityRateHz} are then the rates a lease gets.
+     */
+    public static FleetLoad start(int port, ServerTrust trust, int count, String prefix, String password,
+            BareJid operator, double rateHz, double velocityRateHz, double baseRateHz, long seed, Path map)
+            throws Exception {
         if (count < 1 || count > 1000) {
             throw new IllegalArgumentException("robots: " + count + " is outside 1..1000");
         }
@@ -226,13 +243,13 @@ public final class FleetLoad implements AutoCloseable {
                 serve(r, operator, grid);
                 c.connect().login();
                 c.sendStanza(PresenceLevels.presenceFor(c, MissionState.IDLE, false));
-                r.publications.add(r.manager.telemetry().publish(Resources.POSITION, () -> r.pose(Instant.now()),
-                        rateHz));
+                r.leases = r.manager.telemetry().serveLeases(LEASE_MAX_S);
+                r.leases.offer(Resources.POSITION, () -> r.pose(Instant.now()), Math.min(baseRateHz, rateHz), rateHz);
                 if (velocityRateHz > 0) {
-                    r.publications.add(r.manager.telemetry().publish(Resources.VELOCITY, () -> r.velocity(Instant.now()),
-                            velocityRateHz));
+                    r.leases.offer(Resources.VELOCITY, () -> r.velocity(Instant.now()), Math.min(baseRateHz,
+                            velocityRateHz), velocityRateHz);
                 }
-                r.publications.add(r.manager.telemetry().publish(Resources.MISSION, () -> r.mission(Instant.now()), 1));
+                r.leases.offer(Resources.MISSION, () -> r.mission(Instant.now()), Math.min(baseRateHz, 1), 1);
             }
         } catch (Exception | Error e) {
             load.close();
@@ -327,6 +344,7 @@ public final class FleetLoad implements AutoCloseable {
         PrivateXmppServer.Kind kind = PrivateXmppServer.Kind.PROSODY;
         double rate = 10;
         double velocityRate = -1;
+        double baseRate = -1;
         long seed = 1;
         long seconds = 0;
         int attach = 0;
@@ -339,6 +357,7 @@ public final class FleetLoad implements AutoCloseable {
                 case "--server" -> kind = serverKind(value(args, ++i, "--server"));
                 case "--rate" -> rate = Double.parseDouble(value(args, ++i, "--rate"));
                 case "--velocity-rate" -> velocityRate = Double.parseDouble(value(args, ++i, "--velocity-rate"));
+                case "--base-rate" -> baseRate = Double.parseDouble(value(args, ++i, "--base-rate"));
                 case "--seed" -> seed = Long.parseLong(value(args, ++i, "--seed"));
                 case "--seconds" -> seconds = Long.parseLong(value(args, ++i, "--seconds"));
                 case "--attach" -> attach = Integer.parseInt(value(args, ++i, "--attach"));
@@ -347,7 +366,8 @@ public final class FleetLoad implements AutoCloseable {
                 case "--password" -> password = value(args, ++i, "--password");
                 case "--help", "-h" -> {
                     System.out.println("usage: ./sabot load [--robots N (10)] [--server prosody|ejabberd] [--rate HZ "
-                            + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]"
+                            + "(10)] [--velocity-rate HZ (as --rate; 0: none)] [--base-rate HZ (as --rate: the rate while no "
+                            + "workbench leases more)] [--seed S (1)] [--seconds S (0: until Ctrl-C)]"
                             + " [--attach PORT --ca-file PEM --operator JID [--password PW (sabot)]: on a running "
                             + "private server whose lab CA is PEM, driven on standard input]");
                     return;
@@ -362,6 +382,11 @@ public final class FleetLoad implements AutoCloseable {
             throw new IllegalArgumentException("--rate/--velocity-rate: 0 < position rate <= 100 Hz, velocity rate <= "
                     + "100 Hz");
         }
+        if (baseRate < 0) {
+            baseRate = rate;
+        } else if (baseRate > rate) {
+            throw new IllegalArgumentException("--base-rate " + baseRate + " Hz: at most --rate (" + rate + " Hz)");
+        }
         if (attach > 0) {
             if (operatorJid == null || caFile == null) {
                 throw new IllegalArgumentException("--attach needs --operator JID and --ca-file PEM (the server's lab "
@@ -373,7 +398,7 @@ public final class FleetLoad implements AutoCloseable {
             System.setOut(System.err);
             setUpSmack();
             attached(protocol, attach, trust, robots, password, org.jxmpp.jid.impl.JidCreate.entityBareFrom(operatorJid),
-                    rate, velocityRate < 0 ? rate : velocityRate, seed);
+                    rate, velocityRate < 0 ? rate : velocityRate, baseRate, seed);
             return;
         }
         setUpSmack();
@@ -407,9 +432,10 @@ public final class FleetLoad implements AutoCloseable {
      * far. The end of standard input stops the robots and the process.
      */
     private static void attached(PrintStream protocol, int port, ServerTrust trust, int robots, String password,
-            EntityBareJid operator, double rate, double velocityRate, long seed) throws Exception {
+            EntityBareJid operator, double rate, double velocityRate, double baseRate, long seed) throws Exception {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
-        try (FleetLoad load = start(port, trust, robots, "load-", password, operator, rate, velocityRate, seed, map)) {
+        try (FleetLoad load = start(port, trust, robots, "load-", password, operator, rate, velocityRate, baseRate,
+                seed, map)) {
             protocol.println(READY + " " + load.jids().stream().map(Object::toString).collect(java.util.stream
                     .Collectors.joining(",")));
             protocol.flush();
