@@ -142,8 +142,10 @@ final class TelemetryRun {
                 Roster.getInstanceFor(s).createItemAndRequestSubscription(c.getUser().asEntityBareJid(), name, null);
             }
         }
-        if (!mutual.await(120, TimeUnit.SECONDS)) {
-            throw new IllegalStateException("mutual subscriptions incomplete: " + mutual.getCount() + " missing");
+        if (!mutual.await(SETUP_WAIT_S, TimeUnit.SECONDS)) {
+            // a server that lost a subscription under the setup's load: measured as it is, its pairs' items lost
+            System.out.printf("[bench] warning: %d of %d presence subscriptions not complete after %d s; their "
+                    + "telemetry counts as lost%n", mutual.getCount(), o.robots() * o.subscribers() * 2, SETUP_WAIT_S);
         }
         // Publish until every subscriber has had an item from every robot: the robots' servers learn the
         // subscribers' +notify from their entity caps asynchronously.
@@ -163,8 +165,9 @@ final class TelemetryRun {
         if (o.follow()) {
             follow(subs, robots);
         }
-        if (!warm.await(120, TimeUnit.SECONDS)) {
-            throw new IllegalStateException("warm-up incomplete: " + warm.getCount() + " robot/subscriber pairs silent");
+        if (!warm.await(SETUP_WAIT_S, TimeUnit.SECONDS)) {
+            System.out.printf("[bench] warning: warm-up incomplete after %d s: %d robot/subscriber pairs silent; "
+                    + "measured as they are%n", SETUP_WAIT_S, warm.getCount());
         }
         double setupS = (System.nanoTime() - setup0) / 1e9;
         System.out.printf("[bench] setup (accounts, logins, %d mutual subscriptions, warm-up) %.1f s%n", o.robots()
@@ -173,9 +176,13 @@ final class TelemetryRun {
         measured.forEach((name, pid) -> cpu0.put(name, ProcStat.cpuTicks(pid)));
         long self0 = processCpuNanos();
         long wall0 = System.nanoTime();
-        window.open(nanosOfInstant(Instant.now()), TimeUnit.SECONDS.toNanos(o.durationS()));
+        // The window opens a little after it is set: a value stamped at its start is then counted by its publisher
+        // (offered) and by its subscribers (delivered) alike; opened at once, a publisher that read the time just
+        // before the window's fields were written would not count a value its subscribers count (lost -2 was seen).
+        long lead = TimeUnit.MILLISECONDS.toNanos(WINDOW_LEAD_MS);
+        window.open(nanosOfInstant(Instant.now()) + lead, TimeUnit.SECONDS.toNanos(o.durationS()));
         // The measurement is the passing of time itself: wait out the window (latch never counted down).
-        new CountDownLatch(1).await(o.durationS(), TimeUnit.SECONDS);
+        new CountDownLatch(1).await(TimeUnit.SECONDS.toNanos(o.durationS()) + lead, TimeUnit.NANOSECONDS);
         double wallS = (System.nanoTime() - wall0) / 1e9;
         Map<String, Double> cpuPct = new LinkedHashMap<>();
         Map<String, Double> rssMb = new LinkedHashMap<>();
@@ -217,9 +224,13 @@ final class TelemetryRun {
                 lat, wallS, setupS, cpuPct, rssMb, clientCpuPct);
     }
 
-    /** Each subscriber subscribes to each robot's position node (item-not-found until its first publication). */
+    /**
+     * Each subscriber subscribes to each robot's position node (item-not-found until its first publication). A pair
+     * still refused at the deadline (e.g. {@code not-authorized}: its presence subscription never completed) is
+     * reported and measured as it is.
+     */
     private static void follow(List<XMPPTCPConnection> subs, List<XMPPTCPConnection> robots) throws Exception {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(120);
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(SETUP_WAIT_S);
         for (XMPPTCPConnection s : subs) {
             TelemetryManager telemetry = TelemetryManager.getInstanceFor(s);
             for (XMPPTCPConnection r : robots) {
@@ -227,7 +238,9 @@ final class TelemetryRun {
                 do {
                     followed = telemetry.follow(r.getUser().asEntityBareJid(), Resources.POSITION);
                     if (!followed.isSuccess() && System.nanoTime() > deadline) {
-                        throw new IllegalStateException("could not follow " + r.getUser() + ": " + followed);
+                        System.out.printf("[bench] warning: %s cannot follow %s: %s; measured as it is%n", s
+                                .getUser(), r.getUser(), followed.errorOrNull());
+                        break;
                     }
                 } while (!followed.isSuccess());
             }
@@ -238,6 +251,12 @@ final class TelemetryRun {
         return ((com.sun.management.OperatingSystemMXBean) ManagementFactory.getOperatingSystemMXBean())
                 .getProcessCpuTime();
     }
+
+    /** Longest wait for the presence subscriptions, and for the warm-up, before measuring what there is. */
+    private static final long SETUP_WAIT_S = 120;
+
+    /** How long after it is set the measurement window opens. */
+    private static final long WINDOW_LEAD_MS = 100;
 
     /** The measurement window in epoch nanoseconds; closed until opened. */
     private static final class Window {
