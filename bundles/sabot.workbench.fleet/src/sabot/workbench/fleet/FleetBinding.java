@@ -1,5 +1,6 @@
 package sabot.workbench.fleet;
 
+import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
@@ -40,8 +41,7 @@ public final class FleetBinding implements FleetListener {
     /** This view's name towards {@link FleetState#watch}: unique in the workbench. */
     private final String viewer = "view-" + VIEWERS.incrementAndGet();
     private static final AtomicLong VIEWERS = new AtomicLong();
-    private Set<String> watched = Set.of(); // guarded by this
-    private double watchedHz; // guarded by this
+    private Map<String, Double> watched = Map.of(); // guarded by this
 
     /**
      * Starts observing at once (the present state arrives with the first refresh).
@@ -65,7 +65,7 @@ public final class FleetBinding implements FleetListener {
                 fleet.addListener(FleetBinding.this);
                 synchronized (FleetBinding.this) {
                     if (!watched.isEmpty()) {
-                        fleet.watch(viewer, watched, watchedHz); // what this view said before the service came
+                        fleet.watch(viewer, watched); // what this view said before the service came
                     }
                 }
                 return fleet;
@@ -171,19 +171,25 @@ public final class FleetBinding implements FleetListener {
      * said again to a fleet service that comes later, and ended by {@link #dispose}. A call that changes nothing
      * costs nothing: a view may call it at every frame.
      *
-     * @param robots bare JIDs; empty: none
-     * @param hz     Hz, e.g. {@link FleetState#SHOWN_HZ} or {@link FleetState#LISTED_HZ}
+     * @param rates Hz by robot (bare JID), e.g. {@link FleetState#SHOWN_HZ} or {@link FleetState#LISTED_HZ}; empty:
+     *              none
      */
-    public synchronized void watch(Set<String> robots, double hz) {
-        if (disposed || (robots.equals(watched) && hz == watchedHz)) {
+    public synchronized void watch(Map<String, Double> rates) {
+        if (disposed || rates.equals(watched)) {
             return;
         }
-        watched = Set.copyOf(robots);
-        watchedHz = hz;
+        watched = Map.copyOf(rates);
         FleetState fleet = fleet();
         if (fleet != null) {
-            fleet.watch(viewer, watched, hz);
+            fleet.watch(viewer, watched);
         }
+    }
+
+    /** {@link #watch(Map)} of these robots, all at {@code hz}. */
+    public void watch(Set<String> robots, double hz) {
+        Map<String, Double> rates = new HashMap<>();
+        robots.forEach(r -> rates.put(r, hz));
+        watch(rates);
     }
 
     /** Stops observing (the view is closing); no refresh runs afterwards. */
@@ -192,9 +198,9 @@ public final class FleetBinding implements FleetListener {
             disposed = true;
             FleetState fleet = fleet();
             if (fleet != null && !watched.isEmpty()) {
-                fleet.watch(viewer, Set.of(), 0);
+                fleet.watch(viewer, Map.of());
             }
-            watched = Set.of();
+            watched = Map.of();
         }
         tracker.close();
     }

@@ -3,7 +3,7 @@ package sabot.workbench.fleet;
 import java.time.Duration;
 import java.util.List;
 import java.util.Optional;
-import java.util.Set;
+import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 
 import org.osgi.annotation.versioning.ProviderType;
@@ -219,11 +219,10 @@ public interface FleetState {
      * {@link FleetBinding#watch}. A default for providers written before this method: nothing (robots publish at the
      * rate they are configured for).
      *
-     * @param viewer a name unique to the view; a later call replaces its robots and rate
-     * @param robots bare JIDs; empty: the view shows none
-     * @param hz     Hz, &gt; 0 unless {@code robots} is empty
+     * @param viewer a name unique to the view; a later call replaces what it asked
+     * @param rates  Hz &gt; 0 by robot (bare JID); empty: the view shows none
      */
-    default void watch(String viewer, Set<String> robots, double hz) {
+    default void watch(String viewer, Map<String, Double> rates) {
     }
 
     /**

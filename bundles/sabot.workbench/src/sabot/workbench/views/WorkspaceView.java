@@ -3,11 +3,12 @@ package sabot.workbench.views;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
-import java.util.HashSet;
+import java.util.Comparator;
+import java.util.HashMap;
 import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.Objects;
-import java.util.Set;
 
 import org.eclipse.jface.action.IStatusLineManager;
 import org.eclipse.jface.viewers.ISelection;
@@ -72,6 +73,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     public static final double FOOTPRINT_RADIUS_M = 0.25;
     /** Beyond the visible map, the distance within which a robot's telemetry is still leased: a second's travel. */
     static final double WATCH_MARGIN_M = 1;
+    /** Most robots the map leases at their full rate: those nearest its centre (and the selected one). */
+    static final int FULL_RATE_ROBOTS = 20;
     /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
     public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
@@ -494,7 +497,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /**
      * Leases the telemetry of the robots this view shows (docs/CONTROLML.md section 6): those on the visible part of
      * the map (with a margin of a footprint and a second's travel), the selected one, and those whose position is not
-     * known yet; the others fall back to their base rate.
+     * known yet. The {@value #FULL_RATE_ROBOTS} nearest the view's centre and the selected one at their full rate, the
+     * others shown at the overview's {@link FleetState#LISTED_HZ}: a map showing a thousand robots is an overview,
+     * and costs what one does. Robots off the map fall back to their base rate.
      */
     private void watchShown(Rectangle area) {
         double margin = FOOTPRINT_RADIUS_M + WATCH_MARGIN_M;
@@ -502,14 +507,26 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         double maxX = viewport.toMapX(area.width) + margin;
         double minY = viewport.toMapY(area.height) - margin;
         double maxY = viewport.toMapY(0) + margin;
-        Set<String> shown = new HashSet<>();
+        List<RobotState> shown = new ArrayList<>();
         for (RobotState r : fleet.robots()) {
             if (r.pose() == null || r.jid().equals(selected) || (r.pose().pose().x() >= minX && r.pose().pose()
                     .x() <= maxX && r.pose().pose().y() >= minY && r.pose().pose().y() <= maxY)) {
-                shown.add(r.jid());
+                shown.add(r);
             }
         }
-        fleet.watch(shown, FleetState.SHOWN_HZ);
+        if (shown.size() > FULL_RATE_ROBOTS) {
+            double cx = viewport.centerX();
+            double cy = viewport.centerY();
+            shown.sort(Comparator.comparingDouble(r -> r.pose() == null ? 0 : Math.hypot(r.pose().pose().x() - cx,
+                    r.pose().pose().y() - cy)));
+        }
+        Map<String, Double> rates = new HashMap<>();
+        for (int i = 0; i < shown.size(); i++) {
+            RobotState r = shown.get(i);
+            rates.put(r.jid(), i < FULL_RATE_ROBOTS || r.jid().equals(selected) ? FleetState.SHOWN_HZ
+                    : FleetState.LISTED_HZ);
+        }
+        fleet.watch(rates);
     }
 
     @Override

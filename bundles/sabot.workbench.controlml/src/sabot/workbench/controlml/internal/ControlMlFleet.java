@@ -5,7 +5,6 @@ import java.time.Duration;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
-import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
@@ -135,8 +134,8 @@ public final class ControlMlFleet implements FleetState {
     }
 
     @Override
-    public void watch(String viewer, Set<String> robots, double hz) {
-        watch.watch(viewer, robots, hz);
+    public void watch(String viewer, Map<String, Double> rates) {
+        watch.watch(viewer, rates);
     }
 
     /** @return the rate each robot's telemetry is leased at now (for tests) */

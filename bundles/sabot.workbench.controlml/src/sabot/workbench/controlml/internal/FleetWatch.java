@@ -26,11 +26,9 @@ final class FleetWatch {
     /** The lease asked of robots; renewed at half of what each grants. */
     static final double LEASE_S = 30;
 
-    private record Interest(Set<String> robots, double hz) {
-    }
-
     private final Supplier<FleetSession> current;
-    private final Map<String, Interest> viewers = new HashMap<>(); // guarded by this
+    /** What each view asked: Hz by robot. */
+    private final Map<String, Map<String, Double>> viewers = new HashMap<>(); // guarded by this
     /** Robot (bare JID) → the full JID its lease was sent to. */
     private final Map<String, Jid> leasedAt = new HashMap<>(); // guarded by this
     private FleetSession session; // guarded by this: the session the watcher belongs to
@@ -40,19 +38,25 @@ final class FleetWatch {
         this.current = current;
     }
 
-    /** A view's robots and rate, replacing what it said before (empty: none). */
-    synchronized void watch(String viewer, Set<String> robots, double hz) {
-        Interest before = viewers.get(viewer);
-        if (robots.isEmpty()) {
+    /** A view's robots and rates (Hz by robot), replacing what it said before (empty: none). */
+    synchronized void watch(String viewer, Map<String, Double> rates) {
+        Map<String, Double> before = viewers.get(viewer);
+        Set<String> touched = new HashSet<>(rates.keySet());
+        if (before != null) {
+            touched.addAll(before.keySet());
+        }
+        Map<String, Double> was = new HashMap<>();
+        touched.forEach(r -> was.put(r, wanted(r)));
+        if (rates.isEmpty()) {
             viewers.remove(viewer);
         } else {
-            viewers.put(viewer, new Interest(Set.copyOf(robots), hz));
+            viewers.put(viewer, Map.copyOf(rates));
         }
-        Set<String> touched = new HashSet<>(robots);
-        if (before != null) {
-            touched.addAll(before.robots());
+        for (String robot : touched) {
+            if (wanted(robot) != was.get(robot)) { // a pan that moves nobody's rate costs no lookup
+                apply(robot);
+            }
         }
-        touched.forEach(this::apply);
     }
 
     /** A robot came online (on session {@code s}): its lease is sent again, to its present full JID. */
@@ -86,10 +90,8 @@ final class FleetWatch {
 
     private double wanted(String robot) {
         double hz = 0;
-        for (Interest i : viewers.values()) {
-            if (i.robots().contains(robot)) {
-                hz = Math.max(hz, i.hz());
-            }
+        for (Map<String, Double> asked : viewers.values()) {
+            hz = Math.max(hz, asked.getOrDefault(robot, 0.0));
         }
         return hz;
     }

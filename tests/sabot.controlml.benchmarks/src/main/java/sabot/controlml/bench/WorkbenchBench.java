@@ -240,7 +240,8 @@ public final class WorkbenchBench {
         Path ws = dir.resolve("workspace");
         Path prefs = Files.createDirectories(ws.resolve(".metadata/.plugins/org.eclipse.core.runtime/.settings"));
         Files.writeString(prefs.resolve("sabot.workbench.prefs"), "eclipse.preferences.version=1\nxmpp.server=127.0.0.1"
-                + "\nxmpp.port=" + server.port() + "\nxmpp.jid=" + operator + "\nxmpp.robots=" + followed.stream().map(
+                + "\nxmpp.port=" + server.port() + "\nxmpp.jid=" + operator + "\nxmpp.caFile=" + server.caFile()
+                + "\nxmpp.robots=" + followed.stream().map(
                         Object::toString).collect(Collectors.joining(",")) + "\n");
         Path secrets = Files.createDirectories(dir.resolve("secrets"));
         Path pw = secrets.resolve("xmpp-password");
