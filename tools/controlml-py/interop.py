@@ -354,8 +354,11 @@ async def leases(viewer: Peer, stranger: Peer, robot: str) -> None:
     check("an observer's lease is granted up to the full rate and the longest lease",
           granted == (10.0, {"cm.position": 40.0}), str(a))
     check("a lease raises the rate", await rates(viewer) == (10.0, {"cm.position": 40.0}))
-    refusal("a lease of a resource the device does not publish", await viewer.raw(robot, "set", cm.control_ml(
-        "set", viewer.ids.next(), "cm.telemetry", cm.lease(10, {"cm.goal": 5}))), "invalid-value")
+    a = await viewer.raw(robot, "set", cm.control_ml("set", viewer.ids.next(), "cm.telemetry",
+                                                     cm.lease(60, {"cm.position": 100, "cm.goal": 5})))
+    granted = cm.telemetry_rates(cm.decode(a.cm).value) if a.type == "result" and a.cm is not None else None
+    check("a resource the device does not publish is granted 0 Hz",
+          granted == (10.0, {"cm.position": 40.0, "cm.goal": 0.0}), str(a))
     wrong = cm.lease(10, {"cm.position": 5})
     wrong.find(f".//{{{cm.SWE_NS}}}field[@name='rate']/{{{cm.SWE_NS}}}Quantity/{{{cm.SWE_NS}}}uom").set("code", "m")
     refusal("a lease's rate in metres", await viewer.raw(robot, "set", cm.control_ml(

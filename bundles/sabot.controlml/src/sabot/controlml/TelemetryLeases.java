@@ -25,7 +25,8 @@ import sabot.controlml.payload.TelemetryRates.StreamRate;
 /**
  * A device's telemetry at the rate its watchers look at (section 6 of {@code docs/CONTROLML.md}, "Leases"): each
  * resource {@link #offer offered} is published at a base rate, and faster, up to its full rate, while a watcher holds
- * a lease on it. A watcher leases with a {@code cm.telemetry} set (observers may), renews it before it ends, and
+ * a lease on it (a resource it does not publish is granted 0 Hz). A watcher leases with a {@code cm.telemetry} set
+ * (observers may), renews it before it ends, and
  * ends it with a lease of 0 s or by going offline; {@code cm.telemetry} get answers the rates now. Made by
  * {@link TelemetryManager#serveLeases}; {@link #close} stops the publications and the handlers.
  */
@@ -103,13 +104,6 @@ public final class TelemetryLeases implements AutoCloseable {
     private synchronized Outcome<TelemetryRates> lease(Request request, TelemetryRates asked) {
         if (closed) {
             return Outcome.failure(ControlMlCondition.DEVICE_FAULT, "telemetry is stopping");
-        }
-        for (StreamRate s : asked.streams()) {
-            if (!book.offers(s.resource())) {
-                return Outcome.failure(ControlMlCondition.INVALID_VALUE, s.resource()
-                        + " is not published as telemetry by this device (it publishes " + String.join(", ", book
-                                .offered()) + ")");
-            }
         }
         TelemetryRates granted = book.grant(request.from().toString(), asked, System.nanoTime());
         applyRates();

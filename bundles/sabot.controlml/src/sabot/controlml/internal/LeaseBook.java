@@ -30,6 +30,9 @@ public final class LeaseBook {
     private record Lease(Map<String, Double> rates, long until) {
     }
 
+    /** A resource asked for that the device does not publish: granted 0 Hz. */
+    private static final Offer NOT_PUBLISHED = new Offer(0, 0);
+
     private final Map<String, Offer> offers = new LinkedHashMap<>();
     private final Map<String, Lease> leases = new HashMap<>();
     private final long maxLeaseNanos;
@@ -53,11 +56,6 @@ public final class LeaseBook {
         offers.put(resource, offer);
     }
 
-    /** @return whether the device publishes {@code resource} */
-    public boolean offers(String resource) {
-        return offers.containsKey(resource);
-    }
-
     /** @return the names of the resources published, in the order they were offered */
     public List<String> offered() {
         return List.copyOf(offers.keySet());
@@ -67,16 +65,15 @@ public final class LeaseBook {
      * Replaces a watcher's lease. A rate above a resource's full rate is granted as the full rate; a lease longer
      * than the device's longest is cut to it; a lease of 0 s, or one without a rate above 0, ends the watcher's lease.
      *
-     * @param asked every resource offered (the caller checks)
      * @return what the watcher gets: the lease granted, and for each resource asked the least rate it is published at
-     *         while the lease lasts
+     *         while the lease lasts (0 for a resource the device does not publish)
      */
     public TelemetryRates grant(String watcher, TelemetryRates asked, long now) {
         long length = Math.min(maxLeaseNanos, Math.round(asked.lease() * 1e9));
         Map<String, Double> rates = new LinkedHashMap<>();
         List<StreamRate> granted = new ArrayList<>();
         for (StreamRate s : asked.streams()) {
-            Offer o = offers.get(s.resource());
+            Offer o = offers.getOrDefault(s.resource(), NOT_PUBLISHED);
             double rate = length > 0 ? Math.min(s.rate(), o.full()) : 0;
             if (rate > 0) {
                 rates.put(s.resource(), rate);

@@ -91,6 +91,19 @@ class TelemetryLeaseTest {
     }
 
     @Test
+    void aResourceTheDeviceDoesNotPublishIsGrantedZero() {
+        LeaseBook b = book();
+        TelemetryRates granted = b.grant("wb@lab/a", new TelemetryRates(10, List.of(new StreamRate("cm.obstacles", 5),
+                new StreamRate("cm.position", 5))), 0);
+        assertEquals(new TelemetryRates(10, List.of(new StreamRate("cm.obstacles", 0), new StreamRate("cm.position",
+                5))), granted, "a watcher may ask every device for the same resources");
+        assertEquals(0, b.rate("cm.obstacles"));
+        assertEquals(new TelemetryRates(0, List.of(new StreamRate("cm.obstacles", 0))), b.grant("wb@lab/b",
+                new TelemetryRates(10, List.of(new StreamRate("cm.obstacles", 5))), 0), "nothing leased: no lease");
+        assertEquals(1, b.watchers());
+    }
+
+    @Test
     void aLeaseWithoutARateAboveZeroIsNoLease() {
         LeaseBook b = book();
         TelemetryRates granted = b.grant("wb@lab/a", ask(10, "cm.position", 0), 0);
