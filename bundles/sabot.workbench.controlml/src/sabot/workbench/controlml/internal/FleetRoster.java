@@ -216,6 +216,7 @@ final class FleetRoster {
         }
         registry.update(jid, r -> r.withPresence(a, reason));
         if (before.availability() == Availability.OFFLINE && a != Availability.OFFLINE && current.get() == s) {
+            telemetry.online(s, jid);
             connector.execute(() -> telemetry.follow(s, jid, 0));
         }
     }

@@ -91,15 +91,11 @@ final class FleetTelemetry {
 
     /**
      * Connection thread: subscribes explicitly to the robot's telemetry nodes (XEP-0060; {@code +notify} alone is not
-     * dependable on ejabberd). A node that does not exist yet is asked for again a second later. The robot's lease
-     * (what the views look at) is sent again at the first attempt: a robot that restarted has forgotten it.
+     * dependable on ejabberd). A node that does not exist yet is asked for again a second later.
      */
     void follow(FleetSession s, String jid, int attempt) {
         if (current.get() != s) {
             return;
-        }
-        if (attempt == 0) {
-            watch.online(s, jid);
         }
         EntityBareJid robot;
         try {
@@ -122,6 +118,14 @@ final class FleetTelemetry {
             LOG.warn("cannot subscribe to the telemetry of {}: {}", jid, missing);
         }
         fetchPlan(jid);
+    }
+
+    /**
+     * A robot came online: its lease (what the views look at) is sent at once, without waiting for its turn on the
+     * connection thread (a robot that restarted has forgotten it; the subscriptions of a thousand robots take a while).
+     */
+    void online(FleetSession s, String jid) {
+        watch.online(s, jid);
     }
 
     /** Asks the robot for its planned trajectory and goal (a goal of none is not an error: no plan to show). */
