@@ -346,7 +346,7 @@ history_query(#xmlel{name = <<"history">>} = El) ->
         {{ok, D}, _, _} ->
             {ok, D, [<<"SELECT seq, to_char(at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"'), via, res, "
                        "cm_id, sender, coalesce(answer, ''), condition, text, coalesce(answer_ms::text, '') "
-                       "FROM sabot_requests WHERE kind = 'set' AND device = ">>, literal(D),
+                       "FROM sabot_commands WHERE device = ">>, literal(D),
                      case Before of
                          none -> <<>>;
                          _ -> [<<" AND (at, seq) < (SELECT at, seq FROM sabot_archive WHERE seq = ">>,

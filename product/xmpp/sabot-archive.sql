@@ -38,3 +38,8 @@ LEFT JOIN LATERAL (
       AND split_part(a.recipient, '/', 1) = split_part(r.sender, '/', 1) AND a.at >= r.at
     ORDER BY a.at LIMIT 1) a ON true
 WHERE r.kind IN ('get', 'set');
+
+-- An operator's commands: the sets, without telemetry leases (cm.telemetry, docs/CONTROLML.md section 6), which a
+-- workbench renews every 15 s for each robot it shows. The command history and ./sabot log list these.
+CREATE OR REPLACE VIEW sabot_commands AS
+SELECT * FROM sabot_requests WHERE kind = 'set' AND res <> 'cm.telemetry';
