@@ -17,6 +17,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 
 import org.jivesoftware.smack.packet.IQ;
+import org.jivesoftware.smack.packet.StanzaError;
 import org.jivesoftware.smack.tcp.XMPPTCPConnection;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -165,11 +166,17 @@ class ConnectionTest extends RigTest {
                 poses.incrementAndGet();
                 tenPoses.countDown();
             });
-            Outcome<Void> follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
-            assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
-            // a watching workbench leases the position at the robot's full rate (unwatched: its base rate, 0.2 Hz)
+            // a watching workbench leases the position at the robot's full rate (unwatched: its base rate, 0.2 Hz),
+            // and subscribes once the node exists (section 6's recipe: item-not-found until the first publication)
             TelemetryWatcher lease = watcher.telemetry().watcher(30);
             lease.watch(rig.robot, Map.of(Resources.POSITION, 10.0));
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
+            Outcome<Void> follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
+            while (!follow.isSuccess() && follow.errorOrNull().condition() == StanzaError.Condition.item_not_found
+                    && System.nanoTime() < deadline) {
+                follow = watcher.telemetry().follow(robotBare, Resources.POSITION);
+            }
+            assertTrue(follow.isSuccess(), String.valueOf(follow.errorOrNull()));
 
             byte[] content = new byte[70_000];
             new Random(13).nextBytes(content);
