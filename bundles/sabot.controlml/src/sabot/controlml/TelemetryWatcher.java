@@ -2,7 +2,6 @@ package sabot.controlml;
 
 import java.util.ArrayList;
 import java.util.HashMap;
-import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.concurrent.ScheduledExecutorService;
@@ -32,7 +31,6 @@ public final class TelemetryWatcher implements AutoCloseable {
     private final double leaseSeconds;
     private final ScheduledExecutorService timer;
     private final Map<Jid, Watch> watches = new HashMap<>(); // guarded by this
-    private final Map<Jid, TelemetryRates> granted = new HashMap<>(); // guarded by this
     private long generation; // guarded by this
     private boolean closed; // guarded by this
 
@@ -77,7 +75,6 @@ public final class TelemetryWatcher implements AutoCloseable {
             if (w != null) {
                 cancel(w);
                 watches.remove(device);
-                granted.remove(device);
                 send(device, new TelemetryRates(0, List.of()), null);
             }
             return;
@@ -105,18 +102,6 @@ public final class TelemetryWatcher implements AutoCloseable {
         send(device, w.asked, w);
     }
 
-    /** @return what each watched device granted at its last answer (absent until it has answered) */
-    public synchronized Map<Jid, TelemetryRates> granted() {
-        return Map.copyOf(granted);
-    }
-
-    /** @return the devices watched and the rates asked of each */
-    public synchronized Map<Jid, TelemetryRates> watched() {
-        Map<Jid, TelemetryRates> m = new LinkedHashMap<>();
-        watches.forEach((d, w) -> m.put(d, w.asked));
-        return m;
-    }
-
     private void send(Jid device, TelemetryRates asked, Watch w) {
         long sentGeneration = w == null ? 0 : w.generation;
         manager.setAsync(device, Resources.TELEMETRY, asked).thenAccept(o -> answered(device, w, sentGeneration, o));
@@ -129,11 +114,9 @@ public final class TelemetryWatcher implements AutoCloseable {
         double next;
         if (o.isSuccess() && o.orElseThrow() != null) {
             TelemetryRates g = o.orElseThrow();
-            granted.put(device, g);
             next = g.lease() > 0 ? g.lease() / 2 : leaseSeconds / 2;
         } else {
             LOG.debug("telemetry lease of {} not granted: {}", device, o.errorOrNull());
-            granted.remove(device);
             next = leaseSeconds / 2; // offline, or refused: ask again later (renew() when it is back)
         }
         w.renewal = timer.schedule(() -> renew(device), Math.round(next * 1e9), TimeUnit.NANOSECONDS);
@@ -157,7 +140,6 @@ public final class TelemetryWatcher implements AutoCloseable {
             devices = new ArrayList<>(watches.keySet());
             watches.values().forEach(TelemetryWatcher::cancel);
             watches.clear();
-            granted.clear();
             closed = true;
         }
         for (Jid d : devices) {

@@ -138,11 +138,6 @@ public final class ControlMlFleet implements FleetState {
         watch.watch(viewer, rates);
     }
 
-    /** @return the rate each robot's telemetry is leased at now (for tests) */
-    Map<String, Double> leased() {
-        return watch.leased();
-    }
-
     @Override
     public ConnectionStatus connection() {
         return registry.status();

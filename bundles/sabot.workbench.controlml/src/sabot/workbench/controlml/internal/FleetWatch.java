@@ -79,15 +79,6 @@ final class FleetWatch {
         leasedAt.clear();
     }
 
-    /** @return the rate each robot is leased at now, for tests and the traffic view */
-    synchronized Map<String, Double> leased() {
-        Map<String, Double> m = new LinkedHashMap<>();
-        for (String robot : leasedAt.keySet()) {
-            m.put(robot, wanted(robot));
-        }
-        return m;
-    }
-
     private double wanted(String robot) {
         double hz = 0;
         for (Map<String, Double> asked : viewers.values()) {
