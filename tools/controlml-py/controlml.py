@@ -339,6 +339,20 @@ def status_line(pose: cm.Element | Failure, mission: cm.Element | Failure, prese
     return f"{p} | {m} | {pr}"
 
 
+def parse_target(text: str) -> dict:
+    """A mission target from 'X,Y[,THETA[,ACTION[,WAIT]]]' (m, m, rad, pass|stop|wait|dock, s)."""
+    parts = text.split(",")
+    if not 2 <= len(parts) <= 5:
+        raise Failure(2, f"target '{text}' is not X,Y[,THETA[,ACTION[,WAIT]]]")
+    try:
+        x, y = float(parts[0]), float(parts[1])
+        theta = float(parts[2]) if len(parts) > 2 else 0.0
+        wait = float(parts[4]) if len(parts) > 4 else 0.0
+        return cm.target(x, y, theta, parts[3] if len(parts) > 3 else "stop", wait)
+    except (ValueError, cm.PayloadError) as e:
+        raise Failure(2, f"target '{text}': {e}") from None
+
+
 async def run(args: argparse.Namespace) -> int:
     try:
         client = Client(args.jid, args.password, args.ca_file, args.plain)
@@ -357,7 +371,15 @@ async def run(args: argparse.Namespace) -> int:
                                        text_form=not args.xml_form)
             await client.request(robot, "set", "cm.goal", payload, args.timeout)
             print(f"goal ({args.x:g}, {args.y:g}, {args.theta:g}) accepted by {robot}")
+        elif args.command == "mission" and args.action in ("start", "queue"):
+            targets = [parse_target(t) for t in args.targets]
+            await client.request(robot, "set", "cm.mission", cm.mission(targets, queue=args.action == "queue"),
+                                 args.timeout)
+            print(f"mission of {len(targets)} targets {'queued' if args.action == 'queue' else 'started'} by "
+                  f"{robot}")
         elif args.command == "mission":
+            if args.targets:
+                raise Failure(2, f"mission {args.action} takes no targets")
             state = {"pause": "paused", "resume": "running", "abort": "aborted"}[args.action]
             current = (await client.request(robot, "get", "cm.mission", None, args.timeout)).value
             payload = cm.encode_record("cm.mission", {"state": state, "maintenance": bool(current["maintenance"]),
@@ -441,9 +463,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     s.add_argument("--tol", type=float, default=0.1, help="position tolerance in m (default 0.1)")
     s.add_argument("--heading-tol", type=float, default=0.2, help="heading tolerance in rad (default 0.2)")
     s.add_argument("--xml-form", action="store_true", help="send the XML form instead of the text form")
-    m = sub.add_parser("mission", help="pause, resume or abort the running mission")
+    m = sub.add_parser("mission", help="start or queue a mission of targets; pause, resume or abort the running one")
     m.add_argument("robot")
-    m.add_argument("action", choices=("pause", "resume", "abort"))
+    m.add_argument("action", choices=("start", "queue", "pause", "resume", "abort"))
+    m.add_argument("targets", nargs="*", metavar="X,Y[,THETA[,ACTION[,WAIT]]]",
+                   help="start/queue: targets in order (m, m, rad; action pass|stop|wait|dock, default stop; "
+                        "wait s for 'wait')")
     w = sub.add_parser("watch", help="print pose, mission and presence once a second")
     w.add_argument("robot")
     w.add_argument("--count", type=int, default=0, help="lines to print (default: until interrupted)")

@@ -125,7 +125,10 @@ SETTABLE: dict[str, tuple] = {
     "cm.mission": (("state", "Category", None), ("maintenance", "Boolean", None), ("progress", "Quantity", "%"),
                    ("detail", "Text", None)),
 }
-MISSION_STATES = ("idle", "running", "paused", "done", "failed", "aborted")
+MISSION_STATES = ("idle", "running", "paused", "done", "failed", "aborted", "queued")
+TARGET_ACTIONS = ("pass", "stop", "wait", "dock")
+TARGET_STATES = ("pending", "active", "reached", "failed")
+MAX_TARGETS, MAX_WAIT_S = 64, 3600.0  # cm.mission's ranges (section 4)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -319,6 +322,61 @@ def telemetry_rates(value: dict) -> tuple[float, dict[str, float]]:
         raise PayloadError(f"cm.telemetry fields are lease, count and stream0..stream{n - 1}, not {sorted(value)}")
     return number(value["lease"], "s"), {value[f"stream{i}"]["resource"]: number(value[f"stream{i}"]["rate"], "Hz")
                                           for i in range(n)}
+
+
+def target(x: float, y: float, theta: float = 0.0, action: str = "stop", wait: float = 0.0,
+           position_tolerance: float = 0.1, heading_tolerance: float = 0.3) -> dict:
+    """One target of a cm.mission (m, m, rad; action pass|stop|wait|dock; wait s above 0 exactly for 'wait');
+    refuses what every robot would refuse."""
+    if action not in TARGET_ACTIONS:
+        raise PayloadError(f"action '{action}' is not one of {', '.join(TARGET_ACTIONS)}")
+    if not (math.isfinite(wait) and 0 <= wait <= MAX_WAIT_S):
+        raise PayloadError(f"wait {wait} s must be 0..{MAX_WAIT_S:g} s")
+    if (action == "wait") != (wait > 0):
+        raise PayloadError("a wait target needs a wait above 0 s" if action == "wait"
+                           else f"only a wait target waits (action {action}, wait {wait:g} s)")
+    return {**goal(x, y, theta, position_tolerance, heading_tolerance), "action": action, "wait": float(wait)}
+
+
+def mission(targets: list[dict], queue: bool = False) -> ET.Element:
+    """The payload of a cm.mission set that starts a mission of ``targets`` (records of :func:`target`) now, or
+    queues it after the robot's running and queued missions (section 4, "Mission commands")."""
+    if not 1 <= len(targets) <= MAX_TARGETS:
+        raise PayloadError(f"a mission has 1..{MAX_TARGETS} targets, not {len(targets)}")
+    record = _swe("DataRecord")
+    for name, kind, unit, value in (("state", "Category", None, "queued" if queue else "running"),
+                                    ("maintenance", "Boolean", None, False), ("progress", "Quantity", "%", 0),
+                                    ("detail", "Text", None, ""), ("current", "Count", None, 0),
+                                    ("queued", "Count", None, 0), ("count", "Count", None, len(targets))):
+        _swe("field", record, {"name": name}).append(_scalar(kind, unit, value))
+    for i, t in enumerate(targets):
+        rec = _swe("DataRecord")
+        for name, kind, unit in (("x", "Quantity", "m"), ("y", "Quantity", "m"), ("theta", "Quantity", "rad"),
+                                 ("positionTolerance", "Quantity", "m"), ("headingTolerance", "Quantity", "rad"),
+                                 ("action", "Category", None), ("wait", "Quantity", "s")):
+            _swe("field", rec, {"name": name}).append(_scalar(kind, unit, t[name]))
+        _swe("field", rec, {"name": "state"}).append(_scalar("Category", None, "pending"))
+        _swe("field", record, {"name": f"target{i}"}).append(rec)
+    return record
+
+
+def mission_targets(value: dict) -> tuple[int, int, list[tuple[str, str]]]:
+    """Reads a decoded cm.mission record's targets: (current target index, missions queued, [(action, state)] in
+    order); (0, 0, []) for a mission without targets."""
+    if "count" not in value:
+        return 0, 0, []
+    n = value["count"]
+    expected = {"state", "maintenance", "progress", "detail", "current", "queued", "count"} | {
+        f"target{i}" for i in range(n)}
+    if set(value) != expected:
+        raise PayloadError(f"cm.mission fields with targets are {sorted(expected)}, not {sorted(value)}")
+    targets = []
+    for i in range(n):
+        t = value[f"target{i}"]
+        if t["action"] not in TARGET_ACTIONS or t["state"] not in TARGET_STATES:
+            raise PayloadError(f"target{i}: action '{t['action']}' or state '{t['state']}' unknown")
+        targets.append((t["action"], t["state"]))
+    return value["current"], value["queued"], targets
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -15,7 +15,12 @@ public enum MissionState {
     /** gave up (unreachable goal, fault) */
     FAILED,
     /** an operator aborted it */
-    ABORTED;
+    ABORTED,
+    /**
+     * waits in the robot's queue: only in a set that carries targets (append this mission to the queue); never the
+     * state of the robot's mission
+     */
+    QUEUED;
 
     /** @return the code, e.g. {@code running} */
     public String code() {

@@ -2,6 +2,7 @@ package sabot.onboard.robot;
 
 import java.time.Duration;
 import java.time.Instant;
+import java.util.List;
 import java.util.Optional;
 
 import org.osgi.annotation.versioning.ProviderType;
@@ -9,6 +10,7 @@ import org.osgi.annotation.versioning.ProviderType;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
@@ -62,6 +64,20 @@ public interface RobotMotion {
      * (INVALID_VALUE, "unreachable"), in maintenance (MAINTENANCE_LOCK) or in a board fault (DEVICE_FAULT).
      */
     void navigateTo(Goal goal) throws CommandRefused;
+
+    /**
+     * Starts or queues a mission of several targets ({@code cm.mission} with targets): the robot drives to each in
+     * order and does its action there (pass through, stop, wait, dock). Every leg is planned before the mission is
+     * taken (the first from where the robot stands, each next from the target before), so that an unreachable target
+     * is refused with its number and reason; each leg is planned again from where the robot stands when it starts.
+     *
+     * @param targets the targets in order, 1..{@link MissionStatus#MAX_TARGETS}; their states are not read
+     * @param queue   false: start now, replacing a running mission (the queue stays); true: run after the running
+     *                mission and those queued before (at once when none runs)
+     * @throws CommandRefused INVALID_VALUE for a target off the map, in an obstacle or unreachable; MAINTENANCE_LOCK in
+     *                        maintenance; DEVICE_FAULT with a board fault; BUSY when the queue is full; nothing changed
+     */
+    void startMission(List<MissionTarget> targets, boolean queue) throws CommandRefused;
 
     /** @return the trajectory being followed (empty point list when none); never null */
     TrajectoryPayload trajectory();

@@ -40,6 +40,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PidGains;
@@ -501,6 +502,53 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         apply(l -> l.startMission(goal, plan));
         LOG.info("new goal ({}, {}, {}): path {} m", fmt(goal.pose().x()), fmt(goal.pose().y()),
                 fmt(goal.pose().theta()), fmt(plan.length()));
+    }
+
+    @Override
+    public void startMission(List<MissionTarget> targets, boolean queue) throws CommandRefused {
+        if (targets.isEmpty() || targets.size() > MissionStatus.MAX_TARGETS) {
+            throw new CommandRefused(ControlMlCondition.INVALID_VALUE, "a mission has 1.." + MissionStatus.MAX_TARGETS
+                    + " targets, not " + targets.size());
+        }
+        ControlLoop.Snapshot s = snapshot;
+        if (s.mission().maintenance()) {
+            throw new CommandRefused(ControlMlCondition.MAINTENANCE_LOCK, "the robot is in maintenance");
+        }
+        requireBoardsAnswer();
+        if (queue && s.mission().queued() >= MissionStatus.MAX_QUEUED) {
+            throw new CommandRefused(ControlMlCondition.BUSY, "the queue holds " + MissionStatus.MAX_QUEUED
+                    + " missions already");
+        }
+        List<Point2D> obstacles = obstaclePoints(s.obstacles());
+        Pose2D from = s.pose().pose();
+        ControlLoop.Plan first = null;
+        for (int i = 0; i < targets.size(); i++) {
+            Goal g = targets.get(i).goal();
+            String which = "target " + (i + 1) + " of " + targets.size();
+            requireFinite(g.pose());
+            requireOnMap(g.pose().position(), which);
+            ControlLoop.Plan plan = firstPlan(from, g, obstacles);
+            if (plan.refusal() != null) {
+                throw new CommandRefused(ControlMlCondition.INVALID_VALUE, which + " at (" + fmt(g.pose().x()) + ", "
+                        + fmt(g.pose().y()) + "): " + plan.refusal());
+            }
+            if (i == 0) {
+                first = plan;
+            }
+            from = g.pose();
+        }
+        ControlLoop.Plan firstLeg = first;
+        if (queue) {
+            boolean[] taken = new boolean[1];
+            apply(l -> taken[0] = l.enqueue(targets));
+            if (!taken[0]) {
+                throw new CommandRefused(ControlMlCondition.BUSY, "the queue holds " + MissionStatus.MAX_QUEUED
+                        + " missions already");
+            }
+        } else {
+            apply(l -> l.startMission(targets, firstLeg));
+        }
+        LOG.info("mission of {} targets {}", targets.size(), queue ? "queued" : "started");
     }
 
     /**

@@ -3,6 +3,8 @@ package sabot.onboard.motion.loop;
 import java.io.IOException;
 import java.time.Duration;
 import java.time.Instant;
+import java.util.ArrayDeque;
+import java.util.Deque;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
@@ -22,6 +24,7 @@ import sabot.control.WheelSpeeds;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.Obstacles;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
@@ -75,7 +78,9 @@ public final class ControlLoop {
     static final double PERIOD_MARGIN = 0.001;
     /** What the loop is doing. */
     public enum Mode {
-        IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT
+        IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT,
+        /** stands on a mission's target: its wait, or the next leg's plan */
+        WAIT
     }
 
     /** A planned path turned into a trajectory, or why not ({@code refusal}, for the operator). */
@@ -115,6 +120,16 @@ public final class ControlLoop {
     private Mode pausedFrom;
     private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "idle");
     private Goal goal;
+    /** The mission of targets being run, or the last one (its targets' states stay reported); null for a goal. */
+    private MissionRun run;
+    /** Missions of targets waiting for the current one to be done. */
+    private final Deque<List<MissionTarget>> queue = new ArrayDeque<>();
+    /** The goal of the leg whose plan the loop waits for (the next target's), or null. */
+    private Goal legPlanFor;
+    /** When the robot's wait on a target ends (loop time), or NaN while none. */
+    private double waitUntil = Double.NaN;
+    /** A paused wait's remaining seconds. */
+    private double waitLeft;
     private Trajectory trajectory;
     private TrajectoryPayload trajectoryPayload = new TrajectoryPayload(Instant.EPOCH, List.of());
     private double trajectoryStart;
@@ -361,6 +376,13 @@ public final class ControlLoop {
             case SETTLE -> {
                 return settle(t);
             }
+            case WAIT -> {
+                if (!Double.isNaN(waitUntil) && t >= waitUntil) {
+                    waitUntil = Double.NaN;
+                    targetReached(t);
+                }
+                return Twist2D.ZERO;
+            }
             case BLOCKED -> {
                 if (!replanPending && t - lastReplan >= REPLAN_RETRY) {
                     replan(t);
@@ -401,7 +423,8 @@ public final class ControlLoop {
             replan(t);
             return Twist2D.ZERO;
         }
-        updateProgress(Math.min(99, 100 * tau / trajectory.duration()));
+        passThrough(t);
+        updateProgress(Math.min(99, legProgress(tau / trajectory.duration())));
         TrajectorySample ref = trajectory.sample(tau);
         ControlCommand c = tracker.update(t, pose, shift(ref, t));
         return c.twist();
@@ -418,6 +441,11 @@ public final class ControlLoop {
         double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
         double positionTolerance = goal == null ? settings.goalTolerance() : goal.positionTolerance();
         double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
+        if (legPlanFor == null && run != null && run.passing() && distance <= positionTolerance) {
+            // a pass target reached while settling on it: on to the next, without stopping
+            targetReached(t);
+            return Twist2D.ZERO;
+        }
         // at rest first: the checker latches the position once within tolerance, and a robot passing through the
         // tolerance at speed must not have it latched (it would then be done wherever it comes to rest)
         if (Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1 && goalChecker.isGoalReached(pose, target)) {
@@ -459,6 +487,20 @@ public final class ControlLoop {
 
     /** The plan asked for with {@code request} (ignored when the mission has moved on meanwhile). */
     public void replanned(LoopHost.PlanRequest request, Plan plan) {
+        if (legPlanFor != null && request.goal() == legPlanFor) {
+            legPlanFor = null;
+            if (mission.state() != MissionState.RUNNING || request.goal() != goal) {
+                return; // paused, aborted or replaced meanwhile: a resume plans again
+            }
+            if (plan.refusal() != null) {
+                fail(run.label() + ": " + plan.refusal());
+                return;
+            }
+            LOG.info("{}: path {} m", run.label(), fmt(plan.length()));
+            clearFault(); // a target the robot stopped on braked it
+            setTrajectory(plan, now());
+            return;
+        }
         replanPending = false;
         if (mode != Mode.BLOCKED || request.goal() != goal) {
             return;
@@ -486,12 +528,69 @@ public final class ControlLoop {
                 goal.pose().position(), limits.withHeadroom(s.speedHeadroom(), s.accelerationHeadroom()));
     }
 
+    /** Starts a mission to one goal with its first plan; replaces a running mission (the queue stays). */
     public void startMission(Goal g, Plan plan) {
+        run = null;
+        startLeg(g, plan, "to (" + fmt(g.pose().x()) + ", " + fmt(g.pose().y()) + ")");
+    }
+
+    /**
+     * Starts a mission of targets with its first leg's plan; replaces a running mission (the queue stays).
+     *
+     * @param targets the targets in order, at least one
+     * @param plan    the plan from where the robot stands to the first target
+     */
+    public void startMission(List<MissionTarget> targets, Plan plan) {
+        run = new MissionRun(targets);
+        startLeg(run.target().goal(), plan, legDetail());
+        LOG.info("mission of {} targets started", run.size());
+    }
+
+    /**
+     * Queues a mission of targets after the running one and those queued before; when no mission runs it starts at
+     * once (its first leg planned from where the robot stands then).
+     *
+     * @return false when the queue is full ({@link MissionStatus#MAX_QUEUED}): nothing changed
+     */
+    public boolean enqueue(List<MissionTarget> targets) {
+        if (mission.state().isActive()) {
+            if (queue.size() >= MissionStatus.MAX_QUEUED) {
+                return false;
+            }
+            queue.add(List.copyOf(targets));
+            LOG.info("mission of {} targets queued ({} waiting)", targets.size(), queue.size());
+            setMission(mission.state(), mission.progress(), mission.detail());
+            return true;
+        }
+        startQueued(List.copyOf(targets), now());
+        return true;
+    }
+
+    /** @return the missions waiting in the queue */
+    public int queued() {
+        return queue.size();
+    }
+
+    private void startQueued(List<MissionTarget> targets, double t) {
+        clearFault();
+        run = new MissionRun(targets);
+        goal = run.target().goal();
+        goalChecker = checkerFor(goal);
+        trajectory = null;
+        trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
+        setMission(MissionState.RUNNING, 0, legDetail());
+        LOG.info("mission of {} targets started from the queue", run.size());
+        requestLeg(t);
+    }
+
+    private void startLeg(Goal g, Plan plan, String detail) {
         double t = now();
         clearFault();
         this.goal = g;
-        goalChecker = new GoalChecker(g.positionTolerance(), Math.min(Math.PI, g.headingTolerance()), true);
-        setMission(MissionState.RUNNING, 0, "to (" + fmt(g.pose().x()) + ", " + fmt(g.pose().y()) + ")");
+        legPlanFor = null;
+        waitUntil = Double.NaN;
+        goalChecker = checkerFor(g);
+        setMission(MissionState.RUNNING, run == null ? 0 : run.progress(0), detail);
         if (plan.trajectory() == null) {
             trajectory = null;
             trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
@@ -507,6 +606,9 @@ public final class ControlLoop {
         double t = now();
         clearFault();
         this.goal = null;
+        this.run = null;
+        legPlanFor = null;
+        waitUntil = Double.NaN;
         Trajectory path = new SampledTrajectory(imposed.points());
         goalChecker = new GoalChecker(settings.goalTolerance(), Math.PI, true);
         setMission(MissionState.RUNNING, 0, "imposed trajectory");
@@ -632,7 +734,12 @@ public final class ControlLoop {
             return;
         }
         pausedFrom = mode;
-        setMode(Mode.PAUSED, now());
+        double t = now();
+        if (!Double.isNaN(waitUntil)) {
+            waitLeft = Math.max(0, waitUntil - t);
+            waitUntil = Double.NaN;
+        }
+        setMode(Mode.PAUSED, t);
         setMission(MissionState.PAUSED, mission.progress(), "paused");
     }
 
@@ -641,8 +748,15 @@ public final class ControlLoop {
             return;
         }
         double t = now();
+        clearFault(); // a robot paused on a target it stopped on is braked
         setMission(MissionState.RUNNING, mission.progress(), "resumed");
-        if (pausedFrom == Mode.FOLLOW || pausedFrom == Mode.ALIGN || pausedFrom == Mode.BLOCKED) {
+        if (pausedFrom == Mode.WAIT && waitLeft > 0) {
+            // the rest of a target's wait
+            waitUntil = t + waitLeft;
+            waitLeft = 0;
+            setMode(Mode.WAIT, t);
+        } else if (pausedFrom == Mode.FOLLOW || pausedFrom == Mode.ALIGN || pausedFrom == Mode.BLOCKED
+                || pausedFrom == Mode.WAIT) {
             // the trajectory's clock went on while paused: plan again from where the robot stands
             setMode(Mode.BLOCKED, t);
             replan(t);
@@ -655,7 +769,8 @@ public final class ControlLoop {
         double t = now();
         brake();
         if (mission.state() == MissionState.RUNNING || mission.state() == MissionState.PAUSED) {
-            setMission(MissionState.ABORTED, mission.progress(), reason);
+            endRun();
+            setMission(MissionState.ABORTED, mission.progress(), reason + dropped());
         }
         setMode(Mode.IDLE, t);
         LOG.info("stopped: {}", reason);
@@ -669,13 +784,16 @@ public final class ControlLoop {
     public void maintenance(boolean on, String detail) {
         brake();
         MissionState state = mission.state();
+        String dropped = "";
         if (on && (state == MissionState.RUNNING || state == MissionState.PAUSED)) {
             state = MissionState.ABORTED;
+            endRun();
+            dropped = dropped();
             LOG.info("mission aborted for maintenance");
         }
         setMode(Mode.IDLE, now());
-        mission = new MissionStatus(state, on, mission.progress(),
-                on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended");
+        mission = status(state, on, mission.progress(),
+                (on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended") + dropped);
         host.missionChanged(mission);
         LOG.info("maintenance {}", on ? "on" : "off");
     }
@@ -688,7 +806,12 @@ public final class ControlLoop {
         LOG.warn("fault: {} - braking", reason);
         brake();
         setMode(Mode.FAULT, now());
-        mission = new MissionStatus(MissionState.FAILED, mission.maintenance(), mission.progress(), reason);
+        String dropped = "";
+        if (mission.state().isActive()) {
+            endRun();
+            dropped = dropped();
+        }
+        mission = status(MissionState.FAILED, mission.maintenance(), mission.progress(), reason + dropped);
         host.missionChanged(mission);
     }
 
@@ -726,14 +849,120 @@ public final class ControlLoop {
     }
 
     private void complete(double t) {
+        if (run != null && run.hasCurrent()) {
+            MissionTarget target = run.target();
+            LOG.info("{} reached at ({}, {}, {})", run.label(), fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
+            if (target.action() == MissionTarget.Action.WAIT) {
+                waitUntil = t + target.dwell();
+                setMode(Mode.WAIT, t);
+                setMission(MissionState.RUNNING, run.progress(1), "waiting " + fmtWait(target.dwell()) + " s at "
+                        + run.label());
+                return;
+            }
+            targetReached(t);
+            return;
+        }
         setMission(MissionState.DONE, 100, "goal reached");
         setMode(Mode.IDLE, t);
         LOG.info("goal reached at ({}, {}, {})", fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
+        startNextQueued(t);
+    }
+
+    /** The current target is done (reached, and its wait over): on to the next, or the mission is done. */
+    private void targetReached(double t) {
+        boolean docked = run.target().action() == MissionTarget.Action.DOCK;
+        run.reached();
+        if (run.hasCurrent()) {
+            requestLeg(t);
+            return;
+        }
+        trajectory = null;
+        setMode(Mode.IDLE, t);
+        setMission(MissionState.DONE, 100, "all " + run.size() + " targets reached" + (docked ? ", docked" : ""));
+        LOG.info("mission done: all {} targets reached", run.size());
+        startNextQueued(t);
+    }
+
+    /**
+     * Asks for the plan of the leg to the current target, from where the robot is now. A robot passing through a
+     * target follows the old trajectory until the plan comes (within a period or two); otherwise it stands.
+     */
+    private void requestLeg(double t) {
+        goal = run.target().goal();
+        goalChecker = checkerFor(goal);
+        legPlanFor = goal;
+        if (mode != Mode.FOLLOW && mode != Mode.SETTLE) {
+            setMode(Mode.WAIT, t);
+        }
+        setMission(MissionState.RUNNING, run.progress(0), legDetail());
+        host.planRequested(new LoopHost.PlanRequest(pose, goal, echoes.points()));
+    }
+
+    /**
+     * A pass target within its position tolerance is reached on the way: the next leg is asked for, and the old
+     * trajectory goes on until its plan comes.
+     */
+    private void passThrough(double t) {
+        if (legPlanFor != null || run == null || !run.passing()) {
+            return;
+        }
+        Pose2D target = goal.pose();
+        if (Math.hypot(target.x() - pose.x(), target.y() - pose.y()) <= goal.positionTolerance()) {
+            LOG.info("{} passed at ({}, {})", run.label(), fmt(pose.x()), fmt(pose.y()));
+            targetReached(t);
+        }
+    }
+
+    /** @return the mission's progress for the fraction {@code leg} of the current leg done, percent */
+    private double legProgress(double leg) {
+        if (run == null) {
+            return 100 * leg;
+        }
+        return run.progress(legPlanFor == null ? leg : 0); // while the next leg's plan comes: the old leg is done
+    }
+
+    private String legDetail() {
+        Pose2D p = run.target().goal().pose();
+        return run.label() + ": to (" + fmt(p.x()) + ", " + fmt(p.y()) + ")";
+    }
+
+    private static GoalChecker checkerFor(Goal g) {
+        return new GoalChecker(g.positionTolerance(), Math.min(Math.PI, g.headingTolerance()), true);
+    }
+
+    private static String fmtWait(double s) {
+        return s == Math.rint(s) ? String.valueOf((long) s) : String.format(Locale.ROOT, "%.1f", s);
+    }
+
+    /** After a mission is done, the next queued one starts. */
+    private void startNextQueued(double t) {
+        List<MissionTarget> next = queue.poll();
+        if (next != null) {
+            startQueued(next, t);
+        }
+    }
+
+    /** The mission ends short of its targets (failed or aborted): its current target failed, no leg awaited. */
+    private void endRun() {
+        if (run != null) {
+            run.failed();
+        }
+        legPlanFor = null;
+        waitUntil = Double.NaN;
+        waitLeft = 0;
+    }
+
+    /** Empties the queue: @return what the operator reads about it, "" when it was empty */
+    private String dropped() {
+        int n = queue.size();
+        queue.clear();
+        return n == 0 ? "" : "; " + n + " queued mission" + (n == 1 ? "" : "s") + " dropped";
     }
 
     private void fail(String reason) {
         brake();
-        setMission(MissionState.FAILED, mission.progress(), reason);
+        endRun();
+        setMission(MissionState.FAILED, mission.progress(), reason + dropped());
         setMode(Mode.IDLE, now());
         LOG.warn("mission failed: {}", reason);
     }
@@ -747,14 +976,20 @@ public final class ControlLoop {
     }
 
     private void setMission(MissionState state, double progress, String detail) {
-        mission = new MissionStatus(state, mission.maintenance(), progress, detail);
+        mission = status(state, mission.maintenance(), progress, detail);
         host.missionChanged(mission);
+    }
+
+    /** @return a status with the mission's targets (of the run, or none) and the queue's length now */
+    private MissionStatus status(MissionState state, boolean maintenance, double progress, String detail) {
+        return run == null ? new MissionStatus(state, maintenance, progress, detail, List.of(), 0, queue.size())
+                : new MissionStatus(state, maintenance, progress, detail, run.targets(), run.current(), queue.size());
     }
 
     private void updateProgress(double progress) {
         // listeners hear about whole-percent steps only; the snapshot carries the exact figure
         boolean step = Math.floor(progress / 10) != Math.floor(mission.progress() / 10);
-        mission = new MissionStatus(mission.state(), mission.maintenance(), progress, mission.detail());
+        mission = mission.with(mission.state(), progress, mission.detail());
         if (step) {
             host.missionChanged(mission);
         }
@@ -785,7 +1020,7 @@ public final class ControlLoop {
             return m;
         }
         String detail = mode == Mode.TELEOP || m.detail().isBlank() ? g : m.detail() + "; " + g;
-        return new MissionStatus(m.state(), m.maintenance(), m.progress(), detail);
+        return m.with(m.state(), m.progress(), detail);
     }
 
     /** @return {@code v} with three decimals, for the log */

@@ -252,9 +252,21 @@ public final class ControlMlEndpoint {
                     + request.role().withArticle() + " on this device; switching maintenance " + (command.maintenance()
                             ? "on" : "off") + " needs the maintainer role");
         }
+        if (!command.targets().isEmpty()) {
+            if (maintenanceSwitch) {
+                return Outcome.failure(ControlMlCondition.INVALID_VALUE, "a mission of targets and a maintenance "
+                        + "switch are two commands: send them apart");
+            }
+            if (command.state() != MissionState.RUNNING && command.state() != MissionState.QUEUED) {
+                return Outcome.failure(ControlMlCondition.INVALID_VALUE, "a mission of targets is started with state "
+                        + "running (now) or queued (after the others), not '" + command.state().code() + "'");
+            }
+            return apply(() -> motion.startMission(command.targets(), command.state() == MissionState.QUEUED));
+        }
         if (!maintenanceSwitch && !MISSION_COMMANDS.contains(command.state())) {
             return Outcome.failure(ControlMlCondition.INVALID_VALUE, "state '" + command.state().code()
-                    + "' is not a command: send paused, running or aborted, or switch maintenance");
+                    + "' is not a command: send paused, running or aborted, a mission with targets, or switch "
+                    + "maintenance");
         }
         return apply(() -> motion.command(command));
     }
@@ -339,7 +351,7 @@ public final class ControlMlEndpoint {
         return switch (mission.state()) {
             case RUNNING, PAUSED -> PresenceLevel.BUSY;
             case FAILED -> PresenceLevel.AWAY;
-            case IDLE, DONE, ABORTED -> PresenceLevel.FREE;
+            case IDLE, DONE, ABORTED, QUEUED -> PresenceLevel.FREE;
         };
     }
 
