@@ -16,6 +16,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.Obstacle;
@@ -57,7 +58,10 @@ final class Samples {
             Map.entry(Resources.PID, new PidGains(List.of(new MotorGains(0, 1.2, 0.05, 0.01), new MotorGains(1, 1.1,
                     0.04, 0.0)))),
             Map.entry(Resources.LIMITS, new LimitsPayload(0.5, 2.0, 0.5, 3.0)),
-            Map.entry(Resources.MISSION, new MissionStatus(MissionState.RUNNING, false, 42.5, "to dock <B> & back")),
+            Map.entry(Resources.MISSION, new MissionStatus(MissionState.RUNNING, false, 42.5, "to dock <B> & back",
+                    List.of(new MissionTarget(new Goal(new Pose2D(1, 2, 0), 0.1, 0.2), MissionTarget.Action.WAIT, 5,
+                            MissionTarget.State.REACHED), new MissionTarget(new Goal(new Pose2D(0, 0, 3.1), 0.05,
+                                    0.1), MissionTarget.Action.DOCK, 0, MissionTarget.State.ACTIVE)), 1, 1)),
             Map.entry(Resources.TASKS, new TaskList(List.of(new TaskInfo("localizer", "sabot.onboard.motion",
                     "0.1.0", "active"), new TaskInfo("remotefs", "sabot.onboard.remotefs", "0.1.0", "resolved")))),
             Map.entry(Resources.ROLE, new AccessRole(Role.OPERATOR)),

@@ -62,6 +62,7 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
@@ -314,6 +315,34 @@ class ControlMlEndpointOnProsodyTest {
         assertTrue(workbench.set(robotJid, Resources.LIMITS, slower).isSuccess());
 
         assertEquals(slower, workbench.get(robotJid, Resources.LIMITS).orElseThrow());
+    }
+
+    @Test
+    void missionSetWithTargetsStartsOrQueuesAMissionAndGetAnswersItsTargets() {
+        List<MissionTarget> two = List.of(MissionTarget.pending(new Goal(new Pose2D(1.5, 0.5, 0), 0.1, 0.2),
+                MissionTarget.Action.PASS, 0), MissionTarget.pending(new Goal(new Pose2D(0.5, 1.5, 0), 0.1, 0.2),
+                        MissionTarget.Action.WAIT, 3));
+        Outcome<MissionStatus> started = workbench.set(robotJid, Resources.MISSION, new MissionStatus(
+                MissionState.RUNNING, false, 0, "", two, 0, 0));
+        assertTrue(started.isSuccess(), started::toString);
+        MissionStatus running = workbench.get(robotJid, Resources.MISSION).orElseThrow();
+        assertEquals(MissionState.RUNNING, running.state());
+        assertEquals(List.of(MissionTarget.State.ACTIVE, MissionTarget.State.PENDING), running.targets().stream().map(
+                MissionTarget::state).toList());
+        assertEquals(3.0, running.targets().get(1).dwell(), "the wait travels both ways");
+        assertTrue(workbench.set(robotJid, Resources.MISSION, new MissionStatus(MissionState.QUEUED, false, 0, "",
+                two, 0, 0)).isSuccess());
+        assertEquals(1, workbench.get(robotJid, Resources.MISSION).orElseThrow().queued());
+
+        // targets with any other state, or with a maintenance switch: refused before the robot hears of them
+        assertRefused(workbench.set(robotJid, Resources.MISSION, new MissionStatus(MissionState.PAUSED, false, 0, "",
+                two, 0, 0)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE);
+        assertRefused(workbench.set(robotJid, Resources.MISSION, new MissionStatus(MissionState.RUNNING, true, 0, "",
+                two, 0, 0)), Condition.not_acceptable, ControlMlCondition.INVALID_VALUE);
+        // a state that only a mission with targets may carry
+        assertRefused(workbench.set(robotJid, Resources.MISSION, command(MissionState.QUEUED, false)),
+                Condition.not_acceptable, ControlMlCondition.INVALID_VALUE);
+        assertEquals(List.of("startMission 2 targets", "queueMission 2 targets"), robot.calls());
     }
 
     @Test

@@ -15,6 +15,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.Obstacle;
@@ -219,6 +220,29 @@ final class RecordedRobot implements RobotMotion {
                 new TrajectoryPoint(0, pose.pose().x(), pose.pose().y(), 0, 0, 0),
                 new TrajectoryPoint(5, x, y, target.pose().theta(), 0, 0)));
         changeMission(new MissionStatus(MissionState.RUNNING, false, 0, String.format("to (%.2f, %.2f)", x, y)));
+    }
+
+    /** Records the mission; starts it (its targets pending, the first active) or counts it as queued. */
+    @Override
+    public synchronized void startMission(List<MissionTarget> targets, boolean queue) throws CommandRefused {
+        calls.add((queue ? "queueMission " : "startMission ") + targets.size() + " targets");
+        requireNoMaintenance();
+        requireBoard();
+        for (MissionTarget t : targets) {
+            requireOnMap(t.goal().pose().x(), t.goal().pose().y(), "target");
+        }
+        if (queue && mission.state().isActive()) {
+            changeMission(new MissionStatus(mission.state(), false, mission.progress(), mission.detail(), mission
+                    .targets(), mission.current(), mission.queued() + 1));
+            return;
+        }
+        List<MissionTarget> started = new ArrayList<>();
+        for (MissionTarget t : targets) {
+            started.add(t.in(started.isEmpty() ? MissionTarget.State.ACTIVE : MissionTarget.State.PENDING));
+        }
+        goal = Optional.of(targets.get(0).goal());
+        changeMission(new MissionStatus(MissionState.RUNNING, false, 0, "target 1 of " + targets.size(), started, 0,
+                mission.queued()));
     }
 
     @Override
