@@ -4,7 +4,7 @@ docs/controlml.xsd and docs/IDENTITY.md) against a ControlML device on a real XM
 
 It expects a device prepared as tests/sabot.controlml.tests' InteropSuiteTest prepares it (see its Javadoc): every
 resource served by a device that keeps what it is set, except cm.map (not served); cm.mission sets refused by the
-word in their `detail`; cm.position published with x = 1, 2, 3, ... at 20 Hz, leased up to 40 Hz for at most
+word in their `detail`, and its get a mission of two targets (a wait reached, a dock active) with one queued; cm.position published with x = 1, 2, 3, ... at 20 Hz, leased up to 40 Hz for at most
 10 s (cm.telemetry); the operator may set, the
 viewer may get, the stranger nothing; its vCard and QR inventory published for the serial given.
 
@@ -291,6 +291,30 @@ async def refusals(op: Peer, viewer: Peer, stranger: Peer, robot: str) -> None:
     await stale_command(op, robot)
 
 
+async def missions(op: Peer, robot: str) -> None:
+    """Section 4's cm.mission with targets: read as the device writes it, written as the device reads it."""
+    a = await op.raw(robot, "get", cm.control_ml("get", op.ids.next(), "cm.mission"))
+    try:
+        got = cm.mission_targets(cm.decode(a.cm).value) if a.cm is not None else None
+    except cm.PayloadError as e:
+        got = e
+    check("get cm.mission gives its targets, their states, the current one and the queue",
+          got == (1, 1, [("wait", "reached"), ("dock", "active")]), f"{got} from {a}")
+    targets = [cm.target(1, 2, 0, "pass"), cm.target(3, 2, 1.5, "wait", 4.5), cm.target(0.5, 0.5, 3.1, "dock")]
+    for queue in (False, True):
+        a = await op.raw(robot, "set", cm.control_ml("set", op.ids.next(), "cm.mission", cm.mission(targets, queue)))
+        check(f"set cm.mission with three targets ({'queued' if queue else 'now'})", a.type == "result", str(a))
+    ns = "{" + cm.SWE_NS + "}"
+    no_wait = cm.mission(targets)
+    no_wait.find(f"{ns}field[@name='target1']//{ns}field[@name='wait']/{ns}Quantity/{ns}value").text = "0.0"
+    refusal("a wait target without a wait", await op.raw(robot, "set", cm.control_ml(
+        "set", op.ids.next(), "cm.mission", no_wait)), "invalid-value")
+    miscounted = cm.mission(targets)
+    miscounted.find(f"{ns}field[@name='count']/{ns}Count/{ns}value").text = "4"
+    refusal("a count of targets that does not match them", await op.raw(robot, "set", cm.control_ml(
+        "set", op.ids.next(), "cm.mission", miscounted)), "malformed-payload")
+
+
 async def stale_command(op: Peer, robot: str) -> None:
     """A set in a message whose XEP-0203 delay says it waited since 2020: the device's stale-command policy."""
     rid = op.ids.next()
@@ -506,6 +530,7 @@ async def main(args) -> None:
     await get_set(op, robot)
     await refusals(op, viewer, stranger, robot)
     await replay(op, robot)
+    await missions(op, robot)
     await identity(op, args, robot)
     await leases(viewer, stranger, robot)
     print("... disconnecting", flush=True)

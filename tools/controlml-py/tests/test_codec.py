@@ -326,3 +326,35 @@ class LeaseTest(unittest.TestCase):
         with self.assertRaises(cm.PayloadError):
             cm.telemetry_rates(value)
 
+
+
+class MissionTest(unittest.TestCase):
+    """Section 4's cm.mission with targets, written and read as the Java device writes and reads it."""
+
+    def test_a_mission_is_the_four_fields_then_current_queued_count_and_targets(self):
+        payload = cm.mission([cm.target(1, 2, 0, "pass"), cm.target(3, 2, 1.5, "wait", 4.5)], queue=True)
+        self.assertEqual(["state", "maintenance", "progress", "detail", "current", "queued", "count", "target0",
+                          "target1"], [f.get("name") for f in payload])
+        value = cm.decode_component(payload)
+        self.assertEqual("queued", value["state"])
+        self.assertEqual((0, 0, [("pass", "pending"), ("wait", "pending")]), cm.mission_targets(value))
+        self.assertEqual("running", cm.decode_component(cm.mission([cm.target(1, 1)]))["state"])
+
+    def test_a_mission_without_targets_has_none(self):
+        value = {"state": "paused", "maintenance": False, "progress": 3, "detail": ""}
+        self.assertEqual((0, 0, []), cm.mission_targets(value))
+
+    def test_bad_targets_and_missions_are_refused_before_sending(self):
+        for args in ((1, 1, 0, "fly"), (1, 1, 0, "wait", 0), (1, 1, 0, "stop", 2), (1, 1, 0, "wait", 3601),
+                     (1, 1, 0, "stop", 0, 0)):
+            with self.subTest(args=args), self.assertRaises(cm.PayloadError):
+                cm.target(*args)
+        for targets in ([], [cm.target(1, 1)] * 65):
+            with self.subTest(n=len(targets)), self.assertRaises(cm.PayloadError):
+                cm.mission(targets)
+
+    def test_a_record_whose_count_does_not_match_its_targets_is_refused(self):
+        value = cm.decode_component(cm.mission([cm.target(1, 1), cm.target(2, 2)]))
+        value["count"] = 3
+        with self.assertRaises(cm.PayloadError):
+            cm.mission_targets(value)

@@ -49,7 +49,8 @@ import sabot.testsupport.xmpp.PrivateXmppServer;
  * <p>
  * The device: every resource of the catalogue served as {@link RecordingDevice} does, except {@code cm.map} (not
  * served, for unsupported-operation); a {@code cm.mission} set refused with the reason its {@code detail} names
- * ({@code busy-once}: busy the first time only; {@code throw}: the handler throws); {@code cm.position} published at
+ * ({@code busy-once}: busy the first time only; {@code throw}: the handler throws), its get the sample of
+ * {@link Samples} (two targets, a wait reached and a dock active, one mission queued); {@code cm.position} published at
  * 20 Hz with x = 1, 2, 3, ..., leased up to 40 Hz for at most 10 s ({@code cm.telemetry}); operator may set, viewer may get, everyone else nothing; the vCard and QR inventory of
  * {@link #SERIAL}, with a non-ASCII part.
  */
