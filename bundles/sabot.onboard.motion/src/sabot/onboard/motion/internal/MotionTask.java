@@ -201,7 +201,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         @Override
         public void planRequested(PlanRequest r) {
             plannerThread.execute(() -> {
-                ControlLoop.Plan plan = loop.planPath(r.from(), r.goal(), r.obstacles());
+                ControlLoop.Plan plan = loop.planPath(r.from(), r.via(), r.goal(), r.obstacles());
                 commands.add(l -> l.replanned(r, plan));
             });
         }
@@ -521,7 +521,6 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
         List<Point2D> obstacles = obstaclePoints(s.obstacles());
         Pose2D from = s.pose().pose();
-        ControlLoop.Plan first = null;
         for (int i = 0; i < targets.size(); i++) {
             Goal g = targets.get(i).goal();
             String which = "target " + (i + 1) + " of " + targets.size();
@@ -532,12 +531,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 throw new CommandRefused(ControlMlCondition.INVALID_VALUE, which + " at (" + fmt(g.pose().x()) + ", "
                         + fmt(g.pose().y()) + "): " + plan.refusal());
             }
-            if (i == 0) {
-                first = plan;
-            }
             from = g.pose();
         }
-        ControlLoop.Plan firstLeg = first;
         if (queue) {
             boolean[] taken = new boolean[1];
             apply(l -> taken[0] = l.enqueue(targets));
@@ -546,7 +541,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                         + " missions already");
             }
         } else {
-            apply(l -> l.startMission(targets, firstLeg));
+            apply(l -> l.startMission(targets));
         }
         LOG.info("mission of {} targets {}", targets.size(), queue ? "queued" : "started");
     }

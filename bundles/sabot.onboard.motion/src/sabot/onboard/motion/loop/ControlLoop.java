@@ -423,7 +423,7 @@ public final class ControlLoop {
             replan(t);
             return Twist2D.ZERO;
         }
-        passThrough(t);
+        passThrough();
         updateProgress(Math.min(99, legProgress(tau / trajectory.duration())));
         TrajectorySample ref = trajectory.sample(tau);
         ControlCommand c = tracker.update(t, pose, shift(ref, t));
@@ -441,11 +441,6 @@ public final class ControlLoop {
         double headingError = Pose2D.normalizeAngle(target.theta() - pose.theta());
         double positionTolerance = goal == null ? settings.goalTolerance() : goal.positionTolerance();
         double headingTolerance = goal == null ? Math.PI : Math.min(Math.PI, goal.headingTolerance());
-        if (legPlanFor == null && run != null && run.passing() && distance <= positionTolerance) {
-            // a pass target reached while settling on it: on to the next, without stopping
-            targetReached(t);
-            return Twist2D.ZERO;
-        }
         // at rest first: the checker latches the position once within tolerance, and a robot passing through the
         // tolerance at speed must not have it latched (it would then be done wherever it comes to rest)
         if (Math.abs(velocity[0]) < 0.05 && Math.abs(velocity[1]) < 0.1 && goalChecker.isGoalReached(pose, target)) {
@@ -482,7 +477,12 @@ public final class ControlLoop {
             return;
         }
         replanPending = true;
-        host.planRequested(new LoopHost.PlanRequest(pose, goal, echoes.points()));
+        host.planRequested(new LoopHost.PlanRequest(pose, via(), goal, echoes.points()));
+    }
+
+    /** @return the pass targets the robot still drives through before the leg's goal (none without a mission) */
+    private List<Goal> via() {
+        return run == null || !run.hasCurrent() ? List.of() : run.via();
     }
 
     /** The plan asked for with {@code request} (ignored when the mission has moved on meanwhile). */
@@ -519,13 +519,36 @@ public final class ControlLoop {
      * Plans from {@code from} to the goal around {@code obstacles}; thread-safe (the planner serialises requests).
      */
     public Plan planPath(Pose2D from, Goal goal, List<Point2D> obstacles) {
-        PlanResult result = planner.plan(from.position(), goal.pose().position(), obstacles);
-        if (result instanceof PlanResult.Unreachable u) {
-            return new Plan(null, 0, "unreachable goal: " + u.detail());
+        return planPath(from, List.of(), goal, obstacles);
+    }
+
+    /**
+     * Plans from {@code from} through the {@code via} points (in order, as Nav2's NavigateThroughPoses) to the goal
+     * around {@code obstacles}: one trajectory, so that the robot drives through each via point without stopping.
+     * Thread-safe (the planner serialises requests).
+     */
+    public Plan planPath(Pose2D from, List<Goal> via, Goal goal, List<Point2D> obstacles) {
+        List<List<Point2D>> segments = new java.util.ArrayList<>();
+        List<Point2D> ends = new java.util.ArrayList<>();
+        Point2D start = from.position();
+        for (Goal g : concat(via, goal)) {
+            PlanResult result = planner.plan(start, g.pose().position(), obstacles);
+            if (result instanceof PlanResult.Unreachable u) {
+                return new Plan(null, 0, "unreachable goal: " + u.detail());
+            }
+            segments.add(((PlanResult.Found) result).path().waypoints());
+            ends.add(g.pose().position());
+            start = g.pose().position();
         }
         LoopSettings s = settings;
-        return TrajectoryFitter.fit(((PlanResult.Found) result).path().waypoints(), from.position(),
-                goal.pose().position(), limits.withHeadroom(s.speedHeadroom(), s.accelerationHeadroom()));
+        return TrajectoryFitter.fit(segments, from.position(), ends, limits.withHeadroom(s.speedHeadroom(),
+                s.accelerationHeadroom()));
+    }
+
+    private static List<Goal> concat(List<Goal> via, Goal goal) {
+        List<Goal> all = new java.util.ArrayList<>(via);
+        all.add(goal);
+        return all;
     }
 
     /** Starts a mission to one goal with its first plan; replaces a running mission (the queue stays). */
@@ -535,14 +558,13 @@ public final class ControlLoop {
     }
 
     /**
-     * Starts a mission of targets with its first leg's plan; replaces a running mission (the queue stays).
+     * Starts a mission of targets; replaces a running mission (the queue stays). The robot stands until its first leg
+     * is planned (within a period or two).
      *
      * @param targets the targets in order, at least one
-     * @param plan    the plan from where the robot stands to the first target
      */
-    public void startMission(List<MissionTarget> targets, Plan plan) {
-        run = new MissionRun(targets);
-        startLeg(run.target().goal(), plan, legDetail());
+    public void startMission(List<MissionTarget> targets) {
+        startRun(List.copyOf(targets), now());
         LOG.info("mission of {} targets started", run.size());
     }
 
@@ -562,7 +584,8 @@ public final class ControlLoop {
             setMission(mission.state(), mission.progress(), mission.detail());
             return true;
         }
-        startQueued(List.copyOf(targets), now());
+        startRun(List.copyOf(targets), now());
+        LOG.info("mission of {} targets started from the queue", run.size());
         return true;
     }
 
@@ -571,15 +594,13 @@ public final class ControlLoop {
         return queue.size();
     }
 
-    private void startQueued(List<MissionTarget> targets, double t) {
+    private void startRun(List<MissionTarget> targets, double t) {
         clearFault();
         run = new MissionRun(targets);
-        goal = run.target().goal();
-        goalChecker = checkerFor(goal);
+        waitUntil = Double.NaN;
         trajectory = null;
         trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
-        setMission(MissionState.RUNNING, 0, legDetail());
-        LOG.info("mission of {} targets started from the queue", run.size());
+        setMode(Mode.WAIT, t);
         requestLeg(t);
     }
 
@@ -850,6 +871,13 @@ public final class ControlLoop {
 
     private void complete(double t) {
         if (run != null && run.hasCurrent()) {
+            if (run.passing()) {
+                // the trajectory went through a pass target outside its tolerance: the mission says so
+                Goal missed = run.target().goal();
+                fail(String.format(Locale.ROOT, "%s (pass) missed by %.2f m", run.label(), Math.hypot(missed.pose()
+                        .x() - pose.x(), missed.pose().y() - pose.y())));
+                return;
+            }
             MissionTarget target = run.target();
             LOG.info("{} reached at ({}, {}, {})", run.label(), fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
             if (target.action() == MissionTarget.Action.WAIT) {
@@ -884,45 +912,39 @@ public final class ControlLoop {
     }
 
     /**
-     * Asks for the plan of the leg to the current target, from where the robot is now. A robot passing through a
-     * target follows the old trajectory until the plan comes (within a period or two); otherwise it stands.
+     * Asks for the plan of the next leg, from where the robot stands now through the pass targets ahead to the next
+     * target it stops on; the robot stands until the plan comes (within a period or two).
      */
     private void requestLeg(double t) {
-        goal = run.target().goal();
+        run.legStarted();
+        goal = run.legGoal();
         goalChecker = checkerFor(goal);
         legPlanFor = goal;
-        if (mode != Mode.FOLLOW && mode != Mode.SETTLE) {
-            setMode(Mode.WAIT, t);
-        }
+        setMode(Mode.WAIT, t);
         setMission(MissionState.RUNNING, run.progress(0), legDetail());
-        host.planRequested(new LoopHost.PlanRequest(pose, goal, echoes.points()));
+        host.planRequested(new LoopHost.PlanRequest(pose, via(), goal, echoes.points()));
     }
 
-    /**
-     * A pass target within its position tolerance is reached on the way: the next leg is asked for, and the old
-     * trajectory goes on until its plan comes.
-     */
-    private void passThrough(double t) {
-        if (legPlanFor != null || run == null || !run.passing()) {
+    /** A pass target the leg's trajectory goes through is reached once the robot is within its tolerance. */
+    private void passThrough() {
+        if (run == null || !run.passing()) {
             return;
         }
-        Pose2D target = goal.pose();
-        if (Math.hypot(target.x() - pose.x(), target.y() - pose.y()) <= goal.positionTolerance()) {
+        Goal pass = run.target().goal();
+        if (Math.hypot(pass.pose().x() - pose.x(), pass.pose().y() - pose.y()) <= pass.positionTolerance()) {
             LOG.info("{} passed at ({}, {})", run.label(), fmt(pose.x()), fmt(pose.y()));
-            targetReached(t);
+            run.reached();
+            setMission(MissionState.RUNNING, mission.progress(), legDetail());
         }
     }
 
-    /** @return the mission's progress for the fraction {@code leg} of the current leg done, percent */
+    /** @return the mission's progress for the fraction {@code leg} of the current leg's trajectory done, percent */
     private double legProgress(double leg) {
-        if (run == null) {
-            return 100 * leg;
-        }
-        return run.progress(legPlanFor == null ? leg : 0); // while the next leg's plan comes: the old leg is done
+        return run == null ? 100 * leg : run.progress(leg);
     }
 
     private String legDetail() {
-        Pose2D p = run.target().goal().pose();
+        Pose2D p = run.hasCurrent() ? run.target().goal().pose() : run.legGoal().pose();
         return run.label() + ": to (" + fmt(p.x()) + ", " + fmt(p.y()) + ")";
     }
 
@@ -938,7 +960,8 @@ public final class ControlLoop {
     private void startNextQueued(double t) {
         List<MissionTarget> next = queue.poll();
         if (next != null) {
-            startQueued(next, t);
+            startRun(next, t);
+            LOG.info("mission of {} targets started from the queue", run.size());
         }
     }
 

@@ -13,8 +13,19 @@ import sabot.model.geometry.Pose2D;
  */
 public interface LoopHost {
 
-    /** A plan the loop asks for: from where the robot stands to the mission's goal, around the echoes it remembers. */
-    record PlanRequest(Pose2D from, Goal goal, List<Point2D> obstacles) {
+    /**
+     * A plan the loop asks for: from where the robot stands through the mission's pass targets ({@code via}, in order)
+     * to its goal, around the echoes it remembers.
+     */
+    record PlanRequest(Pose2D from, List<Goal> via, Goal goal, List<Point2D> obstacles) {
+        public PlanRequest {
+            via = List.copyOf(via);
+        }
+
+        /** A plan straight to the goal. */
+        public PlanRequest(Pose2D from, Goal goal, List<Point2D> obstacles) {
+            this(from, List.of(), goal, obstacles);
+        }
     }
 
     /**

@@ -3,16 +3,20 @@ package sabot.onboard.motion.loop;
 import java.util.ArrayList;
 import java.util.List;
 
+import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionTarget;
 
 /**
  * A mission of several targets as the loop runs it: the targets in order, each with its state, and the one the robot
- * is on its way to. Plain bookkeeping: the loop decides when a target is reached.
+ * is on its way to. The robot drives in legs: each leg goes through the pass targets ahead (one trajectory, no stop)
+ * to the next target it stops on. Plain bookkeeping: the loop decides when a target is reached.
  */
 final class MissionRun {
 
     private final List<MissionTarget> targets;
     private int current;
+    /** The index of the first target of the leg being driven. */
+    private int legStart;
 
     /** @param targets the mission's targets in order, at least one */
     MissionRun(List<MissionTarget> targets) {
@@ -50,9 +54,38 @@ final class MissionRun {
         return targets.get(current);
     }
 
-    /** @return true when the robot drives through the current target into a next one (a pass that is not the last) */
+    /** @return the index of the target the current leg ends on: the next one that is not a pass, or the last */
+    int legEnd() {
+        for (int i = current; i < targets.size(); i++) {
+            if (targets.get(i).action() != MissionTarget.Action.PASS) {
+                return i;
+            }
+        }
+        return targets.size() - 1;
+    }
+
+    /** @return the goal the current leg ends on */
+    Goal legGoal() {
+        return targets.get(legEnd()).goal();
+    }
+
+    /** @return the pass targets the current leg still goes through, in order */
+    List<Goal> via() {
+        List<Goal> via = new ArrayList<>();
+        for (int i = current; i < legEnd(); i++) {
+            via.add(targets.get(i).goal());
+        }
+        return via;
+    }
+
+    /** A new leg starts from the current target (its progress counts from here). */
+    void legStarted() {
+        legStart = current;
+    }
+
+    /** @return true while the robot is on its way to a pass target of the leg (not the leg's end) */
     boolean passing() {
-        return hasCurrent() && target().action() == MissionTarget.Action.PASS && current + 1 < targets.size();
+        return hasCurrent() && current < legEnd();
     }
 
     /** The current target is reached: the next one (if any) becomes active. */
@@ -71,9 +104,17 @@ final class MissionRun {
         }
     }
 
-    /** @return the mission's progress, percent: the targets reached plus the fraction {@code leg} of the current one */
+    /**
+     * @return the mission's progress, percent: the targets reached, plus the fraction {@code leg} of the current leg's
+     *         trajectory (which covers its targets from {@link #legStarted()} to {@link #legEnd()})
+     */
     double progress(double leg) {
-        return Math.min(100, 100 * (current + Math.max(0, Math.min(1, leg))) / targets.size());
+        if (!hasCurrent()) {
+            return 100;
+        }
+        double f = Math.max(0, Math.min(1, leg));
+        double done = Math.max(current, legStart + f * (legEnd() + 1 - legStart));
+        return Math.min(100, 100 * done / targets.size());
     }
 
     /** @return "target k of n", 1-based, for the operator */

@@ -26,7 +26,34 @@ final class TrajectoryFitter {
      *         robot already stands on the goal's position
      */
     static ControlLoop.Plan fit(List<Point2D> path, Point2D start, Point2D goal, MotionLimits planning) {
-        List<Point2D> waypoints = thin(path, start, goal);
+        return spline(thin(path, start, goal), planning);
+    }
+
+    /**
+     * One trajectory through several planned segments, each ending exactly on its end point (the pass targets, then
+     * the goal): the robot drives through the ends without stopping.
+     *
+     * @param segments the planner's path of each segment, in order
+     * @param start    where the robot stands (exactly)
+     * @param ends     each segment's end (exactly), as many as segments
+     * @param planning the limits a trajectory is planned with
+     */
+    static ControlLoop.Plan fit(List<List<Point2D>> segments, Point2D start, List<Point2D> ends,
+            MotionLimits planning) {
+        if (segments.size() == 1) {
+            return fit(segments.get(0), start, ends.get(0), planning);
+        }
+        List<Point2D> waypoints = new ArrayList<>();
+        Point2D from = start;
+        for (int i = 0; i < segments.size(); i++) {
+            List<Point2D> part = thin(segments.get(i), from, ends.get(i));
+            waypoints.addAll(waypoints.isEmpty() ? part : part.subList(1, part.size()));
+            from = ends.get(i);
+        }
+        return spline(waypoints, planning);
+    }
+
+    private static ControlLoop.Plan spline(List<Point2D> waypoints, MotionLimits planning) {
         if (waypoints.size() < 2) {
             return new ControlLoop.Plan(null, 0, null);
         }

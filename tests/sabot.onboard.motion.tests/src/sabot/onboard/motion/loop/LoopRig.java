@@ -125,7 +125,7 @@ final class LoopRig implements LoopHost {
         List<PlanRequest> pending = new ArrayList<>(planRequests);
         planRequests.clear();
         for (PlanRequest r : pending) {
-            loop.replanned(r, loop.planPath(r.from(), r.goal(), r.obstacles()));
+            loop.replanned(r, loop.planPath(r.from(), r.via(), r.goal(), r.obstacles()));
         }
     }
 

@@ -37,8 +37,7 @@ class MissionLoopTest {
             Action.WAIT, 2), target(6, 7, Math.PI / 2, Action.STOP, 0), target(3.5, 7, Math.PI, Action.STOP, 0));
 
     private void start(List<MissionTarget> targets) {
-        Goal first = targets.get(0).goal();
-        loop().startMission(targets, loop().planPath(loop().snapshot().pose().pose(), first, List.of()));
+        loop().startMission(targets);
     }
 
     private ControlLoop loop() {
@@ -77,13 +76,15 @@ class MissionLoopTest {
             for (int k = 0; k < 4; k++) {
                 if (m.targets().get(k).state() == State.REACHED && before.targets().get(k).state() != State.REACHED) {
                     reachedOrder.add(k);
-                    if (k == 0) {
-                        passSpeed = Math.abs(s.velocity().twist().linear());
-                    }
                     if (k == 1) {
                         waitEnd = t;
                     }
                 }
+            }
+            Pose2D at = s.pose().pose();
+            if (Math.hypot(at.x() - 4, at.y() - 5) <= 0.1) {
+                passSpeed = Math.min(Double.isNaN(passSpeed) ? Double.MAX_VALUE : passSpeed, Math.abs(s.velocity()
+                        .twist().linear()));
             }
             if (m.detail().startsWith("waiting") && Double.isNaN(waitStart)) {
                 waitStart = t;
@@ -94,7 +95,7 @@ class MissionLoopTest {
         }
         assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
         assertEquals(List.of(0, 1, 2, 3), reachedOrder, "each target once, in order");
-        assertTrue(passSpeed > 0.1, "drove through the pass target at " + passSpeed + " m/s");
+        assertTrue(passSpeed > 0.2, "drove through the pass target, slowest " + passSpeed + " m/s within its tolerance");
         assertEquals(2.0, waitEnd - waitStart, 2 * PERIOD, "stood the wait target's 2 s");
         assertTrue(fastestWhileWaiting < 0.02, "still while waiting: " + fastestWhileWaiting + " m/s");
         Pose2D at = s.pose().pose();
@@ -172,6 +173,8 @@ class MissionLoopTest {
     void aNextLegThatCannotBePlannedFailsTheMissionWithItsTarget() {
         rig.run(0.1);
         start(List.of(target(3, 5, 0, Action.STOP, 0), target(8, 8, 0, Action.STOP, 0)));
+        assertEquals(3, rig.planRequests.get(0).goal().pose().x(), "the first leg is asked for");
+        rig.answerPlanRequests();
         ControlLoop.Snapshot s = rig.tick();
         for (int i = 0; i < 60 * 50 && rig.planRequests.isEmpty(); i++) {
             s = rig.tick();
