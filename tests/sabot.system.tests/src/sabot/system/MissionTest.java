@@ -95,7 +95,9 @@ class MissionTest extends RigTest {
                     + "%.2f m/s; stood %.2f s on the wait target; end %s%n", firstAt[0], firstAt[1], firstAt[2],
                     firstAt[3], slowestAtPass, stoodAtWait, end);
             assertTrue(slowestAtPass > 0.05, "drove through the pass target: slowest " + slowestAtPass + " m/s");
-            assertTrue(stoodAtWait >= WAIT - 0.1 && stoodAtWait <= WAIT + 2.0, "stood " + stoodAtWait
+            // the wait starts once the robot is at rest by its own measure (under 0.05 m/s, then braked): the truth's
+            // standstill (5 mm/s) comes up to 0.1 s (0.05 m/s at 0.5 m/s²) plus a period later
+            assertTrue(stoodAtWait >= WAIT - 0.15 && stoodAtWait <= WAIT + 1.0, "stood " + stoodAtWait
                     + " s on the wait target, " + WAIT + " s asked");
             assertTrue(within(end, FOUR.get(3)), "at the last target: " + end);
             assertEquals(0, end.contacts(), "contacts: " + end);
