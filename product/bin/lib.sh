@@ -222,6 +222,20 @@ declare -A SABOT_ROLE_GROUPS=([observer]=sabot-observers [operator]=sabot-operat
 # sabot-sim puts robot i (1-based) at +0.8 (i - 1) m in y from robot 1 (its --help)
 SABOT_RIG_ROBOT_SPACING_Y=0.8
 
+# The demo's start poses: robot 1 in the lab's east room facing east, robot i 0.8 (i - 1) m further in y (x 6.0,
+# y 2.8..6.0 for five robots), each more than 1.1 m from any wall.
+SABOT_DEMO_START=6.0,2.8,0.0
+
+# sabot_patrol_route I: robot I's patrol (./sabot demo --patrol, ./sabot bench patrol), targets for controlml.py
+# patrol: along its own lane y = 2.8 + 0.8 (I - 1) in the east room, west to x 4.3 (0.8 m from the partition) and
+# back east to x 7.0 (0.5 m short of the bench at x 7.5..9.5, y 5.0..5.5): a stop, a pass, a wait of 1 s, a stop.
+# Lanes 0.8 m apart never cross: robots that do not see each other over ControlML cannot meet.
+sabot_patrol_route() {
+    local y
+    y=$(awk -v i="$1" -v d="$SABOT_RIG_ROBOT_SPACING_Y" 'BEGIN { printf "%.2f", 2.8 + d * (i - 1) }')
+    echo "4.3,$y,3.1416,stop 5.3,$y,0,pass 7.0,$y,0,wait,1 6.0,$y,3.1416,stop"
+}
+
 # Builds what the rig runs (the onboard product, sabot-sim) before the first process starts.
 sabot_rig_build() {
     sabot_products onboard

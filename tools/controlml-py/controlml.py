@@ -26,6 +26,7 @@ import argparse
 import asyncio
 import datetime as dt
 import hashlib
+import json
 import logging
 import math
 import os
@@ -339,6 +340,47 @@ def status_line(pose: cm.Element | Failure, mission: cm.Element | Failure, prese
     return f"{p} | {m} | {pr}"
 
 
+PATROL_POLL_S = 0.5  # s between two gets of cm.mission while a patrol's round runs
+PATROL_RETRY_S = 5.0  # s a patrol waits after a failed round before it starts the next
+
+
+async def patrol(client, robot: str, targets: list[dict], args: argparse.Namespace) -> dict:
+    """Runs the mission of ``targets`` again each time it is done, for ``args.rounds`` rounds or ``args.duration``
+    seconds (whichever ends first; 0: no limit). A failed round is reported and the next starts after
+    PATROL_RETRY_S. One line per round; returns the summary (rounds, targets reached, per minute, failures)."""
+    start = time.monotonic()
+    rounds = failed = reached = 0
+    limit_s = args.duration if args.duration > 0 else float("inf")
+
+    def over() -> bool:
+        return (args.rounds and rounds + failed >= args.rounds) or time.monotonic() - start >= limit_s
+
+    while not over():
+        t0 = time.monotonic()
+        await client.request(robot, "set", "cm.mission", cm.mission(targets), args.timeout)
+        state, value = "running", {}
+        while state in ("running", "paused") and time.monotonic() - start < limit_s:
+            await asyncio.sleep(PATROL_POLL_S)
+            value = (await client.request(robot, "get", "cm.mission", None, args.timeout)).value
+            state = value.get("state")
+        current, _, _ = cm.mission_targets(value) if value else (0, 0, [])
+        if state == "done":
+            rounds += 1
+            reached += len(targets)
+            print(f"round {rounds} done: {len(targets)} targets in {time.monotonic() - t0:.1f} s", flush=True)
+        elif state in ("running", "paused"):
+            reached += current  # the time is up mid-round: the targets reached so far count
+            break
+        else:
+            failed += 1
+            reached += current
+            print(f"round failed ({state}): {value.get('detail', '')}", flush=True)
+            await asyncio.sleep(PATROL_RETRY_S)
+    minutes = (time.monotonic() - start) / 60
+    return {"robot": robot, "rounds": rounds, "rounds_failed": failed, "targets_reached": reached,
+            "minutes": round(minutes, 3), "targets_per_minute": round(reached / minutes, 2) if minutes else 0.0}
+
+
 def parse_target(text: str) -> dict:
     """A mission target from 'X,Y[,THETA[,ACTION[,WAIT]]]' (m, m, rad, pass|stop|wait|dock, s)."""
     parts = text.split(",")
@@ -404,6 +446,13 @@ async def run(args: argparse.Namespace) -> int:
             print(f"lease of {robot} for {seconds:g} s: " + ", ".join(f"{r} {hz:g} Hz" for r, hz in granted.items())
                   if seconds > 0 else f"no lease on {robot}: " + ", ".join(f"{r} {hz:g} Hz (base)"
                                                                           for r, hz in granted.items()))
+        elif args.command == "patrol":
+            targets = [parse_target(t) for t in args.targets]
+            if args.rounds < 0 or not (math.isfinite(args.duration) and args.duration >= 0):
+                raise Failure(2, "--rounds and --duration must be 0 or more")
+            summary = await patrol(client, robot, targets, args)
+            print(json.dumps(summary), flush=True)
+            return 0 if summary["rounds_failed"] == 0 else 1
         elif args.command == "watch":
             n = 0
             next_tick = time.monotonic()
@@ -469,6 +518,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     m.add_argument("targets", nargs="*", metavar="X,Y[,THETA[,ACTION[,WAIT]]]",
                    help="start/queue: targets in order (m, m, rad; action pass|stop|wait|dock, default stop; "
                         "wait s for 'wait')")
+    pa = sub.add_parser("patrol", help="run a mission of targets again each time it is done; prints a line per round "
+                        "and a JSON summary (targets reached per minute)")
+    pa.add_argument("robot")
+    pa.add_argument("targets", nargs="+", metavar="X,Y[,THETA[,ACTION[,WAIT]]]", help="the round's targets in order")
+    pa.add_argument("--rounds", type=int, default=0, help="rounds to run (default 0: until --duration or Ctrl-C)")
+    pa.add_argument("--duration", type=float, default=0.0, help="seconds to run (default 0: no limit)")
     w = sub.add_parser("watch", help="print pose, mission and presence once a second")
     w.add_argument("robot")
     w.add_argument("--count", type=int, default=0, help="lines to print (default: until interrupted)")
