@@ -19,6 +19,7 @@ import org.eclipse.equinox.app.IApplicationContext;
 import org.osgi.framework.Bundle;
 import org.osgi.framework.BundleContext;
 import org.osgi.framework.FrameworkUtil;
+import org.osgi.framework.InvalidSyntaxException;
 import org.osgi.framework.ServiceReference;
 import org.osgi.service.cm.Configuration;
 import org.osgi.service.cm.ConfigurationAdmin;
@@ -93,11 +94,19 @@ public final class OnboardApplication implements IApplication {
         context.applicationRunning();
 
         Set<String> running = ConcurrentHashMap.newKeySet();
+        List<ServiceReference<OnboardTask>> retried = new ArrayList<>();
         Object progress = new Object();
         ServiceTracker<OnboardTask, OnboardTask> tracker = new ServiceTracker<>(bc, OnboardTask.class, null) {
             @Override
             public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
                 OnboardTask task = super.addingService(reference);
+                if (task == null) {
+                    // its component failed to activate (the error is above, e.g. a board that did not answer in
+                    // time on a loaded machine): taken again by retryUntracked, each second until the start timeout
+                    LOG.warn("task {} registered but not activated; trying again", reference.getProperty(
+                            "component.name"));
+                    return null;
+                }
                 synchronized (progress) {
                     running.add(task.name());
                     progress.notifyAll();
@@ -117,7 +126,8 @@ public final class OnboardApplication implements IApplication {
         tracker.open();
         try {
             applyTaskConfigurations(configAdmin, catalog.keySet(), enabled);
-            List<String> missing = awaitTasks(enabled.keySet(), running, progress);
+            List<String> missing = awaitTasks(enabled.keySet(), running, progress, () -> retryUntracked(bc,
+                    tracker, retried, running, progress));
             if (!missing.isEmpty()) {
                 LOG.error("task(s) {} did not start within {} s; see the errors above", missing,
                         TASK_START_TIMEOUT_S);
@@ -134,7 +144,36 @@ public final class OnboardApplication implements IApplication {
                 deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);
             }
             tracker.close();
+            for (ServiceReference<OnboardTask> r : retried) {
+                bc.ungetService(r);
+            }
             LOG.info("Sabot Onboard stopped");
+        }
+    }
+
+    /**
+     * Gets each registered task the tracker does not hold (its activation failed when the tracker asked): SCR
+     * activates it again, and a task that now starts counts as running. The service stays got until the end.
+     */
+    private static void retryUntracked(BundleContext bc, ServiceTracker<OnboardTask, OnboardTask> tracker,
+            List<ServiceReference<OnboardTask>> retried, Set<String> running, Object progress) {
+        try {
+            Set<ServiceReference<OnboardTask>> tracked = tracker.getTracked().keySet();
+            for (ServiceReference<OnboardTask> r : bc.getServiceReferences(OnboardTask.class, null)) {
+                if (tracked.contains(r) || retried.contains(r)) {
+                    continue;
+                }
+                OnboardTask task = bc.getService(r);
+                if (task != null) {
+                    retried.add(r);
+                    LOG.info("task {} activated on a second attempt", task.name());
+                    synchronized (progress) {
+                        running.add(task.name());
+                    }
+                }
+            }
+        } catch (InvalidSyntaxException e) {
+            throw new IllegalStateException(e); // no filter
         }
     }
 
@@ -206,16 +245,19 @@ public final class OnboardApplication implements IApplication {
         }
     }
 
-    private static List<String> awaitTasks(Set<String> expected, Set<String> running, Object progress)
-            throws InterruptedException {
+    private static List<String> awaitTasks(Set<String> expected, Set<String> running, Object progress,
+            Runnable retry) throws InterruptedException {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TASK_START_TIMEOUT_S);
-        synchronized (progress) {
-            while (!running.containsAll(expected)) {
+        while (true) {
+            synchronized (progress) {
                 long left = deadline - System.nanoTime();
-                if (left <= 0) {
+                if (running.containsAll(expected) || left <= 0) {
                     break;
                 }
-                TimeUnit.NANOSECONDS.timedWait(progress, left);
+                TimeUnit.NANOSECONDS.timedWait(progress, Math.min(left, TimeUnit.SECONDS.toNanos(1)));
+            }
+            if (!running.containsAll(expected)) {
+                retry.run();
             }
         }
         List<String> missing = new ArrayList<>(expected);
