@@ -464,6 +464,17 @@ public final class WorkbenchBench {
             }
         }
         long[] fr = sorted(frames);
+        // a workbench whose connection dropped under the load paints nothing worth measuring: say so, not "no samples"
+        List<String> dropped = lines(probe.resolveSibling("workbench.log")).stream().filter(l -> l.contains(
+                "XMPP connection of") && l.contains("next attempt")).toList();
+        if (!dropped.isEmpty()) {
+            System.out.printf("[bench] the workbench's XMPP connection dropped %d time(s) during the run; first: %s%n",
+                    dropped.size(), dropped.get(0));
+        }
+        if (fr.length == 0) {
+            throw new IllegalStateException("the workbench painted no frame in the window" + (dropped.isEmpty() ? ""
+                    : ", after its XMPP connection dropped") + " (see " + probe.resolveSibling("workbench.log") + ")");
+        }
         long[] frCpu = sorted(frameCpu);
         long[] frCopy = sorted(frameCopy);
         long[] frQueued = sorted(frameQueued);
