@@ -91,6 +91,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
     /** The command that opens the mission editor: the view's toolbar and the map's context menu. */
     public static final String NEW_MISSION = "New Mission…";
+    /** The id of the toolbar's {@link #NEW_MISSION} action. */
+    public static final String NEW_MISSION_ID = "sabot.workbench.views.workspace.newMission";
     /** What the map says while a mission is edited (after the robot's name). */
     static final String MISSION_HINT = "new mission: click the targets in order (drag for the heading); right-click a "
             + "target for its action; Enter starts, Shift+Enter queues, Esc cancels";
@@ -172,6 +174,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 newMission();
             }
         };
+        newMissionAction.setId(NEW_MISSION_ID);
         newMissionAction.setToolTipText("A mission of several targets for the selected robot: click them on the map");
         newMissionAction.setEnabled(false);
         getViewSite().getActionBars().getToolBarManager().add(newMissionAction);

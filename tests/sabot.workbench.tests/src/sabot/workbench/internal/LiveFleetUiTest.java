@@ -842,9 +842,7 @@ class LiveFleetUiTest {
 
     private static void screenshot(String name) throws Exception {
         flush();
-        Path png = screenshots().resolve(name);
-        SabotWindowAdvisor.saveScreenshot(PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell(), png);
-        toDocs(png);
+        DocScreenshots.window(name);
     }
 
     /** Saves what the screen shows of one control (a view's area). */
@@ -869,15 +867,11 @@ class LiveFleetUiTest {
     }
 
     static Path screenshots() throws Exception {
-        return Files.createDirectories(Paths.get(System.getProperty("sabot.screenshots", "target/screenshots")));
+        return DocScreenshots.screenshots();
     }
 
     static void toDocs(Path png) throws Exception {
-        String root = System.getProperty("sabot.root");
-        if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
-            Path docs = Files.createDirectories(Paths.get(root, "docs", "images"));
-            Files.copy(png, docs.resolve(png.getFileName()), StandardCopyOption.REPLACE_EXISTING);
-        }
+        DocScreenshots.toDocs(png);
     }
 
     /** @return the operator's account on 127.0.0.1:{@code port}, trusting the private server's lab CA */

@@ -46,7 +46,7 @@ import sabot.workbench.views.WorkspaceView;
 
 /** The real workbench window, driven on the UI thread under Xvfb. The screenshot is taken first, untouched. */
 @TestMethodOrder(MethodOrderer.OrderAnnotation.class)
-class WorkbenchUiTest {
+public class WorkbenchUiTest {
 
     private static IWorkbenchWindow window() {
         IWorkbenchWindow w = PlatformUI.getWorkbench().getActiveWorkbenchWindow();
@@ -248,7 +248,7 @@ class WorkbenchUiTest {
     }
 
     /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */
-    static void mouse(Control c, int type, int x, int y) {
+    public static void mouse(Control c, int type, int x, int y) {
         Event e = new Event();
         e.x = x;
         e.y = y;

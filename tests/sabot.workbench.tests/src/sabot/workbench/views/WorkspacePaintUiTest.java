@@ -146,7 +146,7 @@ class WorkspacePaintUiTest {
     }
 
     /** @return what the canvas shows on the screen, read back from the X server */
-    private static ImageData screen(Canvas canvas) {
+    static ImageData screen(Canvas canvas) {
         Image shot = new Image(canvas.getDisplay(), canvas.getSize().x, canvas.getSize().y);
         try {
             GC gc = new GC(canvas);
