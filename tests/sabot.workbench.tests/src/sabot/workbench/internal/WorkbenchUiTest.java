@@ -247,6 +247,15 @@ public class WorkbenchUiTest {
                         .getToolTipText()).toList().toString());
     }
 
+    /** A key pressed on a control, as SWT delivers it to the control's listeners ({@code SWT.KeyDown}). */
+    public static void key(Control c, int keyCode, char character, int stateMask) {
+        Event e = new Event();
+        e.keyCode = keyCode;
+        e.character = character;
+        e.stateMask = stateMask;
+        c.notifyListeners(SWT.KeyDown, e);
+    }
+
     /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */
     public static void mouse(Control c, int type, int x, int y) {
         Event e = new Event();

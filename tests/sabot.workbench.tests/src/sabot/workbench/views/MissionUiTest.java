@@ -86,19 +86,19 @@ class MissionUiTest {
         drag(canvas, v, 1, 1, -30, 30);
         drag(canvas, v, 6, 1, 0, 0);
         assertEquals(5, workspace.missionEditor().targets().size());
-        key(canvas, SWT.DEL, '\u007f', 0); // the last target added is the selected one
-        key(canvas, 0, '1', 0);
-        key(canvas, 0, 'p', 0); // target 1: pass
-        key(canvas, 0, '4', 0);
-        key(canvas, 0, 'd', 0); // target 4: dock
-        key(canvas, 0, '2', 0);
+        WorkbenchUiTest.key(canvas, SWT.DEL, '\u007f', 0); // the last target added is the selected one
+        WorkbenchUiTest.key(canvas, 0, '1', 0);
+        WorkbenchUiTest.key(canvas, 0, 'p', 0); // target 1: pass
+        WorkbenchUiTest.key(canvas, 0, '4', 0);
+        WorkbenchUiTest.key(canvas, 0, 'd', 0); // target 4: dock
+        WorkbenchUiTest.key(canvas, 0, '2', 0);
         answerWaitDialog(canvas.getDisplay(), "Wait at target 2", "7.5");
-        key(canvas, 0, 'w', 0); // target 2: wait, asked in a dialog
+        WorkbenchUiTest.key(canvas, 0, 'w', 0); // target 2: wait, asked in a dialog
         canvas.redraw();
         drain();
         DocScreenshots.window("workbench-mission-editor.png");
 
-        key(canvas, SWT.CR, '\r', 0);
+        WorkbenchUiTest.key(canvas, SWT.CR, '\r', 0);
         assertFalse(workspace.editsMission(), "the editor stays open after Enter");
         waitFor(() -> fleet.missions.size() == 1, 10, () -> "no mission sent: " + workspace.lastMessage());
         DrivenFleet.SentMission sent = fleet.missions.get(0);
@@ -124,11 +124,11 @@ class MissionUiTest {
         Canvas canvas = workspace.canvas();
 
         workspace.newMission();
-        key(canvas, SWT.CR, '\r', 0); // nothing to start yet: said, and the editor stays
+        WorkbenchUiTest.key(canvas, SWT.CR, '\r', 0); // nothing to start yet: said, and the editor stays
         assertTrue(workspace.editsMission());
         assertEquals("driven-000: a mission needs a target: click one on the map", workspace.lastMessage());
         drag(canvas, v, 5, 3, 0, 0);
-        key(canvas, SWT.CR, '\r', SWT.SHIFT);
+        WorkbenchUiTest.key(canvas, SWT.CR, '\r', SWT.SHIFT);
         waitFor(() -> fleet.missions.size() == 1, 10, () -> "no mission sent: " + workspace.lastMessage());
         assertTrue(fleet.missions.get(0).queue(), "Shift+Enter did not queue the mission");
         double x = v.toMapX(sx(v, 5));
@@ -138,7 +138,7 @@ class MissionUiTest {
 
         workspace.newMission();
         drag(canvas, v, 6, 3, 0, 0);
-        key(canvas, SWT.ESC, '\u001b', 0);
+        WorkbenchUiTest.key(canvas, SWT.ESC, '\u001b', 0);
         assertFalse(workspace.editsMission(), "Esc left the editor open");
         assertEquals(DrivenFleet.jid(0), workspace.selectedRobot(), "Esc in the editor cleared the selection");
         drain();
@@ -224,14 +224,6 @@ class MissionUiTest {
     private static void click(Canvas c, int x, int y) {
         WorkbenchUiTest.mouse(c, SWT.MouseDown, x, y);
         WorkbenchUiTest.mouse(c, SWT.MouseUp, x, y);
-    }
-
-    private static void key(Control c, int keyCode, char character, int stateMask) {
-        Event e = new Event();
-        e.keyCode = keyCode;
-        e.character = character;
-        e.stateMask = stateMask;
-        c.notifyListeners(SWT.KeyDown, e);
     }
 
     /**
