@@ -26,15 +26,17 @@ final class MissionPainter {
     /** Radius of a target's disc, pixels: room for a two-digit number. */
     static final int MARKER_RADIUS_PX = 9;
     /** A reached target's fill (the planned path's green). */
-    static final RGB REACHED = new RGB(40, 160, 70);
+    static final RGB REACHED = RobotPainter.PATH;
     /** The active target's fill, and the mission being edited (the selection's and the goal gesture's orange). */
-    static final RGB ACTIVE = new RGB(230, 120, 20);
+    static final RGB ACTIVE = RobotPainter.SELECTED;
     /** A pending target's fill. */
     static final RGB PENDING = new RGB(255, 255, 255);
     /** A failed target's fill (the obstacles' red). */
-    static final RGB FAILED = new RGB(210, 40, 40);
+    static final RGB FAILED = RobotPainter.OBSTACLE;
     /** The route through the targets ahead of a robot. */
     static final RGB ROUTE = new RGB(0, 120, 150);
+    /** A target's ring. */
+    static final RGB RING = new RGB(40, 40, 40);
     /** Everything of a stale robot's mission. */
     static final RGB STALE = new RGB(170, 170, 170);
 
@@ -95,7 +97,7 @@ final class MissionPainter {
         };
         boolean ringed = highlighted || t.state() == MissionTarget.State.ACTIVE;
         Color fillColour = new Color(fill);
-        Color ringColour = new Color(editing && highlighted ? ACTIVE : new RGB(40, 40, 40));
+        Color ringColour = new Color(editing && highlighted ? ACTIVE : RING);
         try {
             gc.setForeground(routeColour);
             RobotPainter.drawHeading(gc, c.x, c.y, p.theta());

@@ -36,6 +36,12 @@ final class RobotPainter implements AutoCloseable {
     private static final double ELLIPSE_SCALE = Math.sqrt(5.991);
     /** A trail point closer than this (pixels, either axis) to the last one drawn is left out. */
     private static final int TRAIL_STEP_PX = 4;
+    /** The selected robot's body, and what the operator is about to send (the goal gesture, a mission edited). */
+    static final RGB SELECTED = new RGB(230, 120, 20);
+    /** The planned path and goal (a reached target too). */
+    static final RGB PATH = new RGB(40, 160, 70);
+    /** Sonar obstacles (a failed target too). */
+    static final RGB OBSTACLE = new RGB(210, 40, 40);
     /** Length of a goal's or a target's heading line, pixels. */
     static final int HEADING_PX = 22;
 
@@ -63,12 +69,12 @@ final class RobotPainter implements AutoCloseable {
     }
 
     void draw(GC gc, RobotState r, boolean stale, boolean selected, ViewKey view) {
-        RGB bodyRgb = stale ? new RGB(150, 150, 150) : selected ? new RGB(230, 120, 20) : new RGB(30, 110, 200);
+        RGB bodyRgb = stale ? new RGB(150, 150, 150) : selected ? SELECTED : new RGB(30, 110, 200);
         Color body = new Color(bodyRgb);
         Color fill = new Color(overWhite(bodyRgb, stale ? 90 : 160));
-        Color path = new Color(stale ? new RGB(190, 190, 190) : new RGB(40, 160, 70));
+        Color path = new Color(stale ? new RGB(190, 190, 190) : PATH);
         Color trail = new Color(new RGB(170, 140, 210));
-        Color obstacle = new Color(stale ? new RGB(180, 180, 180) : new RGB(210, 40, 40));
+        Color obstacle = new Color(stale ? new RGB(180, 180, 180) : OBSTACLE);
         try {
             Path trailPath = trailPath(gc, r, view);
             if (trailPath != null) {

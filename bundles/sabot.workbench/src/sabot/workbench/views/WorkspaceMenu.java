@@ -30,6 +30,7 @@ final class WorkspaceMenu {
             MissionEditor mission = view.missionEditor();
             if (mission != null) {
                 missionItems(m, view, mission, mission.targetAt(view.viewport(), at.x, at.y));
+                canvas.redraw(); // the target the menu acts on is ringed
                 return;
             }
             String hit = view.robotAt(at.x, at.y);

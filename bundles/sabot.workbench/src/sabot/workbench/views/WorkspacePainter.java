@@ -117,7 +117,7 @@ final class WorkspacePainter implements AutoCloseable {
                     .selected(), true, false);
         }
         if (overlay.gesture() != null) {
-            Color c = new Color(230, 120, 20);
+            Color c = new Color(RobotPainter.SELECTED);
             try {
                 RobotPainter.drawGoal(gc, viewport, overlay.gesture().pose(), c);
             } finally {

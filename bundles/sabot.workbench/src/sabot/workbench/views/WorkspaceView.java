@@ -39,6 +39,7 @@ import org.osgi.annotation.versioning.ConsumerType;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.MissionTarget;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetBinding;
@@ -230,8 +231,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
                 Goal target = gesture.release(new Point(e.x, e.y), mission.from(GoalGesture.positionOf(fleet.robot(
                         mission.robot()))));
                 if (!mission.add(target)) {
-                    show("a mission has at most " + sabot.controlml.payload.MissionStatus.MAX_TARGETS + " targets",
-                            true);
+                    show("a mission has at most " + MissionStatus.MAX_TARGETS + " targets", true);
                 }
             } else {
                 sendGoal(selected, gesture.release(new Point(e.x, e.y), GoalGesture.positionOf(fleet.robot(
@@ -280,6 +280,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
      */
     public void newMission() {
         if (selected == null || fleet.robot(selected) == null) {
+            return;
+        }
+        if (mission != null && mission.robot().equals(selected)) {
+            canvas.setFocus(); // editing it already: the targets stay
             return;
         }
         mission = new MissionEditor(selected);
