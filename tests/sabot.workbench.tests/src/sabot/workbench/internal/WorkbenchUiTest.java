@@ -275,7 +275,8 @@ public class WorkbenchUiTest {
         return colours.size();
     }
 
-    private static <T extends Control> T find(Control root, Class<T> type, java.util.function.Predicate<T> filter) {
+    /** @return the first control of {@code type} under {@code root} (itself included) that {@code filter} accepts */
+    public static <T extends Control> T find(Control root, Class<T> type, java.util.function.Predicate<T> filter) {
         for (T c : all(root, type)) {
             if (filter.test(c)) {
                 return c;

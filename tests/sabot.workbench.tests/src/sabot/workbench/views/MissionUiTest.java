@@ -8,7 +8,6 @@ import static sabot.workbench.views.FleetViewUpdatesUiTest.drain;
 import static sabot.workbench.views.FleetViewUpdatesUiTest.waitFor;
 
 import java.time.Instant;
-import java.util.ArrayList;
 import java.util.List;
 
 import org.eclipse.jface.action.ActionContributionItem;
@@ -19,8 +18,6 @@ import org.eclipse.swt.graphics.ImageData;
 import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.widgets.Button;
 import org.eclipse.swt.widgets.Canvas;
-import org.eclipse.swt.widgets.Composite;
-import org.eclipse.swt.widgets.Control;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.swt.widgets.Event;
 import org.eclipse.swt.widgets.Shell;
@@ -237,13 +234,9 @@ class MissionUiTest {
             public void run() {
                 for (Shell s : d.getShells()) {
                     if (title.equals(s.getText()) && s.isVisible()) {
-                        List<Control> all = new ArrayList<>();
-                        collect(s, all);
-                        all.stream().filter(Text.class::isInstance).map(Text.class::cast).findFirst().orElseThrow()
-                                .setText(seconds);
-                        all.stream().filter(b -> b instanceof Button button && IDialogConstants.OK_LABEL.equals(
-                                button.getText())).findFirst().orElseThrow().notifyListeners(SWT.Selection,
-                                        new Event());
+                        WorkbenchUiTest.find(s, Text.class, t -> true).setText(seconds);
+                        WorkbenchUiTest.find(s, Button.class, b -> IDialogConstants.OK_LABEL.equals(b.getText()))
+                                .notifyListeners(SWT.Selection, new Event());
                         return;
                     }
                 }
@@ -252,15 +245,6 @@ class MissionUiTest {
                 }
             }
         });
-    }
-
-    private static void collect(Control c, List<Control> all) {
-        all.add(c);
-        if (c instanceof Composite parent) {
-            for (Control child : parent.getChildren()) {
-                collect(child, all);
-            }
-        }
     }
 
     /**
