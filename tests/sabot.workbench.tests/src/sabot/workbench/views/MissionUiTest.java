@@ -8,6 +8,7 @@ import static sabot.workbench.views.FleetViewUpdatesUiTest.drain;
 import static sabot.workbench.views.FleetViewUpdatesUiTest.waitFor;
 
 import java.time.Instant;
+import java.util.Arrays;
 import java.util.List;
 
 import org.eclipse.jface.action.ActionContributionItem;
@@ -20,6 +21,8 @@ import org.eclipse.swt.widgets.Button;
 import org.eclipse.swt.widgets.Canvas;
 import org.eclipse.swt.widgets.Display;
 import org.eclipse.swt.widgets.Event;
+import org.eclipse.swt.widgets.Menu;
+import org.eclipse.swt.widgets.MenuItem;
 import org.eclipse.swt.widgets.Shell;
 import org.eclipse.swt.widgets.TableItem;
 import org.eclipse.swt.widgets.Text;
@@ -143,6 +146,28 @@ class MissionUiTest {
     }
 
     @Test
+    void theContextMenuSetsATargetsActionReordersAndRemovesTargetsAndQueues() {
+        WorkspaceView workspace = robotSelected();
+        MapViewport v = workspace.viewport();
+        Canvas canvas = workspace.canvas();
+        chooseFromMenu(workspace, v, 6, 6, "New Mission");
+        assertTrue(workspace.editsMission(), "no mission editor after the menu's New Mission…");
+        drag(canvas, v, 4, 2, 0, 0);
+        drag(canvas, v, 4, 4, 0, 0);
+        drag(canvas, v, 2, 4, 0, 0);
+        List<MissionTarget> clicked = workspace.missionEditor().targets();
+
+        chooseFromMenu(workspace, v, 4, 4, "Target 2: Pass"); // the menu acts on the target under the pointer
+        chooseFromMenu(workspace, v, 4, 4, "Move Earlier");
+        chooseFromMenu(workspace, v, 2, 4, "Remove Target 3");
+        chooseFromMenu(workspace, v, 6, 6, "Queue Mission"); // on empty floor: the mission's commands
+        waitFor(() -> fleet.missions.size() == 1, 10, () -> "no mission sent: " + workspace.lastMessage());
+        assertTrue(fleet.missions.get(0).queue(), "Queue Mission did not queue");
+        assertEquals(List.of(MissionTarget.pending(clicked.get(1).goal(), Action.PASS, 0), clicked.get(0)), fleet
+                .missions.get(0).targets());
+    }
+
+    @Test
     void aRobotsMissionIsDrawnWithItsTargetsProgressOnTheMapAndInFleet() throws Exception {
         WorkspaceView workspace = robotSelected();
         MapViewport v = workspace.viewport();
@@ -207,6 +232,29 @@ class MissionUiTest {
                 WorkspaceView.NEW_MISSION_ID);
         assertNotNull(item, "no " + WorkspaceView.NEW_MISSION + " on the Workspace's toolbar");
         return (ActionContributionItem) item;
+    }
+
+    /**
+     * Opens the Workspace's context menu with the pointer at map point (x, y), as a right-click there does, and
+     * chooses the item whose label (without mnemonics) starts with {@code label}.
+     */
+    private static void chooseFromMenu(WorkspaceView workspace, MapViewport v, double x, double y, String label) {
+        Canvas c = workspace.canvas();
+        c.getDisplay().setCursorLocation(c.toDisplay(sx(v, x), sy(v, y)));
+        Menu menu = c.getMenu();
+        menu.notifyListeners(SWT.Show, new Event()); // the menu manager fills it
+        try {
+            MenuItem item = Arrays.stream(menu.getItems()).filter(i -> i.getText().replace("&", "").startsWith(label))
+                    .findFirst().orElseThrow(() -> new AssertionError("no '" + label + "' in the menu: " + Arrays
+                            .stream(menu.getItems()).map(MenuItem::getText).toList()));
+            assertTrue(item.isEnabled(), label + " is disabled");
+            if ((item.getStyle() & SWT.RADIO) != 0) {
+                item.setSelection(true);
+            }
+            item.notifyListeners(SWT.Selection, new Event());
+        } finally {
+            menu.notifyListeners(SWT.Hide, new Event());
+        }
     }
 
     /** Presses at map point (x, y), drags by (dx, dy) pixels through a move, and releases: one target. */
