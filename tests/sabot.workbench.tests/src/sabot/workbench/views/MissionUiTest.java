@@ -179,7 +179,7 @@ class MissionUiTest {
                 MissionTarget.pending(goal(1, 4, -Math.PI / 2), Action.DOCK, 0));
         MissionStatus mission = new MissionStatus(MissionState.RUNNING, false, 37, "", targets, 2, 1);
         // on its way from target 2 to target 3
-        fleet.put(fleet.get(DrivenFleet.jid(0)).withPose(DrivenFleet.pose(4.2, 5.3, 2.36, at), at, DrivenFleet.receipt(
+        fleet.put(fleet.get(DrivenFleet.jid(0)).withPresence(Availability.BUSY, "").withPose(DrivenFleet.pose(4.2, 5.3, 2.36, at), at, DrivenFleet.receipt(
                 at)).withMission(mission, at));
         workspace.show(null, false); // the previous test's answer off the map
         drain();
