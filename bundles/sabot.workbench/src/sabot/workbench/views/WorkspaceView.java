@@ -41,12 +41,12 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.MissionTarget;
+import sabot.model.geometry.Point2D;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.internal.FleetJobs;
-import sabot.model.geometry.Point2D;
 import sabot.workbench.map.MapViewport;
 
 /**
@@ -159,11 +159,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             }
         });
         canvas.addListener(SWT.KeyDown, e -> {
-            if (mission != null && missionKey(e.keyCode, e.character, e.stateMask)) {
-                // the editor's key
-            } else if (e.keyCode == SWT.ESC) {
+            boolean editorKey = mission != null && missionKey(e.keyCode, e.character, e.stateMask);
+            if (!editorKey && e.keyCode == SWT.ESC) {
                 select(null, true);
-            } else {
+            } else if (!editorKey) {
                 navigation.key(e);
             }
             canvas.redraw();
