@@ -57,6 +57,11 @@ class MissionUiTest {
 
     private DrivenFleet fleet;
 
+    /**
+     * Leaves the workbench as the next test expects it: no editor, no selection, no driven fleet, and the keyboard's
+     * focus in the Workspace (a dialog that closes leaves none where no window manager gives it back, and the tests
+     * that type a key binding send it to the focus control).
+     */
     @AfterEach
     void closeFleet() {
         WorkspaceView workspace = WorkspacePaintUiTest.workspace();
@@ -66,6 +71,11 @@ class MissionUiTest {
             fleet.close();
             drain();
         }
+        Display d = workspace.canvas().getDisplay();
+        workspace.getSite().getShell().forceActive();
+        workspace.setFocus();
+        waitFor(() -> d.getFocusControl() == workspace.canvas(), 5, () -> "the Workspace has no focus: "
+                + d.getFocusControl());
     }
 
     @Test
@@ -190,9 +200,12 @@ class MissionUiTest {
         waitFor(() -> text.equals(row(fleetView, DrivenFleet.jid(0)).getText(3)), 5, () -> "Fleet's mission column: "
                 + row(fleetView, DrivenFleet.jid(0)).getText(3));
 
-        workspace.canvas().redraw();
-        drain();
+        boolean[] drawn = { false };
+        workspace.whenDrawn(r -> r.mission() != null && r.mission().targets().size() == targets.size(), () -> drawn[0]
+                = true);
+        waitFor(() -> drawn[0], 5, () -> "the robot's mission never drawn");
         ImageData screen = WorkspacePaintUiTest.screen(workspace.canvas());
+        WorkspacePaintUiTest.save(screen, "target/mission-progress-canvas.png"); // to judge a failure by
         // each target's disc, left of its number: the reached ones green, the active one orange, the pending white
         RGB[] fills = { MissionPainter.REACHED, MissionPainter.REACHED, MissionPainter.ACTIVE, MissionPainter.PENDING };
         for (int i = 0; i < targets.size(); i++) {

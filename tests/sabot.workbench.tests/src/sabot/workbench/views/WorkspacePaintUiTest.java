@@ -139,7 +139,7 @@ class WorkspacePaintUiTest {
         return best;
     }
 
-    private static void save(ImageData data, String png) {
+    static void save(ImageData data, String png) {
         org.eclipse.swt.graphics.ImageLoader loader = new org.eclipse.swt.graphics.ImageLoader();
         loader.data = new ImageData[] { data };
         loader.save(png, org.eclipse.swt.SWT.IMAGE_PNG);
