@@ -14,6 +14,7 @@ import sabot.controlml.Resources;
 import sabot.controlml.payload.FileQuery;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.TelemetryRates;
 import sabot.fleet.ArchivedCommand;
@@ -96,6 +97,30 @@ public interface FleetState {
         return CompletableFuture.failedFuture(new FleetCommandException(
                 sabot.controlml.ControlMlCondition.UNSUPPORTED_OPERATION,
                 "this workbench's ControlML plug-in cannot queue commands for offline robots"));
+    }
+
+    /**
+     * Sends the robot a mission of several targets ({@code cm.mission} set with targets, docs/CONTROLML.md section 4):
+     * with {@code queue} false it starts now, replacing the mission that runs (the robot's queue stays); with
+     * {@code queue} true it waits in the robot's queue after the missions there (and starts at once when the robot is
+     * idle). Its progress comes with the robot's telemetry: {@link RobotState#mission()} carries the targets with their
+     * states, the index of the current one and the number of missions queued. The planned path of each leg is fetched
+     * as the robot starts it. A default for providers written before this method: it refuses with
+     * {@link ControlMlCondition#UNSUPPORTED_OPERATION}.
+     *
+     * @param robot   bare JID
+     * @param targets the targets in order, 1..{@link sabot.controlml.payload.MissionStatus#MAX_TARGETS} (poses in the
+     *                map frame, m, m, rad; tolerances m, rad; each its action and wait in s); their states are not
+     *                sent (a new mission's targets are pending)
+     * @param queue   true: after the robot's other missions; false: now
+     * @return completes when the robot took the mission (not when it is done); exceptionally with a
+     *         {@link FleetCommandException}: the robot's refusal, {@code invalid-value} for no targets or too many,
+     *         not connected, robot offline, timeout
+     * @since 0.6
+     */
+    default CompletableFuture<Void> startMission(String robot, List<MissionTarget> targets, boolean queue) {
+        return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.UNSUPPORTED_OPERATION,
+                "this workbench's ControlML plug-in cannot send missions of several targets"));
     }
 
     /** @return the commands waiting for offline robots ({@link #goToWhenOnline}), oldest first; empty when none */

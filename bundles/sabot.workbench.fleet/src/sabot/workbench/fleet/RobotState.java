@@ -25,8 +25,9 @@ import sabot.model.geometry.Twist2D;
  * @param pose          the last pose estimate ({@code cm.position}: x, y in m, theta in rad, covariance in m&sup2;,
  *                      m&middot;rad, rad&sup2;), or null
  * @param velocity      the last executed twist ({@code cm.velocity}: m/s, rad/s), or null
- * @param mission       the last mission status ({@code cm.mission}: state, progress in percent 0..100, detail), or
- *                      null
+ * @param mission       the last mission status ({@code cm.mission}: state, progress in percent 0..100, detail; for
+ *                      a mission of several targets also the targets with their states, the index of the current one
+ *                      and the missions queued after it), or null
  * @param path          the planned trajectory of the current or last mission ({@code cm.trajectory}), or null
  * @param obstacles     what the sonar board sees ({@code cm.obstacles}: discs in m), or null
  * @param goal          the goal of the current or last mission ({@code cm.goal}), or null

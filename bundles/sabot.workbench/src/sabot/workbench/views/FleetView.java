@@ -49,7 +49,8 @@ import sabot.workbench.fleet.RobotState;
 
 /**
  * The fleet: one live row per robot of the {@link sabot.workbench.fleet.FleetState} with its presence level and
- * reason, pose, mission state and progress, and the age of its last telemetry (with how late its poses arrive when
+ * reason, pose, mission state and progress (for a mission of several targets the target it is on and the missions
+ * queued, {@link #mission}), and the age of its last telemetry (with how late its poses arrive when
  * they lag, {@link RobotState#isLate()}); stale rows are grey. Click a header to
  * sort by it (again to reverse); the selection is the workbench's (the workspace map follows it); double-click centres
  * the map on the robot. The filter field above the table keeps the rows whose robot name or JID, presence (level and
@@ -148,11 +149,27 @@ public final class FleetView extends ViewPart {
                 .pose().pose().y(), Math.toDegrees(r.pose().pose().theta()));
     }
 
-    private static String mission(MissionStatus m) {
+    /**
+     * @return a mission for its column: {@code running 40 %}, and for a mission of several targets the one the robot
+     *         is on ({@code running · target 2/4 · 37 %}, once all are reached {@code done · 4/4 targets · 100 %}), the
+     *         missions queued after it ({@code · 1 queued}), then the detail
+     */
+    static String mission(MissionStatus m) {
         if (m == null) {
             return "–";
         }
-        String s = String.format(Locale.ROOT, "%s %.0f %%", m.state().code(), m.progress());
+        String s;
+        int count = m.targets().size();
+        if (count == 0) {
+            s = String.format(Locale.ROOT, "%s %.0f %%", m.state().code(), m.progress());
+        } else {
+            String target = m.current() < count ? "target " + (m.current() + 1) + "/" + count : count + "/" + count
+                    + " targets";
+            s = String.format(Locale.ROOT, "%s · %s · %.0f %%", m.state().code(), target, m.progress());
+        }
+        if (m.queued() > 0) {
+            s += " · " + m.queued() + " queued";
+        }
         return (m.maintenance() ? "maintenance, " : "") + (m.detail().isEmpty() ? s : s + " — " + m.detail());
     }
 

@@ -15,6 +15,7 @@ import org.eclipse.swt.graphics.Path;
 import org.eclipse.swt.graphics.RGB;
 import org.eclipse.swt.graphics.TextLayout;
 
+import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.TrajectoryPoint;
@@ -24,9 +25,10 @@ import sabot.workbench.fleet.RobotState;
 import sabot.workbench.map.MapViewport;
 
 /**
- * Draws one robot of the fleet on the Workspace's frame: trail, planned path, goal, sonar obstacles, footprint with
- * heading, 95 % covariance ellipse and label. Keeps, per robot, what is costly to make again each frame (the label's
- * layout, the trail's path) and disposes of it when the robot is gone or at {@link #close}.
+ * Draws one robot of the fleet on the Workspace's frame: trail, planned path, goal (or a mission's targets and route,
+ * {@link MissionPainter}), sonar obstacles, footprint with heading, 95 % covariance ellipse and label. Keeps, per
+ * robot, what is costly to make again each frame (the label's layout, the trail's path) and disposes of it when the
+ * robot is gone or at {@link #close}.
  */
 final class RobotPainter implements AutoCloseable {
 
@@ -34,6 +36,14 @@ final class RobotPainter implements AutoCloseable {
     private static final double ELLIPSE_SCALE = Math.sqrt(5.991);
     /** A trail point closer than this (pixels, either axis) to the last one drawn is left out. */
     private static final int TRAIL_STEP_PX = 4;
+    /** The selected robot's body, and what the operator is about to send (the goal gesture, a mission edited). */
+    static final RGB SELECTED = new RGB(230, 120, 20);
+    /** The planned path and goal (a reached target too). */
+    static final RGB PATH = new RGB(40, 160, 70);
+    /** Sonar obstacles (a failed target too). */
+    static final RGB OBSTACLE = new RGB(210, 40, 40);
+    /** Length of a goal's or a target's heading line, pixels. */
+    static final int HEADING_PX = 22;
 
     private final MapViewport viewport;
     /** Each robot's label laid out, by JID: {@link #drawLabel}. */
@@ -59,12 +69,12 @@ final class RobotPainter implements AutoCloseable {
     }
 
     void draw(GC gc, RobotState r, boolean stale, boolean selected, ViewKey view) {
-        RGB bodyRgb = stale ? new RGB(150, 150, 150) : selected ? new RGB(230, 120, 20) : new RGB(30, 110, 200);
+        RGB bodyRgb = stale ? new RGB(150, 150, 150) : selected ? SELECTED : new RGB(30, 110, 200);
         Color body = new Color(bodyRgb);
         Color fill = new Color(overWhite(bodyRgb, stale ? 90 : 160));
-        Color path = new Color(stale ? new RGB(190, 190, 190) : new RGB(40, 160, 70));
+        Color path = new Color(stale ? new RGB(190, 190, 190) : PATH);
         Color trail = new Color(new RGB(170, 140, 210));
-        Color obstacle = new Color(stale ? new RGB(180, 180, 180) : new RGB(210, 40, 40));
+        Color obstacle = new Color(stale ? new RGB(180, 180, 180) : OBSTACLE);
         try {
             Path trailPath = trailPath(gc, r, view);
             if (trailPath != null) {
@@ -83,7 +93,12 @@ final class RobotPainter implements AutoCloseable {
                 gc.drawPolyline(toScreen(pts));
                 gc.setLineStyle(SWT.LINE_SOLID);
             }
-            if (r.goal() != null && r.mission() != null && r.mission().state().isActive()) {
+            MissionStatus mission = r.mission();
+            boolean active = mission != null && mission.state().isActive();
+            if (active && !mission.targets().isEmpty()) {
+                // a mission of several targets: its targets (the goal is the active one's) and the route ahead
+                MissionPainter.draw(gc, viewport, GoalGesture.positionOf(r), mission.targets(), -1, false, stale);
+            } else if (r.goal() != null && active) {
                 drawGoal(gc, viewport, r.goal().pose(), path);
             }
             if (r.obstacles() != null) {
@@ -155,9 +170,14 @@ final class RobotPainter implements AutoCloseable {
         gc.setLineWidth(3);
         gc.drawLine(gx - 7, gy - 7, gx + 7, gy + 7);
         gc.drawLine(gx - 7, gy + 7, gx + 7, gy - 7);
+        drawHeading(gc, gx, gy, g.theta());
+    }
+
+    /** Draws a heading: a line from a pixel along {@code theta} (rad, map frame), in the foreground colour. */
+    static void drawHeading(GC gc, int x, int y, double theta) {
         gc.setLineWidth(2);
-        gc.drawLine(gx, gy, gx + (int) Math.round(22 * Math.cos(g.theta())), gy - (int) Math.round(22 * Math.sin(g
-                .theta())));
+        gc.drawLine(x, y, x + (int) Math.round(HEADING_PX * Math.cos(theta)), y - (int) Math.round(HEADING_PX * Math
+                .sin(theta)));
         gc.setLineWidth(1);
     }
 

@@ -14,15 +14,16 @@ import org.eclipse.swt.widgets.Display;
 
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
+import sabot.model.geometry.Point2D;
 import sabot.workbench.fleet.RobotState;
 import sabot.workbench.map.MapViewport;
 
 /**
  * Paints the Workspace's frames: the static layers ({@link MapLayers}), every robot ({@link RobotPainter}), then the
- * overlays (the goal gesture, the scale bar, the pointer's coordinates, the last command's answer). A frame is drawn
- * into an image in the workbench's memory, the canvas's size, so that cairo rasterizes in this process and the X
- * server receives one image a paint instead of every shape to rasterize in software (Xvfb: as much CPU again as the
- * paint; docs/WORKBENCH.md).
+ * overlays (the mission being edited, the goal gesture, the scale bar, the pointer's coordinates, the last command's
+ * answer). A frame is drawn into an image in the workbench's memory, the canvas's size, so that cairo rasterizes in
+ * this process and the X server receives one image a paint instead of every shape to rasterize in software (Xvfb: as
+ * much CPU again as the paint; docs/WORKBENCH.md).
  */
 final class WorkspacePainter implements AutoCloseable {
 
@@ -41,8 +42,11 @@ final class WorkspacePainter implements AutoCloseable {
      * @param pointer  the pointer on the canvas, or null
      * @param message  the last command's answer, or null
      * @param error    true when the message is a refusal or failure
+     * @param mission  the mission being edited, or null
+     * @param robotAt  where the edited mission's robot is (its route starts there), or null
      */
-    record Overlay(String selected, Goal gesture, Point pointer, String message, boolean error) {
+    record Overlay(String selected, Goal gesture, Point pointer, String message, boolean error, MissionEditor mission,
+            Point2D robotAt) {
     }
 
     /** The robots a frame drew, and those of them drawn live on the map. */
@@ -108,8 +112,12 @@ final class WorkspacePainter implements AutoCloseable {
             }
         }
         robots.forgetAllBut(fleet);
+        if (overlay.mission() != null) {
+            MissionPainter.draw(gc, viewport, overlay.robotAt(), overlay.mission().targets(), overlay.mission()
+                    .selected(), true, false);
+        }
         if (overlay.gesture() != null) {
-            Color c = new Color(230, 120, 20);
+            Color c = new Color(RobotPainter.SELECTED);
             try {
                 RobotPainter.drawGoal(gc, viewport, overlay.gesture().pose(), c);
             } finally {

@@ -10,7 +10,10 @@ import java.util.Locale;
 import java.util.Map;
 import java.util.Objects;
 
+import org.eclipse.jface.action.Action;
 import org.eclipse.jface.action.IStatusLineManager;
+import org.eclipse.jface.dialogs.InputDialog;
+import org.eclipse.jface.window.Window;
 import org.eclipse.jface.viewers.ISelection;
 import org.eclipse.jface.viewers.ISelectionChangedListener;
 import org.eclipse.jface.viewers.ISelectionProvider;
@@ -36,6 +39,9 @@ import org.osgi.annotation.versioning.ConsumerType;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
+import sabot.model.geometry.Point2D;
 import sabot.workbench.fleet.Availability;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
@@ -53,6 +59,12 @@ import sabot.workbench.map.MapViewport;
  * the goal (a click without drag: heading from the robot towards the target); right-click for go here, stop, centre.
  * Drag with no robot selected, with the middle button or with Ctrl to pan; wheel zooms at the pointer; double-click
  * empty floor or Home shows the default area; Esc clears the selection.
+ * <p>
+ * A mission of several targets ({@link #newMission}: the view's toolbar or the context menu, a robot selected): each
+ * press adds a target, a drag gives its heading (the goal gesture's); the context menu (or the keys P, S, W, D on the
+ * selected target, 1..9 to select one, Delete to remove it) sets each target's action; Enter starts the mission,
+ * Shift+Enter queues it, Esc cancels ({@link MissionEditor}). A robot's mission is drawn with its targets' progress
+ * ({@link MissionPainter}).
  * <p>
  * The view holds the operator's state (selection, pointer, last answer) and the commands; {@link WorkspacePainter}
  * draws, {@link GoalGesture} and {@link MapNavigation} read the mouse and keys; every paint is told to the
@@ -78,6 +90,13 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
     public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
+    /** The command that opens the mission editor: the view's toolbar and the map's context menu. */
+    public static final String NEW_MISSION = "New Mission…";
+    /** The id of the toolbar's {@link #NEW_MISSION} action. */
+    public static final String NEW_MISSION_ID = "sabot.workbench.views.workspace.newMission";
+    /** What the map says while a mission is edited (after the robot's name). */
+    static final String MISSION_HINT = "new mission: click the targets in order (drag for the heading); right-click a "
+            + "target for its action; Enter starts, Shift+Enter queues, Esc cancels";
     /** Trail points that make a running mission visible in a picture: 4 spacings, at least 20 cm driven. */
     static final int MISSION_TRAIL_POINTS = 5;
 
@@ -101,6 +120,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private boolean messageIsError;
     private String mapFrom;
     private MapFetch mapFetch;
+    /** The mission being edited, or null (UI thread). */
+    private MissionEditor mission;
+    private Action newMissionAction;
     private final ISelectionListener otherViews = this::otherViewSelected;
 
     @Override
@@ -131,15 +153,31 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             pointer = new Point(e.x, e.y);
             canvas.redraw();
         });
+        canvas.addListener(SWT.Traverse, e -> {
+            if (mission != null && (e.detail == SWT.TRAVERSE_RETURN || e.detail == SWT.TRAVERSE_ESCAPE)) {
+                e.doit = false; // Enter and Esc are the editor's keys, not the window's default button or close
+            }
+        });
         canvas.addListener(SWT.KeyDown, e -> {
-            if (e.keyCode == SWT.ESC) {
+            boolean editorKey = mission != null && missionKey(e.keyCode, e.character, e.stateMask);
+            if (!editorKey && e.keyCode == SWT.ESC) {
                 select(null, true);
-            } else {
+            } else if (!editorKey) {
                 navigation.key(e);
             }
             canvas.redraw();
         });
         WorkspaceMenu.install(this, canvas, gesture);
+        newMissionAction = new Action(NEW_MISSION) {
+            @Override
+            public void run() {
+                newMission();
+            }
+        };
+        newMissionAction.setId(NEW_MISSION_ID);
+        newMissionAction.setToolTipText("A mission of several targets for the selected robot: click them on the map");
+        newMissionAction.setEnabled(false);
+        getViewSite().getActionBars().getToolBarManager().add(newMissionAction);
         getSite().getService(IContextService.class).activateContext(FLEET_CONTEXT);
         getSite().setSelectionProvider(this);
         getSite().getPage().addSelectionListener(otherViews);
@@ -169,6 +207,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (e.button != 1) {
             return;
         }
+        if (mission != null) {
+            gesture.press(new Point(e.x, e.y)); // a target: the release gives its heading
+            return;
+        }
         String hit = robotAt(e.x, e.y);
         if (hit != null) {
             select(hit, true);
@@ -184,7 +226,16 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private void released(MouseEvent e) {
         navigation.endPan();
         if (gesture.pressed() && e.button == 1) {
-            sendGoal(selected, gesture.release(new Point(e.x, e.y), fleet.robot(selected)));
+            if (mission != null) {
+                Goal target = gesture.release(new Point(e.x, e.y), mission.from(GoalGesture.positionOf(fleet.robot(
+                        mission.robot()))));
+                if (!mission.add(target)) {
+                    show("a mission has at most " + MissionStatus.MAX_TARGETS + " targets", true);
+                }
+            } else {
+                sendGoal(selected, gesture.release(new Point(e.x, e.y), GoalGesture.positionOf(fleet.robot(
+                        selected))));
+            }
         }
         canvas.redraw();
     }
@@ -218,6 +269,140 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             return;
         }
         FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.goTo(robot, goal), this::show);
+    }
+
+    // ---------------------------------------------------------------------------------------------- mission editor
+
+    /**
+     * Opens the mission editor for the selected robot (nothing without one): from now on each press on the map adds a
+     * target, until the mission is started, queued or cancelled.
+     */
+    public void newMission() {
+        if (selected == null || fleet.robot(selected) == null) {
+            return;
+        }
+        if (mission != null && mission.robot().equals(selected)) {
+            canvas.setFocus(); // editing it already: the targets stay
+            return;
+        }
+        mission = new MissionEditor(selected);
+        show(name(selected) + ": " + MISSION_HINT, false);
+        canvas.setFocus();
+    }
+
+    /** @return true while a mission is being edited */
+    public boolean editsMission() {
+        return mission != null;
+    }
+
+    /** @return the mission being edited, or null */
+    MissionEditor missionEditor() {
+        return mission;
+    }
+
+    /**
+     * Sends the mission being edited to its robot ({@code FleetState.startMission}) in a job and closes the editor; the
+     * answer appears in the status line and on the map, as a goal's. Without a target it says so and keeps editing.
+     *
+     * @param queue true: after the robot's other missions (Shift+Enter); false: now (Enter)
+     */
+    public void startMission(boolean queue) {
+        MissionEditor m = mission;
+        if (m == null) {
+            return;
+        }
+        List<MissionTarget> targets = m.targets();
+        if (targets.isEmpty()) {
+            show(name(m.robot()) + ": a mission needs a target: click one on the map", true);
+            return;
+        }
+        mission = null;
+        String what = String.format(Locale.ROOT, "%s: %s a mission of %d target(s)", name(m.robot()), queue ? "queue"
+                : "start", targets.size());
+        FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.startMission(m.robot(), targets, queue),
+                this::show);
+        canvas.redraw();
+    }
+
+    /** Closes the mission editor without sending anything. */
+    public void cancelMission() {
+        if (mission != null) {
+            String robot = mission.robot();
+            mission = null;
+            show(name(robot) + ": new mission cancelled", false);
+        }
+    }
+
+    /**
+     * Sets the action of the edited mission's target {@code i}; for {@link MissionTarget.Action#WAIT} it asks how long
+     * (a dialog, {@link MissionEditor#DEFAULT_WAIT_S} proposed; cancelled: nothing changes).
+     */
+    void chooseAction(int i, MissionTarget.Action action) {
+        if (mission == null || i < 0 || i >= mission.targets().size()) {
+            return;
+        }
+        double wait = 0;
+        if (action == MissionTarget.Action.WAIT) {
+            MissionTarget t = mission.targets().get(i);
+            InputDialog ask = new InputDialog(canvas.getShell(), "Wait at target " + (i + 1), "Seconds the robot "
+                    + "stands at target " + (i + 1) + " (above 0, at most " + MissionEditor.seconds(
+                            MissionTarget.MAX_WAIT_S) + "):", MissionEditor.seconds(t.dwell() > 0 ? t.dwell()
+                                    : MissionEditor.DEFAULT_WAIT_S), WorkspaceView::waitError);
+            if (ask.open() != Window.OK) {
+                return;
+            }
+            wait = Double.parseDouble(ask.getValue().strip());
+        }
+        mission.select(i);
+        mission.setAction(i, action, wait);
+        canvas.redraw();
+    }
+
+    /** @return why a typed wait is not one, or null when it is (seconds, 0 < s ≤ the longest wait) */
+    static String waitError(String text) {
+        try {
+            double s = Double.parseDouble(text.strip());
+            return s > 0 && s <= MissionTarget.MAX_WAIT_S ? null : "a wait is above 0 s and at most "
+                    + MissionEditor.seconds(MissionTarget.MAX_WAIT_S) + " s";
+        } catch (NumberFormatException e) {
+            return "seconds, e.g. " + MissionEditor.seconds(MissionEditor.DEFAULT_WAIT_S);
+        }
+    }
+
+    /**
+     * The mission editor's keys: Enter starts (Shift+Enter queues), Esc cancels, Delete or Backspace removes the
+     * selected target, 1..9 select a target, P, S, W, D set the selected target's action.
+     *
+     * @return true when the key was the editor's
+     */
+    private boolean missionKey(int keyCode, char character, int stateMask) {
+        int i = mission.selected();
+        switch (keyCode) {
+            case SWT.CR, SWT.KEYPAD_CR -> startMission((stateMask & SWT.SHIFT) != 0);
+            case SWT.ESC -> cancelMission();
+            case SWT.DEL, SWT.BS -> {
+                if (i >= 0) {
+                    mission.remove(i);
+                }
+            }
+            default -> {
+                MissionTarget.Action action = switch (Character.toLowerCase(character)) {
+                    case 'p' -> MissionTarget.Action.PASS;
+                    case 's' -> MissionTarget.Action.STOP;
+                    case 'w' -> MissionTarget.Action.WAIT;
+                    case 'd' -> MissionTarget.Action.DOCK;
+                    default -> null;
+                };
+                if (action != null) {
+                    chooseAction(i, action);
+                } else if (character >= '1' && character <= '9') {
+                    mission.select(character - '1');
+                } else {
+                    return false;
+                }
+            }
+        }
+        return true;
     }
 
     /** Stops a robot in a job. */
@@ -292,6 +477,12 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             return;
         }
         selected = jid;
+        if (mission != null && !mission.robot().equals(jid)) {
+            cancelMission(); // the mission was for the robot that was selected
+        }
+        if (newMissionAction != null) {
+            newMissionAction.setEnabled(jid != null);
+        }
         if (announce) {
             SelectionChangedEvent event = new SelectionChangedEvent(this, getSelection());
             for (ISelectionChangedListener l : List.copyOf(selectionListeners)) {
@@ -469,9 +660,10 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         for (WorkspacePaintObserver o : told) {
             o.paintStarting();
         }
+        Point2D robotAt = GoalGesture.positionOf(fleet.robot(selected));
         WorkspacePainter.Drawn drawn = painter.draw(d, canvas.getFont(), area, fleet.robots(),
-                new WorkspacePainter.Overlay(selected, gesture.preview(pointer, fleet.robot(selected)), pointer,
-                        message, messageIsError));
+                new WorkspacePainter.Overlay(selected, gesture.preview(pointer, mission != null ? mission.from(robotAt)
+                        : robotAt), pointer, message, messageIsError, mission, robotAt));
         long copyFrom = System.nanoTime();
         painter.copyTo(e.gc);
         long end = System.nanoTime();

@@ -63,6 +63,8 @@ import sabot.identity.DeviceProfile;
 import sabot.identity.DeviceUrn;
 import sabot.identity.Inventory;
 import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.workbench.account.XmppAccount;
 import sabot.workbench.account.XmppAccountStore;
 import sabot.workbench.fleet.Availability;
@@ -321,8 +323,74 @@ class LiveFleetUiTest {
                 workspace.lastMessage());
     }
 
+    /**
+     * A mission of three targets built on the map (a pass, a stop facing south, a stop facing west), started with
+     * Enter: the robot reaches them in order, its telemetry brings each target's state and Fleet says which target it
+     * is on; it ends on the last target with its heading.
+     */
     @Test
     @Order(4)
+    void aMissionOfTargetsClickedOnTheMapIsDrivenTargetByTargetWithItsProgressShown() throws Exception {
+        WorkspaceView workspace = workspace();
+        MapViewport v = workspace.viewport();
+        workspace.home();
+        flush();
+        RobotState r = robotRow();
+        click(workspace.canvas(), sx(v, r.pose().pose().x()), sy(v, r.pose().pose().y()));
+        assertEquals(ROBOT_JID, workspace.selectedRobot());
+        workspace.newMission();
+        assertTrue(workspace.editsMission());
+        // 1: (7.2, 4.4) facing east, passed through; 2: (7.2, 3.0) facing south; 3: a click at (6.0, 3.0), facing
+        // away from 2 (west)
+        double[][] targets = { { 7.2, 4.4, 0 }, { 7.2, 3.0, -Math.PI / 2 }, { 6.0, 3.0, Math.PI } };
+        int[][] drags = { { 40, 0 }, { 0, 40 }, { 0, 0 } };
+        for (int i = 0; i < targets.length; i++) {
+            int px = sx(v, targets[i][0]);
+            int py = sy(v, targets[i][1]);
+            mouse(workspace.canvas(), SWT.MouseDown, px, py);
+            mouse(workspace.canvas(), SWT.MouseMove, px + drags[i][0], py + drags[i][1]);
+            mouse(workspace.canvas(), SWT.MouseUp, px + drags[i][0], py + drags[i][1]);
+        }
+        WorkbenchUiTest.key(workspace.canvas(), 0, '1', 0);
+        WorkbenchUiTest.key(workspace.canvas(), 0, 'p', 0);
+        WorkbenchUiTest.key(workspace.canvas(), SWT.CR, '\r', 0);
+
+        List<Integer> currents = new ArrayList<>();
+        List<String> column = new ArrayList<>();
+        waitFor(() -> {
+            RobotState now = robotRow();
+            MissionStatus m = now.mission();
+            if (m != null && !m.targets().isEmpty() && m.state() == MissionState.RUNNING) {
+                if (currents.isEmpty() || currents.get(currents.size() - 1) != m.current()) {
+                    currents.add(m.current());
+                }
+                column.add(FleetView.texts(now, Instant.now()).get(3));
+            }
+            return m != null && m.targets().size() == targets.length && m.state() == MissionState.DONE;
+        }, 120, () -> "mission not done: " + robotRow().mission() + "; " + workspace.lastMessage());
+        MissionStatus done = robotRow().mission();
+        for (int i = 0; i < targets.length; i++) {
+            MissionTarget t = done.targets().get(i);
+            assertEquals(MissionTarget.State.REACHED, t.state(), "target " + (i + 1) + ": " + done);
+            // the pressed pixel: about 3 cm a pixel at Home's zoom
+            assertEquals(targets[i][0], t.goal().pose().x(), 0.05, "target " + (i + 1) + " sent: " + t);
+            assertEquals(targets[i][1], t.goal().pose().y(), 0.05, "target " + (i + 1) + " sent: " + t);
+            assertEquals(targets[i][2], t.goal().pose().theta(), 0.05, "target " + (i + 1) + " sent: " + t);
+        }
+        assertEquals(MissionTarget.Action.PASS, done.targets().get(0).action());
+        assertEquals(MissionTarget.Action.STOP, done.targets().get(2).action());
+        assertTrue(currents.equals(currents.stream().sorted().toList()) && currents.stream().anyMatch(c -> c > 0),
+                "targets not reached in order, or no progress seen: " + currents);
+        assertTrue(column.stream().anyMatch(c -> c.matches("running · target [2-3]/3 · \\d+ %.*")), "Fleet never said "
+                + "which target: " + column);
+        SimProcess.Truth truth = sim.truth();
+        assertTrue(truth.distanceTo(targets[2][0], targets[2][1]) < 0.2, "robot not at target 3: " + truth);
+        assertEquals(Math.PI, Math.abs(truth.theta()), 0.3, "heading at target 3: " + truth);
+        assertTrue(workspace.lastMessage().endsWith("start a mission of 3 target(s): done"), workspace.lastMessage());
+    }
+
+    @Test
+    @Order(5)
     void ctrlShiftHStopsADrivingRobot() throws Exception {
         WorkspaceView workspace = workspace();
         long sentAt = System.nanoTime();
@@ -364,7 +432,7 @@ class LiveFleetUiTest {
     }
 
     @Test
-    @Order(5)
+    @Order(6)
     void theServersRobotsGroupBringsARobotIntoTheFleetAndALobbyImpostorNever() throws Exception {
         String room = "fleet@conference." + PrivateXmppServer.DOMAIN;
         XmppAccountStore store = XmppAccountStore.workbenchStore();
@@ -424,7 +492,7 @@ class LiveFleetUiTest {
      * again.
      */
     @Test
-    @Order(6)
+    @Order(7)
     void posesThatArriveLateGreyTheRobotUntilTheBacklogIsThrough() throws Exception {
         BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
         ServiceReference<FleetState> ref = context.getServiceReference(FleetState.class);
@@ -493,7 +561,7 @@ class LiveFleetUiTest {
      * the robot is live again.
      */
     @Test
-    @Order(7)
+    @Order(8)
     void aSilentLinkGreysTheRobotAndTheWorkbenchReconnects() throws Exception {
         XmppAccountStore store = XmppAccountStore.workbenchStore();
         BundleContext context = FrameworkUtil.getBundle(WorkspaceView.class).getBundleContext();
@@ -542,7 +610,7 @@ class LiveFleetUiTest {
      * fleet; approved on the server, it joins the fleet and leaves the list.
      */
     @Test
-    @Order(8)
+    @Order(9)
     void aRobotAskingForAccessIsListedWithItsIdentityAndJoinsTheFleetWhenApproved() throws Exception {
         String jid = "sabot-07@" + PrivateXmppServer.DOMAIN;
         org.jxmpp.jid.EntityBareJid robot = JidCreate.entityBareFrom(jid);
@@ -589,7 +657,7 @@ class LiveFleetUiTest {
      * and stays where it is; the refusal reaches the status line and the list empties.
      */
     @Test
-    @Order(9)
+    @Order(10)
     void aGoalForARobotThatIsDownWaitsInFleetAndIsRefusedAsStaleWhenItComesBackLate() throws Exception {
         onboard.close();
         waitFor(() -> robotRow() != null && robotRow().availability() == Availability.OFFLINE, 20,
@@ -842,9 +910,7 @@ class LiveFleetUiTest {
 
     private static void screenshot(String name) throws Exception {
         flush();
-        Path png = screenshots().resolve(name);
-        SabotWindowAdvisor.saveScreenshot(PlatformUI.getWorkbench().getActiveWorkbenchWindow().getShell(), png);
-        toDocs(png);
+        DocScreenshots.window(name);
     }
 
     /** Saves what the screen shows of one control (a view's area). */
@@ -869,15 +935,11 @@ class LiveFleetUiTest {
     }
 
     static Path screenshots() throws Exception {
-        return Files.createDirectories(Paths.get(System.getProperty("sabot.screenshots", "target/screenshots")));
+        return DocScreenshots.screenshots();
     }
 
     static void toDocs(Path png) throws Exception {
-        String root = System.getProperty("sabot.root");
-        if (root != null && Files.isDirectory(Paths.get(root, "docs"))) {
-            Path docs = Files.createDirectories(Paths.get(root, "docs", "images"));
-            Files.copy(png, docs.resolve(png.getFileName()), StandardCopyOption.REPLACE_EXISTING);
-        }
+        DocScreenshots.toDocs(png);
     }
 
     /** @return the operator's account on 127.0.0.1:{@code port}, trusting the private server's lab CA */

@@ -46,7 +46,7 @@ import sabot.workbench.views.WorkspaceView;
 
 /** The real workbench window, driven on the UI thread under Xvfb. The screenshot is taken first, untouched. */
 @TestMethodOrder(MethodOrderer.OrderAnnotation.class)
-class WorkbenchUiTest {
+public class WorkbenchUiTest {
 
     private static IWorkbenchWindow window() {
         IWorkbenchWindow w = PlatformUI.getWorkbench().getActiveWorkbenchWindow();
@@ -247,8 +247,17 @@ class WorkbenchUiTest {
                         .getToolTipText()).toList().toString());
     }
 
+    /** A key pressed on a control, as SWT delivers it to the control's listeners ({@code SWT.KeyDown}). */
+    public static void key(Control c, int keyCode, char character, int stateMask) {
+        Event e = new Event();
+        e.keyCode = keyCode;
+        e.character = character;
+        e.stateMask = stateMask;
+        c.notifyListeners(SWT.KeyDown, e);
+    }
+
     /** A left-button mouse event at (x, y), as SWT delivers it to the control's listeners. */
-    static void mouse(Control c, int type, int x, int y) {
+    public static void mouse(Control c, int type, int x, int y) {
         Event e = new Event();
         e.x = x;
         e.y = y;
@@ -266,7 +275,8 @@ class WorkbenchUiTest {
         return colours.size();
     }
 
-    private static <T extends Control> T find(Control root, Class<T> type, java.util.function.Predicate<T> filter) {
+    /** @return the first control of {@code type} under {@code root} (itself included) that {@code filter} accepts */
+    public static <T extends Control> T find(Control root, Class<T> type, java.util.function.Predicate<T> filter) {
         for (T c : all(root, type)) {
             if (filter.test(c)) {
                 return c;

@@ -20,6 +20,7 @@ import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
@@ -40,7 +41,8 @@ import sabot.workbench.fleet.RobotState;
  * A fleet the test drives by hand, published as a second {@link FleetState} service next to the ControlML plug-in's
  * (the views observe every fleet service; ranked above it, so that the views ask it for the map): bursts of telemetry for many robots at the pace the test chooses, without a
  * server in between. It follows the service's contract (a new listener first gets the present state; notifications in
- * order) and calls its listeners on the caller's thread. Commands are refused; the map is an empty 12 x 9 m room.
+ * order) and calls its listeners on the caller's thread. Commands are refused, except missions of several targets,
+ * which are taken and kept ({@link #missions}) for the test to read; the map is an empty 12 x 9 m room.
  */
 final class DrivenFleet implements FleetState, AutoCloseable {
 
@@ -48,7 +50,13 @@ final class DrivenFleet implements FleetState, AutoCloseable {
 
     private final Map<String, RobotState> robots = new TreeMap<>();
     private final List<FleetListener> listeners = new CopyOnWriteArrayList<>();
+    /** The missions the views sent ({@link #startMission}), in order; any thread. */
+    final List<SentMission> missions = new CopyOnWriteArrayList<>();
     private final ServiceRegistration<FleetState> registration;
+
+    /** A mission of several targets as a view sent it. */
+    record SentMission(String robot, List<MissionTarget> targets, boolean queue) {
+    }
 
     /** Registers the fleet with the workbench bundle's context; {@link #close()} unregisters it. */
     DrivenFleet() {
@@ -163,6 +171,13 @@ final class DrivenFleet implements FleetState, AutoCloseable {
     @Override
     public CompletableFuture<Void> goTo(String robot, Goal goal) {
         return refused();
+    }
+
+    /** {@inheritDoc} Taken as it is, into {@link #missions}. */
+    @Override
+    public CompletableFuture<Void> startMission(String robot, List<MissionTarget> targets, boolean queue) {
+        missions.add(new SentMission(robot, List.copyOf(targets), queue));
+        return CompletableFuture.completedFuture(null);
     }
 
     @Override

@@ -139,14 +139,14 @@ class WorkspacePaintUiTest {
         return best;
     }
 
-    private static void save(ImageData data, String png) {
+    static void save(ImageData data, String png) {
         org.eclipse.swt.graphics.ImageLoader loader = new org.eclipse.swt.graphics.ImageLoader();
         loader.data = new ImageData[] { data };
         loader.save(png, org.eclipse.swt.SWT.IMAGE_PNG);
     }
 
     /** @return what the canvas shows on the screen, read back from the X server */
-    private static ImageData screen(Canvas canvas) {
+    static ImageData screen(Canvas canvas) {
         Image shot = new Image(canvas.getDisplay(), canvas.getSize().x, canvas.getSize().y);
         try {
             GC gc = new GC(canvas);

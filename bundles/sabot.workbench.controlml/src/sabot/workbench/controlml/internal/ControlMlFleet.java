@@ -20,12 +20,14 @@ import org.osgi.service.component.annotations.Deactivate;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import sabot.controlml.ControlMlCondition;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.fleet.ArchivedCommand;
@@ -34,6 +36,7 @@ import sabot.identity.DeviceIdentityManager;
 import sabot.model.geometry.Twist2D;
 import sabot.workbench.account.XmppAccountStore;
 import sabot.workbench.fleet.ConnectionStatus;
+import sabot.workbench.fleet.FleetCommandException;
 import sabot.workbench.fleet.FleetListener;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.QueuedCommand;
@@ -175,8 +178,44 @@ public final class ControlMlFleet implements FleetState {
 
     @Override
     public CompletableFuture<Void> goTo(String robot, Goal goal) {
-        CompletableFuture<Void> sent = this.<Goal>set(robot, Resources.GOAL, goal).thenApply(readBack -> null);
-        // the plan exists once the robot took the goal; show it with the goal
+        return withPlan(robot, this.<Goal>set(robot, Resources.GOAL, goal));
+    }
+
+    /** {@inheritDoc} The plan of the first leg is fetched once the robot took it, the others as it starts them. */
+    @Override
+    public CompletableFuture<Void> startMission(String robot, List<MissionTarget> targets, boolean queue) {
+        MissionStatus command;
+        try {
+            command = missionCommand(registry.robot(robot), targets, queue);
+        } catch (IllegalArgumentException e) {
+            return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.INVALID_VALUE, e
+                    .getMessage()));
+        }
+        return withPlan(robot, set(robot, Resources.MISSION, command));
+    }
+
+    /**
+     * @param robot   the robot as last known (its maintenance flag is sent back, so that the robot reads no mode
+     *                switch), or null
+     * @param targets 1..{@link MissionStatus#MAX_TARGETS}
+     * @return the {@code cm.mission} set that starts ({@code running}) or queues ({@code queued}) a mission of
+     *         {@code targets}, each pending
+     * @throws IllegalArgumentException for no target (a set of {@code running} without targets would be a resume)
+     *                                  or too many
+     */
+    static MissionStatus missionCommand(RobotState robot, List<MissionTarget> targets, boolean queue) {
+        if (targets.isEmpty()) {
+            throw new IllegalArgumentException("a mission needs at least one target");
+        }
+        boolean maintenance = robot != null && robot.mission() != null && robot.mission().maintenance();
+        List<MissionTarget> pending = targets.stream().map(t -> t.in(MissionTarget.State.PENDING)).toList();
+        return new MissionStatus(queue ? MissionState.QUEUED : MissionState.RUNNING, maintenance, 0, "", pending, 0,
+                0);
+    }
+
+    /** @return {@code taken}'s answer alone; once the robot took the command, its plan is fetched to show it */
+    private CompletableFuture<Void> withPlan(String robot, CompletableFuture<?> taken) {
+        CompletableFuture<Void> sent = taken.thenApply(readBack -> null);
         sent.thenRun(() -> telemetry.fetchPlan(robot));
         return sent;
     }

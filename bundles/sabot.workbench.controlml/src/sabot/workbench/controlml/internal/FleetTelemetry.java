@@ -19,6 +19,8 @@ import sabot.controlml.Outcome;
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
 import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.workbench.fleet.RobotState;
 
@@ -80,13 +82,28 @@ final class FleetTelemetry {
             traffic.telemetry(jid);
             RobotState before = registry.robot(jid);
             registry.update(jid, r -> r.withMission(mission, clock.instant()));
-            // a new mission (or one seen for the first time) has a new plan
-            boolean fresh = before != null && (before.mission() == null || before.mission().state() != mission
-                    .state()) && mission.state().isActive();
-            if (fresh) {
+            if (before != null && newPlan(before.mission(), mission)) {
                 fetchPlan(jid);
             }
         });
+    }
+
+    /**
+     * @param before the robot's mission status as last known, or null
+     * @return true when {@code now} has a plan that {@code before} had not: a mission started (or seen for the first
+     *         time), or another leg of a mission of several targets (the next target, or a mission that replaced the
+     *         one running)
+     */
+    static boolean newPlan(MissionStatus before, MissionStatus now) {
+        if (!now.state().isActive()) {
+            return false;
+        }
+        return before == null || before.state() != now.state() || before.current() != now.current() || !goals(before)
+                .equals(goals(now));
+    }
+
+    private static List<Goal> goals(MissionStatus m) {
+        return m.targets().stream().map(MissionTarget::goal).toList();
     }
 
     /**
