@@ -37,6 +37,7 @@
 #define IDLE_WAKE_US 50000
 #define CLOCK_CHECK_STEPS 20   /* steps between looks at the wall clock while catching up */
 #define CATCH_UP_SLICE_S 0.005 /* the longest stretch of stepping without I/O when behind */
+#define LATE_WAKE_S 0.020      /* a wake-up this late is logged: the host did not run the simulator (at most 1/s) */
 #define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
 
 typedef struct {
@@ -581,6 +582,8 @@ int main(int argc, char **argv)
     prctl(PR_SET_TIMERSLACK, 1UL);
     run.start = wall_seconds();
     uint64_t end_us = o.duration > 0 ? (uint64_t)(o.duration * 1e6) : UINT64_MAX;
+    unsigned late_wakes = 0;
+    double last_late_report = 0;
     while (!stop_requested && run.sim_us < end_us) {
         catch_up(&run, end_us);
 
@@ -612,7 +615,19 @@ int main(int argc, char **argv)
         if (wait_s < 0)
             wait_s = 0;
         struct timespec timeout = { (time_t)wait_s, (long)((wait_s - floor(wait_s)) * 1e9) };
-        if (ppoll(flat, (nfds_t)nfds, &timeout, NULL) > 0) {
+        double due = run.start + (double)wake_us * 1e-6 / run.speed;
+        int ready = ppoll(flat, (nfds_t)nfds, &timeout, NULL);
+        double late = wall_seconds() - due;
+        if (ready == 0 && late > LATE_WAKE_S) {
+            /* Answers due meanwhile left late too: a master's timeouts then are the host's, not the bus's. */
+            if (wall_seconds() - last_late_report >= 1.0) {
+                fprintf(stderr, "sabot-sim: woke %.0f ms late at t=%.3f s: the host did not run the simulator "
+                                "(%u such wake-ups so far)\n", late * 1e3, run.sim_us * 1e-6, late_wakes + 1);
+                last_late_report = wall_seconds();
+            }
+            late_wakes++;
+        }
+        if (ready > 0) {
             /* Bring the simulation to now first: a request's bytes reach the line when they came. */
             catch_up(&run, end_us);
             for (int i = 0; i < o.robots; i++) {
