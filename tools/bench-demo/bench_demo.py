@@ -119,12 +119,14 @@ def sample(procs: dict[str, int], seconds: float) -> dict:
 
 
 async def drive(args, seconds: float, procs: dict[str, int], demo: str) -> dict:
+    # the operator's account as the demo gave it to its workbench
     with open(f"{demo}/secrets/xmpp-password", encoding="utf-8") as f:
         password = f.read().strip()
-    ca = re.search(r"xmpp\.caFile=(.*)", open(f"{demo}/workspace/.metadata/.plugins/org.eclipse.core.runtime/"
-                                             ".settings/sabot.workbench.prefs", encoding="utf-8").read()).group(1)
-    port = int(re.search(r"xmpp\.port=(\d+)", open(f"{demo}/workspace/.metadata/.plugins/org.eclipse.core.runtime/"
-                                                   ".settings/sabot.workbench.prefs", encoding="utf-8").read()).group(1))
+    with open(f"{demo}/workspace/.metadata/.plugins/org.eclipse.core.runtime/.settings/sabot.workbench.prefs",
+              encoding="utf-8") as f:
+        prefs = f.read()
+    ca = re.search(r"xmpp\.caFile=(.*)", prefs).group(1)
+    port = int(re.search(r"xmpp\.port=(\d+)", prefs).group(1))
     client = controlml.Client("operator@sabot.local", password, ca)
     await client.login("127.0.0.1", port, 30)
     robots = [f"sabot-0{i}@sabot.local/onboard" for i in range(1, args.robots + 1)]
@@ -149,7 +151,10 @@ async def drive(args, seconds: float, procs: dict[str, int], demo: str) -> dict:
             pass
     result = await window
     result["goals sent"] = {"sent": sent, "refused": refused}
-    client.disconnect()
+    try:
+        await asyncio.wait_for(client.disconnect(wait=0.5), 1.0)
+    except asyncio.TimeoutError:
+        pass
     return result
 
 
