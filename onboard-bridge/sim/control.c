@@ -261,8 +261,9 @@ int control_open(control_server_t *s, int port)
 void control_pollfds(const control_server_t *s, struct pollfd *pfd)
 {
     pfd[0] = (struct pollfd){ s->listen_fd, POLLIN, 0 };
+    /* A server never opened has no clients: its zeroed slots are not fd 0 (stdin). */
     for (int k = 0; k < CONTROL_MAX_CLIENTS; k++)
-        pfd[1 + k] = (struct pollfd){ s->client[k].fd, POLLIN, 0 };
+        pfd[1 + k] = (struct pollfd){ s->listen_fd >= 0 ? s->client[k].fd : -1, POLLIN, 0 };
 }
 
 static void drop(control_client_t *c)

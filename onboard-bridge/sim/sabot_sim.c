@@ -30,8 +30,14 @@
 
 #define MAX_ROBOTS 16
 #define MAX_CLIENTS 8          /* TCP connections per robot */
-#define SLICE_STEPS 20         /* 1 ms: the longest simulated time between I/O checks on an idle bus */
+/* Nothing outside the process sees the simulation between bus events and control commands: it sleeps until a
+ * master's byte, a command, a request's end or an answer due, and then steps the simulated time up to the wall
+ * clock in one go (the same 50 us steps, computed late). With nothing due it still wakes every IDLE_WAKE_US of
+ * simulated time, so that the ground-truth log stays current. */
+#define IDLE_WAKE_US 50000
+#define CLOCK_CHECK_STEPS 20   /* steps between looks at the wall clock while catching up */
 #define CATCH_UP_SLICE_S 0.005 /* the longest stretch of stepping without I/O when behind */
+#define LATE_WAKE_S 0.020      /* a wake-up this late is logged: the host did not run the simulator (at most 1/s) */
 #define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
 
 typedef struct {
@@ -433,7 +439,7 @@ static void catch_up(sim_run_t *run, uint64_t end_us)
         target_us = end_us;
     for (unsigned k = 1; run->sim_us + SACT_TS_US <= target_us && !stop_requested; k++) {
         step_all(run);
-        if (k % SLICE_STEPS == 0 && wall_seconds() - began > CATCH_UP_SLICE_S)
+        if (k % CLOCK_CHECK_STEPS == 0 && wall_seconds() - began > CATCH_UP_SLICE_S)
             break;
     }
 }
@@ -576,15 +582,19 @@ int main(int argc, char **argv)
     prctl(PR_SET_TIMERSLACK, 1UL);
     run.start = wall_seconds();
     uint64_t end_us = o.duration > 0 ? (uint64_t)(o.duration * 1e6) : UINT64_MAX;
+    unsigned late_wakes = 0;
+    double last_late_report = 0;
     while (!stop_requested && run.sim_us < end_us) {
         catch_up(&run, end_us);
 
-        /* Sleep until the bus needs a step (a request's end, an answer due) or the next
-         * physics slice, whichever is first; a master's bytes or a control command wake it sooner. */
+        /* Sleep until a bus needs a step (a request's end, an answer due), or IDLE_WAKE_US; a master's bytes or
+         * a control command wake it sooner. */
         struct pollfd pfd[MAX_ROBOTS][2 + MAX_CLIENTS];
         struct pollfd flat[MAX_ROBOTS * (2 + MAX_CLIENTS) + CONTROL_POLLFDS];
         int nfds = 0;
-        uint64_t wake_us = run.sim_us + SLICE_STEPS * SACT_TS_US;
+        uint64_t wake_us = run.sim_us + IDLE_WAKE_US;
+        if (wake_us > end_us)
+            wake_us = end_us;
         for (int i = 0; i < o.robots; i++) {
             pfd[i][0] = (struct pollfd){ tr[i].pty_master, POLLIN, 0 };
             pfd[i][1] = (struct pollfd){ tr[i].listen_fd, POLLIN, 0 };
@@ -605,7 +615,19 @@ int main(int argc, char **argv)
         if (wait_s < 0)
             wait_s = 0;
         struct timespec timeout = { (time_t)wait_s, (long)((wait_s - floor(wait_s)) * 1e9) };
-        if (ppoll(flat, (nfds_t)nfds, &timeout, NULL) > 0) {
+        double due = run.start + (double)wake_us * 1e-6 / run.speed;
+        int ready = ppoll(flat, (nfds_t)nfds, &timeout, NULL);
+        double late = wall_seconds() - due;
+        if (ready == 0 && late > LATE_WAKE_S) {
+            /* Answers due meanwhile left late too: a master's timeouts then are the host's, not the bus's. */
+            if (wall_seconds() - last_late_report >= 1.0) {
+                fprintf(stderr, "sabot-sim: woke %.0f ms late at t=%.3f s: the host did not run the simulator "
+                                "(%u such wake-ups so far)\n", late * 1e3, run.sim_us * 1e-6, late_wakes + 1);
+                last_late_report = wall_seconds();
+            }
+            late_wakes++;
+        }
+        if (ready > 0) {
             /* Bring the simulation to now first: a request's bytes reach the line when they came. */
             catch_up(&run, end_us);
             for (int i = 0; i < o.robots; i++) {
@@ -617,6 +639,17 @@ int main(int argc, char **argv)
         }
     }
 
+    if (truth) {
+        /* The log ends at the state the simulator stopped in: stepped to the wall clock, and on to the next row, so
+         * that a reader finds rows either side of the last instant anyone could observe. */
+        uint64_t now_us = (uint64_t)((wall_seconds() - run.start) * run.speed * 1e6);
+        if (now_us > end_us)
+            now_us = end_us;
+        while (run.sim_us + SACT_TS_US <= now_us)
+            step_all(&run);
+        for (uint64_t row = run.next_truth_us; run.sim_us < row;)
+            step_all(&run);
+    }
     control_close(&control);
 
     for (int i = 0; i < o.robots; i++) {

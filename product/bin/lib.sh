@@ -186,17 +186,22 @@ sabot_onboard_jvm_options() {
     sed -e 's/#.*//' -e 's/^[[:space:]]*//' -e 's/[[:space:]]*$//' "$file" | grep -v '^$' || true
 }
 
-# sabot_onboard_exec CONFIG [JVM_OPTION...]
+# sabot_onboard_exec [--osgi-area DIR] CONFIG [JVM_OPTION...]
 # Runs (exec) the onboard product in its folder with configuration file CONFIG ("": its etc/onboard.conf), its
 # etc/jvm.options and the extra JVM options: ./sabot onboard, and the rig's robots (their pid is then the JVM's).
+# --osgi-area DIR: the framework's configuration area in DIR instead of the product's configuration/ (which stays the
+# shared, read-only part): Config Admin persists the tasks' configurations there, so robots started from one product
+# folder at once would read each other's.
 sabot_onboard_exec() {
+    local args=()
+    if [ "$1" = --osgi-area ]; then args=(-configuration "$2"); shift 2; fi
     local config=$1; shift
-    local dir jh launcher jvm=() args=()
+    local dir jh launcher jvm=()
     dir=$(sabot_product_dir onboard)
     jh=$(sabot_java_home)
     launcher=$(sabot_launcher_jar "$dir")
     mapfile -t jvm < <(sabot_onboard_jvm_options "$dir")
-    [ -z "$config" ] || args=(-config "$config")
+    [ -z "$config" ] || args+=(-config "$config")
     cd "$dir"
     exec "$jh/bin/java" ${jvm[@]+"${jvm[@]}"} "$@" -Dlogback.configurationFile="$dir/etc/logback.xml" -jar "$launcher" \
         -consoleLog ${args[@]+"${args[@]}"}
@@ -296,7 +301,8 @@ for r in j["robots"]: print(r["link"])')
         sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" \
             "$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta" \
             "$RIG_PORT" "$dir/robot$i/password" "$dir/robot$i/files" "$RIG_CA" >"$dir/robot$i/onboard.conf"
-        (sabot_onboard_exec "$dir/robot$i/onboard.conf" "$@") >"$dir/robot$i/onboard.log" 2>&1 &
+        (sabot_onboard_exec --osgi-area "$dir/robot$i/osgi" "$dir/robot$i/onboard.conf" "$@") \
+            >"$dir/robot$i/onboard.log" 2>&1 &
         RIG_ROBOT_PIDS+=($!)
         sabot_log "robot sabot-0$i@$SABOT_RIG_DOMAIN (pid $!): config $dir/robot$i/onboard.conf, log $dir/robot$i/onboard.log"
     done
