@@ -1,5 +1,6 @@
 package sabot.onboard.controlml.internal.session;
 
+import java.io.IOException;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
@@ -494,7 +495,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         IdentityResult<QrInventory.Encoded> result;
         try {
             result = DeviceIdentityManager.getInstanceFor(connection).publish(OnboardIdentity.profile(settings, version,
-                    running), OnboardIdentity.inventory(inventorySource, settings, running));
+                    running, vCardPage()), OnboardIdentity.inventory(inventorySource, settings, running));
         } catch (RuntimeException e) {
             LOG.warn("vCard identity not published: {}", describe(e));
             return;
@@ -524,6 +525,21 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             }
         }
         return running;
+    }
+
+    /** @return the first running task's web page (by task name), the vCard's URL; null when none serves one */
+    private java.net.URI vCardPage() {
+        ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
+        java.util.SortedMap<String, java.net.URI> pages = new TreeMap<>();
+        if (refs != null) {
+            for (ServiceReference<OnboardTask> ref : refs) {
+                OnboardTask task = tasks.getService(ref);
+                if (task != null) {
+                    task.page().ifPresent(uri -> pages.put(task.name(), uri));
+                }
+            }
+        }
+        return pages.isEmpty() ? null : pages.get(pages.firstKey());
     }
 
     // ------------------------------------------------------------------------------------------ RobotSession
@@ -582,6 +598,53 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     }
 
     // ------------------------------------------------------------------------------------------ OnboardTask
+
+    @Override
+    public PresenceLevel presenceLevel() {
+        return presence.level();
+    }
+
+    @Override
+    public String presenceReason() {
+        return presence.reason();
+    }
+
+    @Override
+    public boolean checkPassword(String account, String password) throws IOException {
+        org.jxmpp.jid.EntityBareJid jid;
+        try {
+            jid = org.jxmpp.jid.impl.JidCreate.entityBareFrom(account);
+        } catch (org.jxmpp.stringprep.XmppStringprepException | RuntimeException e) {
+            return false;
+        }
+        if (!jid.asDomainBareJid().equals(settings.jid().asDomainBareJid()) || password.isEmpty()) {
+            return false; // only the robot's server knows its accounts' passwords
+        }
+        XMPPTCPConnectionConfiguration.Builder config = XMPPTCPConnectionConfiguration.builder();
+        config.setXmppDomain(jid.asDomainBareJid())
+                .setHostAddressByNameOrIp(settings.servers().get(0))
+                .setPort(settings.port())
+                .setUsernameAndPassword(jid.getLocalpart(), password)
+                .setSocketFactory(new NoDelaySocketFactory(settings.servers()))
+                .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
+                .setSendPresence(false);
+        XMPPTCPConnection check = new XMPPTCPConnection(FleetConnections.secured(config, settings.trust()).build());
+        Roster.getInstanceFor(check).setRosterLoadedAtLogin(false);
+        try {
+            check.connect();
+            check.login();
+            return true;
+        } catch (org.jivesoftware.smack.sasl.SASLErrorException refused) {
+            return false;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IOException("interrupted while checking the password of " + jid, e);
+        } catch (SmackException | XMPPException e) {
+            throw new IOException("the XMPP server did not check the password of " + jid + ": " + describe(e), e);
+        } finally {
+            check.disconnect();
+        }
+    }
 
     @Override
     public String name() {
