@@ -99,6 +99,9 @@ public final class OnboardApplication implements IApplication {
             @Override
             public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
                 OnboardTask task = super.addingService(reference);
+                if (task == null) {
+                    return null; // its component failed to activate: SCR logged why, the task is missing at the end
+                }
                 synchronized (progress) {
                     running.add(task.name());
                     progress.notifyAll();

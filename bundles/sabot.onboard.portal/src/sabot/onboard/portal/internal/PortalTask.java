@@ -21,6 +21,7 @@ import javax.net.ssl.SSLContext;
 import org.jivesoftware.smackx.vcardtemp.VCardManager;
 import org.jivesoftware.smackx.vcardtemp.packet.VCard;
 import org.jxmpp.jid.impl.JidCreate;
+import org.osgi.service.component.ComponentConstants;
 import org.osgi.service.component.annotations.Activate;
 import org.osgi.service.component.annotations.Component;
 import org.osgi.service.component.annotations.ConfigurationPolicy;
@@ -140,7 +141,9 @@ public final class PortalTask implements OnboardTask, PortalRobot {
         }
     }
 
-    @Reference(cardinality = ReferenceCardinality.MULTIPLE, policy = ReferencePolicy.DYNAMIC)
+    /** The other tasks (not this one: a component that references its own service is a circle for SCR). */
+    @Reference(cardinality = ReferenceCardinality.MULTIPLE, policy = ReferencePolicy.DYNAMIC, target = "(!("
+            + ComponentConstants.COMPONENT_NAME + "=" + OnboardTask.PID_PREFIX + PortalSettings.TASK + "))")
     void bindTask(OnboardTask task) {
         tasks.add(task);
     }
@@ -217,7 +220,7 @@ public final class PortalTask implements OnboardTask, PortalRobot {
             s.put("path", path);
         }
         List<Object> states = new ArrayList<>();
-        tasks.stream().sorted(java.util.Comparator.comparing(OnboardTask::name)).forEach(t -> {
+        java.util.stream.Stream.concat(tasks.stream(), java.util.stream.Stream.of(this)).sorted(java.util.Comparator.comparing(OnboardTask::name)).forEach(t -> {
             String state;
             try {
                 state = t.status();

@@ -90,7 +90,13 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final ExecutorService notifier = Executors.newSingleThreadExecutor(
             NamedThreads.daemon("sabot-session-events"));
     private final List<SessionListener> listeners = new CopyOnWriteArrayList<>();
-    private final ServiceTracker<OnboardTask, OnboardTask> tasks;
+    /**
+     * The running tasks' references: their services are got only when the identity is published (after a login), never
+     * while this component is created, where a task that references {@link RobotSession} (remotefs, portal) would be
+     * a circle for SCR.
+     */
+    private final ServiceTracker<OnboardTask, ServiceReference<OnboardTask>> tasks;
+    private final BundleContext context;
     private final LinkWatch linkWatch;
 
     private final Object lock = new Object();
@@ -169,18 +175,17 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         });
         linkWatch = new LinkWatch(connection, settings.liveness(), NamedThreads.daemon("sabot-session-liveness"),
                 this::silent);
+        this.context = context;
         tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
             @Override
-            public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
-                OnboardTask task = super.addingService(reference);
+            public ServiceReference<OnboardTask> addingService(ServiceReference<OnboardTask> reference) {
                 scheduleIdentity();
-                return task;
+                return reference;
             }
 
             @Override
-            public void removedService(ServiceReference<OnboardTask> reference, OnboardTask task) {
+            public void removedService(ServiceReference<OnboardTask> reference, ServiceReference<OnboardTask> same) {
                 scheduleIdentity();
-                super.removedService(reference, task);
             }
         };
         tasks.open();
@@ -515,31 +520,41 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     /** @return the running tasks' names and their bundles' versions, sorted by name */
     private Map<String, String> runningTasks() {
         Map<String, String> running = new TreeMap<>();
-        ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
-        if (refs != null) {
-            for (ServiceReference<OnboardTask> ref : refs) {
-                OnboardTask task = tasks.getService(ref);
-                if (task != null && ref.getBundle() != null) {
-                    running.put(task.name(), ref.getBundle().getVersion().toString());
-                }
+        eachTask((ref, task) -> {
+            if (ref.getBundle() != null) {
+                running.put(task.name(), ref.getBundle().getVersion().toString());
             }
-        }
+        });
         return running;
     }
 
     /** @return the first running task's web page (by task name), the vCard's URL; null when none serves one */
     private java.net.URI vCardPage() {
-        ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
         java.util.SortedMap<String, java.net.URI> pages = new TreeMap<>();
-        if (refs != null) {
-            for (ServiceReference<OnboardTask> ref : refs) {
-                OnboardTask task = tasks.getService(ref);
-                if (task != null) {
-                    task.page().ifPresent(uri -> pages.put(task.name(), uri));
+        eachTask((ref, task) -> task.page().ifPresent(uri -> pages.put(task.name(), uri)));
+        return pages.isEmpty() ? null : pages.get(pages.firstKey());
+    }
+
+    private void eachTask(java.util.function.BiConsumer<ServiceReference<OnboardTask>, OnboardTask> action) {
+        ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
+        if (refs == null) {
+            return;
+        }
+        for (ServiceReference<OnboardTask> ref : refs) {
+            OnboardTask task;
+            try {
+                task = context.getService(ref);
+            } catch (IllegalStateException stopped) {
+                return; // deactivated meanwhile
+            }
+            if (task != null) {
+                try {
+                    action.accept(ref, task);
+                } finally {
+                    context.ungetService(ref);
                 }
             }
         }
-        return pages.isEmpty() ? null : pages.get(pages.firstKey());
     }
 
     // ------------------------------------------------------------------------------------------ RobotSession
