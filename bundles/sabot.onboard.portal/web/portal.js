@@ -24,7 +24,7 @@
       text('pose', 'x ' + fixed(s.pose.x, 3) + ' m, y ' + fixed(s.pose.y, 3) + ' m, θ ' + fixed(deg(s.pose.theta), 1) + '°');
       text('velocity', fixed(s.velocity.linear, 3) + ' m/s, ' + fixed(s.velocity.angular, 3) + ' rad/s');
       text('mission', s.mission.state + (s.mission.maintenance ? ' (maintenance)' : '') + ', ' +
-        Math.round(s.mission.progress * 100) + ' %' + (s.mission.detail ? ' — ' + s.mission.detail : ''));
+        Math.round(s.mission.progress) + ' %' + (s.mission.detail ? ' — ' + s.mission.detail : ''));
       if (robot) {
         robot.setAttribute('transform', 'translate(' + s.pose.x + ' ' + (-s.pose.y) + ') rotate(' + (-deg(s.pose.theta)) + ')');
         robot.setAttribute('visibility', 'visible');

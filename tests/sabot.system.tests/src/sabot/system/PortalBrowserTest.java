@@ -135,6 +135,9 @@ class PortalBrowserTest extends RigTest {
                 rig.onboard.await(l -> l.contains("remote FS task started") && l.contains("read-only"),
                         "restarting remotefs read-only");
                 screenshot(b, "config");
+                ((JavascriptExecutor) b).executeScript("arguments[0].scrollIntoView()", b.findElement(By.id(
+                        "task-remotefs")));
+                screenshot(b, "config-remotefs");
 
                 // a bad value: the configuration's error text, nothing written
                 byte[] before = Files.readAllBytes(conf);

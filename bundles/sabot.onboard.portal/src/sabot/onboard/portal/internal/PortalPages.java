@@ -139,7 +139,8 @@ final class PortalPages {
         if (!s.options().isEmpty() || "boolean".equals(s.type())) {
             StringBuilder sb = new StringBuilder("<select id=\"").append(esc(id)).append("\" name=\"").append(esc(name))
                     .append("\"><option value=\"\"").append(value.isEmpty() ? " selected" : "").append(">(default")
-                    .append(s.defaultValue() == null ? "" : ": " + esc(s.defaultValue())).append(")</option>");
+                    .append(s.defaultValue() == null ? "" : ": " + esc(shown(s.defaultValue()))).append(
+                            ")</option>");
             List<SettingForm.Option> options = s.options().isEmpty() ? List.of(new SettingForm.Option("true", "true"),
                     new SettingForm.Option("false", "false")) : s.options();
             boolean listed = value.isEmpty();
@@ -156,8 +157,14 @@ final class PortalPages {
             return sb.append("</select>").toString();
         }
         return "<input id=\"" + esc(id) + "\" name=\"" + esc(name) + "\" value=\"" + esc(value) + "\" placeholder=\""
-                + esc(s.defaultValue() == null ? (s.mandatory() ? "required" : "") : "default: " + s.defaultValue())
+                + esc(s.defaultValue() == null ? (s.mandatory() ? "required" : "") : "default: " + shown(s
+                        .defaultValue()))
                 + "\"" + (s.type().equals("string") ? "" : " inputmode=\"decimal\"") + ">";
+    }
+
+    /** An empty default reads "(empty)", not as a missing one. */
+    private static String shown(String defaultValue) {
+        return defaultValue.isEmpty() ? "(empty)" : defaultValue;
     }
 
     private static String constraints(SettingForm s) {
@@ -167,7 +174,7 @@ final class PortalPages {
                     .max());
         }
         if (s.defaultValue() != null) {
-            sb.append(", default ").append(s.defaultValue());
+            sb.append(", default ").append(shown(s.defaultValue()));
         }
         if (s.mandatory()) {
             sb.append(", required");
