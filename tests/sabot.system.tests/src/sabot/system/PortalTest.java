@@ -183,6 +183,8 @@ class PortalTest extends RigTest {
             Browser m = anonymous.logIn(maintainer, PrivateXmppServer.DEFAULT_PASSWORD);
             HttpResponse<String> page = m.get("/");
             assertEquals(200, page.statusCode());
+            assertEquals("max-age=31536000", page.headers().firstValue("Strict-Transport-Security").orElseThrow());
+            assertTrue(page.headers().firstValue("Content-Security-Policy").orElseThrow().contains("script-src 'self'"));
             assertTrue(page.body().contains(RobotRig.ROBOT) && page.body().contains("(maintainer)"), page.body());
             String status = m.get("/api/status").body();
             for (String part : List.of("\"jid\":\"sabot-01@sabot.local\"", "\"uuid\":\"urn:uuid:", "\"page\":\"" + url,

@@ -88,6 +88,9 @@ final class PortalRoutes implements HttpHandler {
             h.set("X-Content-Type-Options", "nosniff");
             h.set("Referrer-Policy", "same-origin");
             h.set("X-Frame-Options", "DENY");
+            if (secure) { // browsers that once saw the page over HTTPS never try it in clear
+                h.set("Strict-Transport-Security", "max-age=31536000");
+            }
             h.set("Content-Security-Policy", "default-src 'none'; img-src 'self'; style-src 'self'; script-src 'self'; "
                     + "connect-src 'self'; form-action 'self'; frame-ancestors 'none'; base-uri 'none'");
             route(exchange);
