@@ -34,10 +34,32 @@ def proc_sample(pid):
     return rss_kb, int(fields[11]) + int(fields[12])  # utime, stime: fields 14 and 15 of proc(5)
 
 
+# The web service's own threads: the portal's pool, and the JDK HTTP server's dispatcher and timer (names as
+# /proc/PID/task/TID/comm shows them, cut to 15 characters)
+PORTAL_THREADS = re.compile(r"^(sabot-portal|HTTP-Dispatcher|idle-timeout|req-rsp-timeout)")
+
+
+def portal_ticks(pid):
+    """utime + stime of the web service's threads of PID (0 when it has none)."""
+    total = 0
+    for tid in os.listdir(f"/proc/{pid}/task"):
+        try:
+            with open(f"/proc/{pid}/task/{tid}/comm") as f:
+                name = f.read().strip()
+            if PORTAL_THREADS.match(name):
+                with open(f"/proc/{pid}/task/{tid}/stat") as f:
+                    fields = f.read().rsplit(")", 1)[1].split()
+                total += int(fields[11]) + int(fields[12])
+        except FileNotFoundError:
+            pass  # a thread that ended meanwhile
+    return total
+
+
 def usage_over(pid, seconds, work=None):
     """RSS (mean, max, MB) and CPU (% of one core) of PID over SECONDS, sampled once a second; WORK runs between."""
     t0 = time.monotonic()
     _, ticks0 = proc_sample(pid)
+    web0 = portal_ticks(pid)
     rss = []
     while time.monotonic() - t0 < seconds:
         if work:
@@ -46,9 +68,11 @@ def usage_over(pid, seconds, work=None):
             time.sleep(1.0)  # sampling period of /proc: nothing to synchronise with
         rss.append(proc_sample(pid)[0])
     _, ticks1 = proc_sample(pid)
+    web1 = portal_ticks(pid)
     wall = time.monotonic() - t0
     return {"rss_mean_mb": statistics.mean(rss) / 1024, "rss_max_mb": max(rss) / 1024,
-            "cpu_percent": 100.0 * (ticks1 - ticks0) / CLK_TCK / wall, "seconds": wall, "samples": len(rss)}
+            "cpu_percent": 100.0 * (ticks1 - ticks0) / CLK_TCK / wall,
+            "web_threads_cpu_percent": 100.0 * (web1 - web0) / CLK_TCK / wall, "seconds": wall, "samples": len(rss)}
 
 
 def percentile(values, p):
