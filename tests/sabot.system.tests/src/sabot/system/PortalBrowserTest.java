@@ -117,8 +117,8 @@ class PortalBrowserTest extends RigTest {
                 WebElement robot = b.findElement(By.id("robot"));
                 await(() -> robot.getAttribute("data-x") != null, 10, "the robot on the map");
                 double x0 = Double.parseDouble(robot.getAttribute("data-x"));
-                assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3))
-                        .isSuccess());
+                var goal = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3));
+                assertTrue(goal.isSuccess(), "goal refused: " + goal.errorOrNull());
                 await(() -> Double.parseDouble(robot.getAttribute("data-x")) > x0 + 0.5, 30,
                         "the robot 0.5 m further east");
                 assertTrue(b.findElement(By.id("mission")).getText().startsWith("running"), b.findElement(By.id(

@@ -195,8 +195,8 @@ class PortalTest extends RigTest {
 
             // the robot drives: the page's pose follows it
             double x0 = poseX(m);
-            assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3))
-                    .isSuccess());
+            var goal = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3));
+            assertTrue(goal.isSuccess(), "goal refused: " + goal.errorOrNull());
             awaitSpeed(rig.sim, 0.1, 15);
             deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
             double x = x0;
