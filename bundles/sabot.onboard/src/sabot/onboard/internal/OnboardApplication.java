@@ -31,6 +31,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 import org.slf4j.bridge.SLF4JBridgeHandler;
 
+import sabot.onboard.config.OnboardSettings;
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck;
 
@@ -124,6 +125,11 @@ public final class OnboardApplication implements IApplication {
             }
         };
         tracker.open();
+        // the file as a service (the robot's web page shows and changes it): the same catalogue, checks and texts
+        org.osgi.framework.ServiceRegistration<OnboardSettings> settingsService = bc.registerService(
+                OnboardSettings.class, new ConfigEditor(file, robot, catalog, () -> OsgiTaskCatalog.forms(bc, scr,
+                        metaType), task -> settingsChecks(bc, task), (task, properties) -> configAdmin
+                                .getConfiguration(OnboardTask.PID_PREFIX + task, "?").update(properties)), null);
         try {
             applyTaskConfigurations(configAdmin, catalog.keySet(), enabled);
             List<String> missing = awaitTasks(enabled.keySet(), running, progress, () -> retryUntracked(bc,
@@ -139,6 +145,7 @@ public final class OnboardApplication implements IApplication {
             LOG.info("Sabot Onboard stopping");
             return IApplication.EXIT_OK;
         } finally {
+            settingsService.unregister();
             stopTasks(scr, enabled.keySet());
             for (String task : enabled.keySet()) {
                 deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);

@@ -40,4 +40,31 @@ public interface RobotSession {
 
     /** Removes a listener added with {@link #addListener}. */
     void removeListener(SessionListener listener);
+
+    /**
+     * @return the presence level last set with {@link #setPresence} (what the robot announces while online); never null
+     * @since 0.2
+     */
+    PresenceLevel presenceLevel();
+
+    /**
+     * @return the reason last set with {@link #setPresence} (the presence's status text); never null, may be empty
+     * @since 0.2
+     */
+    String presenceReason();
+
+    /**
+     * Checks an account's password by logging it in to the robot's XMPP server: the servers, port and TLS trust of this
+     * session, SASL as the server offers it (SCRAM-SHA-256 on the lab's servers), no presence sent, the connection
+     * closed at once. For a service that lets people log in with their XMPP accounts (the robot's web page); takes a
+     * login's time (tens of milliseconds on a LAN), call it off any latency-critical thread.
+     *
+     * @param account  a bare JID of the robot's own XMPP domain (only its server can check the password)
+     * @param password the password; never null
+     * @return true when the server accepted the credentials; false when it refused them, or when the account is of
+     *         another domain or not a JID
+     * @throws java.io.IOException when the server could not be reached or the TLS check failed (the answer is unknown)
+     * @since 0.2
+     */
+    boolean checkPassword(String account, String password) throws java.io.IOException;
 }

@@ -1,5 +1,8 @@
 package sabot.onboard.task;
 
+import java.net.URI;
+import java.util.Optional;
+
 import org.osgi.annotation.versioning.ConsumerType;
 
 /**
@@ -34,4 +37,14 @@ public interface OnboardTask {
 
     /** @return a one-line human-readable state of the task, e.g. for an operator's task list; never null */
     String status();
+
+    /**
+     * @return the address of a web page this task serves for people standing at the robot (the {@code portal} task's
+     *         status and configuration page); the robot's session puts the first running task's page into its vCard's
+     *         {@code URL}. Empty for a task that serves no page (this default).
+     * @since 0.2
+     */
+    default Optional<URI> page() {
+        return Optional.empty();
+    }
 }

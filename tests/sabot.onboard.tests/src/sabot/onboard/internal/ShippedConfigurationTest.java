@@ -67,8 +67,8 @@ class ShippedConfigurationTest {
 
     @Test
     void theRuntimeHoldsEveryTaskBundle() {
-        assertEquals(List.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "remotefs", "teleop",
-                "tracker"), List.copyOf(declared.keySet()));
+        assertEquals(List.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "portal", "remotefs",
+                "teleop", "tracker"), List.copyOf(declared.keySet()));
     }
 
     @Test

@@ -40,8 +40,8 @@ class TaskMetatypeRangesTest {
 
     @Test
     void everyTaskHasItsGeneratedDescription() {
-        assertEquals(Set.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "remotefs", "teleop",
-                "tracker"), catalog.keySet());
+        assertEquals(Set.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "portal", "remotefs",
+                "teleop", "tracker"), catalog.keySet());
         catalog.forEach((task, settings) -> assertTrue(!settings.isEmpty(), task + " declares no setting"));
     }
 

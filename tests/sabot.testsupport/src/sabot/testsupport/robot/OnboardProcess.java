@@ -45,7 +45,13 @@ public final class OnboardProcess implements AutoCloseable {
     public record Robot(String name, String pty, double[] start, int xmppPort, Path caFile) {
     }
 
-    /** @return the configuration text for a robot, all tasks enabled, plus {@code extra} lines */
+    /** The tasks a robot's configuration enables unless its extra lines set {@code tasks} themselves. */
+    public static final String TASKS = "bus, localizer, planner, tracker, teleop, motion, controlml, remotefs";
+
+    /**
+     * @return the configuration text for a robot, the tasks {@link #TASKS} enabled, plus {@code extra} lines (a
+     *         {@code tasks = ...} line among them replaces the default one)
+     */
     public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
         return configuration(r, passwordFile, fsRoot, extra, "127.0.0.1");
     }
@@ -56,9 +62,18 @@ public final class OnboardProcess implements AutoCloseable {
      */
     public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra, String servers) {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+        String tasks = "tasks = " + TASKS;
+        StringBuilder rest = new StringBuilder();
+        for (String line : extra.split("\\R", -1)) {
+            if (line.matches("\\s*tasks\\s*=.*")) {
+                tasks = line.strip();
+            } else {
+                rest.append(line).append('\n');
+            }
+        }
         return String.format(Locale.ROOT, """
                 robot.name = %s
-                tasks = bus, localizer, planner, tracker, teleop, motion, controlml, remotefs
+                %s
                 bus.port = %s
                 bus.parity = NONE
                 localizer.startX = %.3f
@@ -72,8 +87,8 @@ public final class OnboardProcess implements AutoCloseable {
                 controlml.passwordFile = %s
                 remotefs.root = %s
                 %s
-                """, r.name(), r.pty(), r.start()[0], r.start()[1], r.start()[2], map, servers, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
-                PrivateXmppServer.DOMAIN, passwordFile, fsRoot, extra);
+                """, r.name(), tasks, r.pty(), r.start()[0], r.start()[1], r.start()[2], map, servers, r.xmppPort(), r.caFile() == null ? "" : r.caFile(), r.name(),
+                PrivateXmppServer.DOMAIN, passwordFile, fsRoot, rest.toString().strip());
     }
 
     /** Writes the password file (mode 0600) and the configuration into {@code dir}, then starts the product. */

@@ -1,5 +1,6 @@
 package sabot.onboard.controlml.internal.session;
 
+import java.io.IOException;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
@@ -89,7 +90,13 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final ExecutorService notifier = Executors.newSingleThreadExecutor(
             NamedThreads.daemon("sabot-session-events"));
     private final List<SessionListener> listeners = new CopyOnWriteArrayList<>();
-    private final ServiceTracker<OnboardTask, OnboardTask> tasks;
+    /**
+     * The running tasks' references: their services are got only when the identity is published (after a login), never
+     * while this component is created, where a task that references {@link RobotSession} (remotefs, portal) would be
+     * a circle for SCR.
+     */
+    private final ServiceTracker<OnboardTask, ServiceReference<OnboardTask>> tasks;
+    private final BundleContext context;
     private final LinkWatch linkWatch;
 
     private final Object lock = new Object();
@@ -168,18 +175,17 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         });
         linkWatch = new LinkWatch(connection, settings.liveness(), NamedThreads.daemon("sabot-session-liveness"),
                 this::silent);
+        this.context = context;
         tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
             @Override
-            public OnboardTask addingService(ServiceReference<OnboardTask> reference) {
-                OnboardTask task = super.addingService(reference);
+            public ServiceReference<OnboardTask> addingService(ServiceReference<OnboardTask> reference) {
                 scheduleIdentity();
-                return task;
+                return reference;
             }
 
             @Override
-            public void removedService(ServiceReference<OnboardTask> reference, OnboardTask task) {
+            public void removedService(ServiceReference<OnboardTask> reference, ServiceReference<OnboardTask> same) {
                 scheduleIdentity();
-                super.removedService(reference, task);
             }
         };
         tasks.open();
@@ -494,7 +500,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         IdentityResult<QrInventory.Encoded> result;
         try {
             result = DeviceIdentityManager.getInstanceFor(connection).publish(OnboardIdentity.profile(settings, version,
-                    running), OnboardIdentity.inventory(inventorySource, settings, running));
+                    running, vCardPage()), OnboardIdentity.inventory(inventorySource, settings, running));
         } catch (RuntimeException e) {
             LOG.warn("vCard identity not published: {}", describe(e));
             return;
@@ -514,16 +520,41 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     /** @return the running tasks' names and their bundles' versions, sorted by name */
     private Map<String, String> runningTasks() {
         Map<String, String> running = new TreeMap<>();
+        eachTask((ref, task) -> {
+            if (ref.getBundle() != null) {
+                running.put(task.name(), ref.getBundle().getVersion().toString());
+            }
+        });
+        return running;
+    }
+
+    /** @return the first running task's web page (by task name), the vCard's URL; null when none serves one */
+    private java.net.URI vCardPage() {
+        java.util.SortedMap<String, java.net.URI> pages = new TreeMap<>();
+        eachTask((ref, task) -> task.page().ifPresent(uri -> pages.put(task.name(), uri)));
+        return pages.isEmpty() ? null : pages.get(pages.firstKey());
+    }
+
+    private void eachTask(java.util.function.BiConsumer<ServiceReference<OnboardTask>, OnboardTask> action) {
         ServiceReference<OnboardTask>[] refs = tasks.getServiceReferences();
-        if (refs != null) {
-            for (ServiceReference<OnboardTask> ref : refs) {
-                OnboardTask task = tasks.getService(ref);
-                if (task != null && ref.getBundle() != null) {
-                    running.put(task.name(), ref.getBundle().getVersion().toString());
+        if (refs == null) {
+            return;
+        }
+        for (ServiceReference<OnboardTask> ref : refs) {
+            OnboardTask task;
+            try {
+                task = context.getService(ref);
+            } catch (IllegalStateException stopped) {
+                return; // deactivated meanwhile
+            }
+            if (task != null) {
+                try {
+                    action.accept(ref, task);
+                } finally {
+                    context.ungetService(ref);
                 }
             }
         }
-        return running;
     }
 
     // ------------------------------------------------------------------------------------------ RobotSession
@@ -582,6 +613,53 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     }
 
     // ------------------------------------------------------------------------------------------ OnboardTask
+
+    @Override
+    public PresenceLevel presenceLevel() {
+        return presence.level();
+    }
+
+    @Override
+    public String presenceReason() {
+        return presence.reason();
+    }
+
+    @Override
+    public boolean checkPassword(String account, String password) throws IOException {
+        org.jxmpp.jid.EntityBareJid jid;
+        try {
+            jid = org.jxmpp.jid.impl.JidCreate.entityBareFrom(account);
+        } catch (org.jxmpp.stringprep.XmppStringprepException | RuntimeException e) {
+            return false;
+        }
+        if (!jid.asDomainBareJid().equals(settings.jid().asDomainBareJid()) || password.isEmpty()) {
+            return false; // only the robot's server knows its accounts' passwords
+        }
+        XMPPTCPConnectionConfiguration.Builder config = XMPPTCPConnectionConfiguration.builder();
+        config.setXmppDomain(jid.asDomainBareJid())
+                .setHostAddressByNameOrIp(settings.servers().get(0))
+                .setPort(settings.port())
+                .setUsernameAndPassword(jid.getLocalpart(), password)
+                .setSocketFactory(new NoDelaySocketFactory(settings.servers()))
+                .setConnectTimeout((int) CONNECT_TIMEOUT.toMillis())
+                .setSendPresence(false);
+        XMPPTCPConnection check = new XMPPTCPConnection(FleetConnections.secured(config, settings.trust()).build());
+        Roster.getInstanceFor(check).setRosterLoadedAtLogin(false);
+        try {
+            check.connect();
+            check.login();
+            return true;
+        } catch (org.jivesoftware.smack.sasl.SASLErrorException refused) {
+            return false;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IOException("interrupted while checking the password of " + jid, e);
+        } catch (SmackException | XMPPException e) {
+            throw new IOException("the XMPP server did not check the password of " + jid + ": " + describe(e), e);
+        } finally {
+            check.disconnect();
+        }
+    }
 
     @Override
     public String name() {

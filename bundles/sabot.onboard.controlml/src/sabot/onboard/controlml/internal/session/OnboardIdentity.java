@@ -38,11 +38,13 @@ final class OnboardIdentity {
     /**
      * @param version the onboard product's version (the sabot.onboard bundle's)
      * @param tasks   running task name to the version of its bundle
+     * @param page    the robot's web page (the vCard's URL), or null when no task serves one
      */
-    static DeviceProfile profile(ControlMlSettings settings, String version, Map<String, String> tasks) {
+    static DeviceProfile profile(ControlMlSettings settings, String version, Map<String, String> tasks,
+            java.net.URI page) {
         String description = MODEL + " " + version + "; tasks: " + (tasks.isEmpty() ? "none" : String.join(", ",
                 tasks.keySet()));
-        return new DeviceProfile(CATEGORY, MANUFACTURER, MODEL, settings.robotName(), null, null, null, DeviceUrn
+        return new DeviceProfile(CATEGORY, MANUFACTURER, MODEL, settings.robotName(), page, null, null, DeviceUrn
                 .urnOf(serial(settings)), settings.jid().toString(), ROLE, null, null, description);
     }
 

@@ -112,4 +112,21 @@ final class SmackRobotSession implements RobotSession {
     public void removeListener(SessionListener listener) {
         listeners.remove(listener);
     }
+
+    @Override
+    public PresenceLevel presenceLevel() {
+        PresenceCall p = presence;
+        return p == null ? PresenceLevel.FREE : p.level();
+    }
+
+    @Override
+    public String presenceReason() {
+        PresenceCall p = presence;
+        return p == null || p.reason() == null ? "" : p.reason();
+    }
+
+    @Override
+    public boolean checkPassword(String account, String password) {
+        throw new UnsupportedOperationException("the endpoint's tests log nobody in");
+    }
 }

@@ -1,0 +1,289 @@
+package sabot.system;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.io.InputStream;
+import java.net.ServerSocket;
+import java.net.URI;
+import java.net.http.HttpClient;
+import java.net.http.HttpRequest;
+import java.net.http.HttpResponse;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.security.KeyStore;
+import java.security.cert.CertificateFactory;
+import java.time.Duration;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+
+import javax.net.ssl.SSLContext;
+import javax.net.ssl.TrustManagerFactory;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+import org.jxmpp.jid.impl.JidCreate;
+
+import sabot.controlml.Resources;
+import sabot.controlml.Role;
+import sabot.controlml.payload.Goal;
+import sabot.identity.DeviceCard;
+import sabot.identity.DeviceIdentityManager;
+import sabot.identity.IdentityResult;
+import sabot.model.geometry.Pose2D;
+import sabot.testsupport.robot.OnboardProcess;
+import sabot.testsupport.robot.SimProcess;
+import sabot.testsupport.xmpp.PrivateXmppServer;
+
+/**
+ * The robot's web page (docs/PORTAL.md) over HTTPS with the lab CA's certificate, on the product driving the
+ * simulated robot, with a plain HTTP client: log-in with the robot's XMPP accounts and roles, the pose changing while
+ * the robot drives, a setting changed and applied, refusals (a bad value with the configuration's error text, a forged
+ * form, an observer), bad input (413, path traversal, malformed forms, wrong methods, unknown settings), the log-in
+ * throttle, log-out; the robot still drives after all of it, and its vCard's URL is the page.
+ */
+class PortalTest extends RigTest {
+
+    static final Pattern CSRF = Pattern.compile("name=\"csrf\" value=\"([A-Za-z0-9_-]+)\"");
+    static final Pattern POSE_X = Pattern.compile("\"pose\":\\{\"x\":(-?[0-9.]+)");
+
+    /**
+     * @return the portal's extra configuration lines: HTTPS on 127.0.0.1 with the lab CA's certificate of this computer
+     *         (localhost, 127.0.0.1), on a free port
+     */
+    static String portalConfig(PrivateXmppServer xmpp, int port) {
+        Path certs = xmpp.runDir().resolve("certs");
+        return "tasks = " + OnboardProcess.TASKS + ", portal\n"
+                + "portal.bind = 127.0.0.1\n"
+                + "portal.port = " + port + "\n"
+                + "portal.tls = true\n"
+                + "portal.certificateFile = " + certs.resolve("localhost.crt") + "\n"
+                + "portal.keyFile = " + certs.resolve("localhost.key") + "\n"
+                + "portal.pollInterval = 100\n";
+    }
+
+    static int freePort() throws IOException {
+        try (ServerSocket s = new ServerSocket(0)) {
+            return s.getLocalPort();
+        }
+    }
+
+    /**
+     * An HTTP client that trusts the lab CA only (and checks the name: 127.0.0.1) and follows no redirect (the test
+     * reads each 303).
+     */
+    static HttpClient client(PrivateXmppServer xmpp) throws Exception {
+        KeyStore trust = KeyStore.getInstance("PKCS12");
+        trust.load(null, null);
+        try (InputStream in = Files.newInputStream(xmpp.caFile())) {
+            trust.setCertificateEntry("lab-ca", CertificateFactory.getInstance("X.509").generateCertificate(in));
+        }
+        TrustManagerFactory tmf = TrustManagerFactory.getInstance(TrustManagerFactory.getDefaultAlgorithm());
+        tmf.init(trust);
+        SSLContext tls = SSLContext.getInstance("TLS");
+        tls.init(null, tmf.getTrustManagers(), null);
+        return HttpClient.newBuilder().sslContext(tls).followRedirects(HttpClient.Redirect.NEVER).connectTimeout(
+                Duration.ofSeconds(5)).build();
+    }
+
+    /** One person's browser: the base address, the session cookie once logged in. */
+    record Browser(HttpClient http, String base, String cookie) {
+
+        HttpResponse<String> get(String path) throws Exception {
+            return send(HttpRequest.newBuilder(URI.create(base + path)).GET());
+        }
+
+        HttpResponse<String> post(String path, String form) throws Exception {
+            return send(HttpRequest.newBuilder(URI.create(base + path)).header("Content-Type",
+                    "application/x-www-form-urlencoded").POST(HttpRequest.BodyPublishers.ofString(form)));
+        }
+
+        HttpResponse<String> send(HttpRequest.Builder request) throws Exception {
+            if (cookie != null) {
+                request.header("Cookie", cookie);
+            }
+            return http.send(request.timeout(Duration.ofSeconds(20)).build(), HttpResponse.BodyHandlers.ofString());
+        }
+
+        Browser logIn(String account, String password) throws Exception {
+            HttpResponse<String> r = post("/login", "account=" + enc(account) + "&password=" + enc(password));
+            assertEquals(303, r.statusCode(), r.body());
+            String setCookie = r.headers().firstValue("Set-Cookie").orElseThrow();
+            return new Browser(http, base, setCookie.substring(0, setCookie.indexOf(';')));
+        }
+
+        String csrf() throws Exception {
+            Matcher m = CSRF.matcher(get("/").body());
+            assertTrue(m.find(), "no CSRF token on the status page");
+            return m.group(1);
+        }
+    }
+
+    static String enc(String s) {
+        return java.net.URLEncoder.encode(s, StandardCharsets.UTF_8);
+    }
+
+    static double poseX(Browser b) throws Exception {
+        HttpResponse<String> r = b.get("/api/status");
+        assertEquals(200, r.statusCode(), r.body());
+        Matcher m = POSE_X.matcher(r.body());
+        assertTrue(m.find(), r.body());
+        return Double.parseDouble(m.group(1));
+    }
+
+    @Test
+    void theRobotsPageLogsInByRoleShowsItDrivingChangesASettingAndRefusesBadInputWhileTheRobotDrives(
+            @TempDir Path dir) throws Exception {
+        int port = freePort();
+        try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], portalConfig(xmpp, port))) {
+            String url = "https://127.0.0.1:" + port + "/";
+            rig.onboard.await(l -> l.contains("portal task started: the robot's page at " + url), "serving its page");
+            xmpp.login("observer");
+            xmpp.grant(JidCreate.bareFrom("observer@" + PrivateXmppServer.DOMAIN), Role.OBSERVER);
+            Browser anonymous = new Browser(client(xmpp), "https://127.0.0.1:" + port, null);
+            String maintainer = RobotRig.OPERATOR + "@" + PrivateXmppServer.DOMAIN; // a maintainer (RobotRig)
+
+            // the vCard's URL is the page
+            DeviceIdentityManager identity = DeviceIdentityManager.getInstanceFor(rig.operatorConnection);
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
+            String published = null;
+            while (System.nanoTime() < deadline) {
+                IdentityResult<DeviceCard> card = identity.fetch(JidCreate.entityBareFrom(rig.robot.asBareJid()));
+                if (card instanceof IdentityResult.Ok<DeviceCard> ok && ok.value().profile().portal() != null) {
+                    published = ok.value().profile().portal().toString();
+                    break;
+                }
+                TimeUnit.MILLISECONDS.sleep(100); // polling the server's stored vCard: no event to wait on
+            }
+            assertEquals(url, published, "the vCard's URL");
+
+            // not logged in: the log-in page; a wrong password: refused
+            HttpResponse<String> first = anonymous.get("/");
+            assertEquals(303, first.statusCode());
+            assertEquals("/login", first.headers().firstValue("Location").orElseThrow());
+            assertEquals(401, anonymous.get("/api/status").statusCode());
+            HttpResponse<String> wrong = anonymous.post("/login", "account=" + enc(maintainer) + "&password=nope");
+            assertEquals(401, wrong.statusCode());
+            assertTrue(wrong.body().contains("wrong account or password"), wrong.body());
+
+            // the maintainer logs in: a Secure, HttpOnly, SameSite=Strict cookie
+            HttpResponse<String> in = anonymous.post("/login", "account=" + enc(maintainer) + "&password=" + enc(
+                    PrivateXmppServer.DEFAULT_PASSWORD));
+            assertEquals(303, in.statusCode(), in.body());
+            String setCookie = in.headers().firstValue("Set-Cookie").orElseThrow();
+            for (String attribute : List.of("HttpOnly", "SameSite=Strict", "Secure", "Path=/")) {
+                assertTrue(setCookie.contains(attribute), setCookie);
+            }
+            Browser m = anonymous.logIn(maintainer, PrivateXmppServer.DEFAULT_PASSWORD);
+            HttpResponse<String> page = m.get("/");
+            assertEquals(200, page.statusCode());
+            assertEquals("max-age=31536000", page.headers().firstValue("Strict-Transport-Security").orElseThrow());
+            assertTrue(page.headers().firstValue("Content-Security-Policy").orElseThrow().contains("script-src 'self'"));
+            assertTrue(page.body().contains(RobotRig.ROBOT) && page.body().contains("(maintainer)"), page.body());
+            String status = m.get("/api/status").body();
+            for (String part : List.of("\"jid\":\"sabot-01@sabot.local\"", "\"uuid\":\"urn:uuid:", "\"page\":\"" + url,
+                    "\"online\":true", "\"name\":\"motion\"", "\"name\":\"portal\"", "\"role\":\"maintainer\"")) {
+                assertTrue(status.contains(part), part + " in " + status);
+            }
+            assertTrue(m.get("/map.svg").body().startsWith("<svg"));
+
+            // the robot drives: the page's pose follows it
+            double x0 = poseX(m);
+            var goal = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3));
+            assertTrue(goal.isSuccess(), "goal refused: " + goal.errorOrNull());
+            awaitSpeed(rig.sim, 0.1, 15);
+            deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
+            double x = x0;
+            while (x < x0 + 0.3 && System.nanoTime() < deadline) {
+                x = poseX(m); // each answer is a new request: no wait of our own
+            }
+            assertTrue(x >= x0 + 0.3, "the page's pose stayed at " + x + " from " + x0);
+
+            // a setting changed: written to the file and applied (the task restarts with it)
+            Path conf = rig.onboard.config();
+            String csrf = m.csrf();
+            HttpResponse<String> changed = m.post("/config", "csrf=" + csrf + "&task=remotefs&s.readOnly=true");
+            assertEquals(200, changed.statusCode(), changed.body());
+            assertTrue(changed.body().contains("task &#39;remotefs&#39; restarts with its new settings"), changed
+                    .body());
+            assertTrue(Files.readString(conf).contains("\nremotefs.readOnly = true\n"), Files.readString(conf));
+            rig.onboard.await(l -> l.contains("remote FS task started") && l.contains("read-only"),
+                    "restarting remotefs read-only");
+
+            // refused, nothing written: a bad value (the configuration's own text), an unknown setting, no CSRF token
+            byte[] before = Files.readAllBytes(conf);
+            HttpResponse<String> bad = m.post("/config", "csrf=" + csrf + "&task=remotefs&s.maxChunk=0");
+            assertEquals(400, bad.statusCode());
+            assertTrue(bad.body().contains("key &#39;remotefs.maxChunk&#39;: &#39;0&#39; is below the minimum 1"), bad
+                    .body());
+            HttpResponse<String> unknown = m.post("/config", "csrf=" + csrf + "&task=remotefs&s.bogus=1");
+            assertEquals(400, unknown.statusCode());
+            assertTrue(unknown.body().contains("task &#39;remotefs&#39; has no setting &#39;bogus&#39;"), unknown
+                    .body());
+            HttpResponse<String> forged = m.post("/config", "task=remotefs&s.readOnly=false");
+            assertEquals(403, forged.statusCode());
+            assertTrue(forged.body().contains("CSRF token is missing or wrong"), forged.body());
+            assertEquals(403, m.post("/config", "csrf=" + csrf.substring(1) + "x&task=remotefs&s.readOnly=false")
+                    .statusCode());
+
+            // an observer reads, changes nothing
+            Browser o = anonymous.logIn("observer@" + PrivateXmppServer.DOMAIN, PrivateXmppServer.DEFAULT_PASSWORD);
+            assertEquals(200, o.get("/api/status").statusCode());
+            assertFalse(o.get("/").body().contains("href=\"/config\""));
+            assertEquals(403, o.get("/config").statusCode());
+            assertEquals(403, o.post("/config", "csrf=" + o.csrf() + "&task=remotefs&s.readOnly=false").statusCode());
+
+            // bad input: a clear error each
+            SimProcess.Truth driving = rig.sim.truth();
+            assertEquals(413, m.post("/config", "csrf=" + csrf + "&task=remotefs&s.root=" + "a".repeat(20_000))
+                    .statusCode());
+            assertEquals(400, m.send(HttpRequest.newBuilder(URI.create(m.base() + "/static/../../etc/passwd")).GET())
+                    .statusCode());
+            assertEquals(400, m.get("/static/%2e%2e/%2e%2e/etc/passwd").statusCode());
+            assertEquals(404, m.get("/etc/passwd").statusCode());
+            assertEquals(400, m.post("/config", "csrf=" + csrf + "&task=remotefs&s.readOnly=%zz").statusCode());
+            assertEquals(400, m.post("/config", "csrf=" + csrf + "&task=remotefs&noequals").statusCode());
+            assertEquals(400, m.post("/config", "csrf=" + csrf + "&csrf=" + csrf + "&task=remotefs").statusCode());
+            HttpResponse<String> delete = m.send(HttpRequest.newBuilder(URI.create(m.base() + "/config")).DELETE());
+            assertEquals(405, delete.statusCode());
+            assertEquals("GET, POST", delete.headers().firstValue("Allow").orElseThrow());
+            assertEquals(405, m.send(HttpRequest.newBuilder(URI.create(m.base() + "/")).PUT(HttpRequest.BodyPublishers
+                    .ofString("x"))).statusCode());
+            assertEquals(415, m.send(HttpRequest.newBuilder(URI.create(m.base() + "/config")).header("Content-Type",
+                    "text/plain").POST(HttpRequest.BodyPublishers.ofString("csrf=" + csrf))).statusCode());
+            assertEquals(400, m.post("/config", "csrf=" + csrf + "&task=nosuchtask&s.a=1").statusCode());
+            assertTrue(java.util.Arrays.equals(before, Files.readAllBytes(conf)), "the file changed");
+
+            // the product is alive and still driving
+            assertEquals(200, m.get("/api/status").statusCode());
+            awaitTruth(rig.sim, t -> t.distanceTo(driving.x(), driving.y()) > 0.2, 10, "still driving");
+            assertTrue(rig.onboard.output().lines().noneMatch(l -> l.matches(".*portal: [A-Z]+ /\\S* failed.*")), rig
+                    .onboard.output()); // no request ended in an exception (PortalRoutes' 500)
+
+            // log-out ends the session
+            assertEquals(303, m.post("/logout", "csrf=" + m.csrf()).statusCode());
+            assertEquals(401, m.get("/api/status").statusCode());
+
+            // the throttle: after the failures allowed (one above), refused without asking the server, even the right
+            // password
+            int attempts = 0;
+            HttpResponse<String> r;
+            do {
+                r = anonymous.post("/login", "account=" + enc(maintainer) + "&password=wrong-" + attempts);
+                attempts++;
+            } while (r.statusCode() == 401 && attempts < 10);
+            assertEquals(429, r.statusCode(), r.body());
+            assertEquals(5, attempts, "failed log-ins before the throttle (the default 5, one of them above)");
+            assertTrue(r.headers().firstValue("Retry-After").isPresent());
+            assertEquals(429, anonymous.post("/login", "account=" + enc(maintainer) + "&password=" + enc(
+                    PrivateXmppServer.DEFAULT_PASSWORD)).statusCode());
+            System.out.printf(Locale.ROOT, "[figure] portal: page at %s, pose followed the robot%n", url);
+        }
+    }
+}
