@@ -340,9 +340,10 @@ class LiveFleetUiTest {
         assertEquals(ROBOT_JID, workspace.selectedRobot());
         workspace.newMission();
         assertTrue(workspace.editsMission());
-        // 1: (7.2, 4.4) facing east, passed through; 2: (7.2, 3.0) facing south; 3: a click at (6.0, 3.0), facing
-        // away from 2 (west)
-        double[][] targets = { { 7.2, 4.4, 0 }, { 7.2, 3.0, -Math.PI / 2 }, { 6.0, 3.0, Math.PI } };
+        // 1: (7.2, 4.4) facing east, passed through; 2: (7.2, 3.0) facing south; 3: a click at (4.8, 3.0), facing
+        // away from 2 (west). Target 3 is 1.2 m from the start, where the next test sends the robot to stop it on
+        // its way: a mission ending next to it would leave that test no way to stop short of it
+        double[][] targets = { { 7.2, 4.4, 0 }, { 7.2, 3.0, -Math.PI / 2 }, { 4.8, 3.0, Math.PI } };
         int[][] drags = { { 40, 0 }, { 0, 40 }, { 0, 0 } };
         for (int i = 0; i < targets.length; i++) {
             int px = sx(v, targets[i][0]);
