@@ -37,7 +37,7 @@
 #define IDLE_WAKE_US 50000
 #define CLOCK_CHECK_STEPS 20   /* steps between looks at the wall clock while catching up */
 #define CATCH_UP_SLICE_S 0.005 /* the longest stretch of stepping without I/O when behind */
-#define LATE_WAKE_S 0.020      /* a wake-up this late is logged: the host did not run the simulator (at most 1/s) */
+#define LATE_WAKE_S 0.020      /* this far behind the wall clock at a wake-up is logged (at most once a second) */
 #define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
 
 typedef struct {
@@ -619,9 +619,10 @@ int main(int argc, char **argv)
         int ready = ppoll(flat, (nfds_t)nfds, &timeout, NULL);
         double late = wall_seconds() - due;
         if (ready == 0 && late > LATE_WAKE_S) {
-            /* Answers due meanwhile left late too: a master's timeouts then are the host's, not the bus's. */
+            /* The host did not run the simulator in time, or it cannot keep up with --speed: answers due meanwhile
+             * left late too, so a master's timeouts then are the host's, not the bus's. */
             if (wall_seconds() - last_late_report >= 1.0) {
-                fprintf(stderr, "sabot-sim: woke %.0f ms late at t=%.3f s: the host did not run the simulator "
+                fprintf(stderr, "sabot-sim: woke %.0f ms late at t=%.3f s: answers due meanwhile left late "
                                 "(%u such wake-ups so far)\n", late * 1e3, run.sim_us * 1e-6, late_wakes + 1);
                 last_late_report = wall_seconds();
             }
@@ -640,13 +641,8 @@ int main(int argc, char **argv)
     }
 
     if (truth) {
-        /* The log ends at the state the simulator stopped in: stepped to the wall clock, and on to the next row, so
-         * that a reader finds rows either side of the last instant anyone could observe. */
-        uint64_t now_us = (uint64_t)((wall_seconds() - run.start) * run.speed * 1e6);
-        if (now_us > end_us)
-            now_us = end_us;
-        while (run.sim_us + SACT_TS_US <= now_us)
-            step_all(&run);
+        /* The simulation may have slept since the last bus event or command, the last instant anyone observed: the
+         * log goes on to its next row, so that a reader finds rows either side of that instant. */
         for (uint64_t row = run.next_truth_us; run.sim_us < row;)
             step_all(&run);
     }
