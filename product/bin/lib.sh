@@ -294,8 +294,9 @@ sabot_rig_start() {
     # one simulator process, one pty per robot; its first stdout line (JSON) says they are ready. It runs in a session
     # of its own, as the server does: Linux's scheduler (autogroup, on by default) shares the CPUs between sessions
     # first, and in the script's session (robots, workbench, display) it fell a minute behind the wall clock on a
-    # machine loaded by other work, every robot's answers with it; alone it needs a few % of a core. setsid execs in
-    # place (a background job of a script is no group leader): the pid is the simulator's, sabot_rig_stop stops it.
+    # machine loaded by other work, every robot's answers with it (in its own, 11.5 s: docs/ONBOARD.md); it needs a few
+    # % of a core. setsid execs in place (a background job of a script is no group leader): the pid is the
+    # simulator's, sabot_rig_stop stops it.
     setsid "$SABOT_ROOT/onboard-bridge/build/sabot-sim" --map "$SABOT_RIG_MAP" --robots "$robots" --seed 1 --start "$start" \
         --link "$dir/sim-robot" --truth "$dir/truth.csv" --control 0 >"$dir/sim.out" 2>"$dir/sim.log" &
     RIG_SIM_PID=$!
