@@ -498,7 +498,7 @@ public final class ControlLoop {
             }
             LOG.info("{}: path {} m", run.label(), fmt(plan.length()));
             clearFault(); // a target the robot stopped on braked it
-            setTrajectory(plan, now());
+            drive(plan, now());
             return;
         }
         replanPending = false;
@@ -612,6 +612,11 @@ public final class ControlLoop {
         waitUntil = Double.NaN;
         goalChecker = checkerFor(g);
         setMission(MissionState.RUNNING, run == null ? 0 : run.progress(0), detail);
+        drive(plan, t);
+    }
+
+    /** Follows the plan's trajectory; without one (the robot stands on the goal's position) settles on the goal. */
+    private void drive(Plan plan, double t) {
         if (plan.trajectory() == null) {
             trajectory = null;
             trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());

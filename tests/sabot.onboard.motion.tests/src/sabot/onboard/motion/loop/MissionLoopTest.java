@@ -191,6 +191,22 @@ class MissionLoopTest {
     }
 
     @Test
+    void aTargetWhereTheRobotAlreadyStandsIsReachedInPlace() {
+        rig.run(0.1);
+        // the rig's robot starts at (2, 5) facing east: the first target is its own position, turned north
+        start(List.of(target(2, 5, Math.PI / 2, Action.STOP, 0), target(3, 5, 0, Action.STOP, 0), target(3, 5,
+                Math.PI, Action.STOP, 0)));
+        ControlLoop.Snapshot s = tick();
+        for (int i = 0; i < 60 * 50 && s.mission().state() == MissionState.RUNNING; i++) {
+            s = tick();
+        }
+        assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
+        Pose2D at = s.pose().pose();
+        assertTrue(Math.hypot(at.x() - 3, at.y() - 5) <= 0.1, "at the last target: " + at);
+        assertEquals(Math.PI, Math.abs(at.theta()), 0.2, "turned on the spot for the third target: " + at);
+    }
+
+    @Test
     void aPausedWaitResumesWithTheRestOfItsTime() {
         rig.run(0.1);
         start(List.of(target(3, 5, 0, Action.WAIT, 4), target(4, 5, 0, Action.STOP, 0)));
