@@ -32,7 +32,10 @@ public record MissionStatus(MissionState state, boolean maintenance, double prog
 
     /** Longest {@code detail}, characters (the schema's). */
     public static final int DETAIL_MAX = 256;
-    /** Most targets in one mission. */
+    /**
+     * Most targets in one mission: a status with this many, every number at its longest (17 digits) and the longest
+     * detail, still fits one payload ({@code ControlMl.MAX_PAYLOAD_CHARS}; MissionRecordTest measures it).
+     */
     public static final int MAX_TARGETS = 64;
     /** Most missions waiting in a robot's queue. */
     public static final int MAX_QUEUED = 16;

@@ -69,6 +69,25 @@ class MissionRecordTest {
     }
 
     @Test
+    void theLongestMissionFitsOnePayload() throws Exception {
+        List<MissionTarget> targets = new java.util.ArrayList<>();
+        for (int i = 0; i < MissionStatus.MAX_TARGETS; i++) {
+            targets.add(new MissionTarget(new Goal(new Pose2D(-10.123456789012345 - i, -7.987654321098765,
+                    -3.1415926535897931), 0.30000000000000004, 6.2831853071795862), MissionTarget.Action.WAIT,
+                    3599.1234567890123, MissionTarget.State.PENDING));
+        }
+        MissionStatus longest = new MissionStatus(MissionState.RUNNING, false, 99.123456789012345, "é".repeat(
+                MissionStatus.DETAIL_MAX), targets, MissionStatus.MAX_TARGETS, MissionStatus.MAX_QUEUED);
+        String xml = sabot.controlml.ControlMlElement.result(new sabot.controlml.RequestId(java.time.LocalDate.of(2026,
+                11, 29), 4294967295L), "cm.mission", MissionStatus.CODEC.encode(longest)).withTextForm(false)
+                .contentXml();
+        int size = ConformanceTest.payloadSize(xml);
+        System.out.printf("[figure] the longest cm.mission (%d targets): %d of %d code points%n",
+                MissionStatus.MAX_TARGETS, size, sabot.controlml.ControlMl.MAX_PAYLOAD_CHARS);
+        assertTrue(size <= sabot.controlml.ControlMl.MAX_PAYLOAD_CHARS, size + " code points");
+    }
+
+    @Test
     void aCountThatDoesNotMatchTheTargetsOrMissingFieldsAreMalformed() {
         SweComponent short1 = head(0, 2).add("target0", target("stop", 0, "pending")).build();
         assertEquals(ControlMlCondition.MALFORMED_PAYLOAD, assertThrows(PayloadException.class,
