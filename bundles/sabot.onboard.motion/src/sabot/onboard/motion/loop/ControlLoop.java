@@ -510,7 +510,7 @@ public final class ControlLoop {
             return;
         }
         LOG.info("replanned around the obstacle: {} m", fmt(plan.length()));
-        setTrajectory(plan, now());
+        drive(plan, now()); // a robot already on the goal (paused there, then resumed) settles
     }
 
     // ----------------------------------------------------------------------------------------------- commands

@@ -207,6 +207,22 @@ class MissionLoopTest {
     }
 
     @Test
+    void aMissionPausedBeforeItsFirstPlanResumesOnATargetWhereTheRobotStands() {
+        rig.run(0.1);
+        start(List.of(target(2, 5, Math.PI / 2, Action.STOP, 0)));
+        loop().pause(); // before the first leg's plan comes: it is dropped, the resume plans again
+        rig.answerPlanRequests();
+        loop().resume();
+        rig.answerPlanRequests(); // a plan with no distance to go: the robot settles on the target
+        ControlLoop.Snapshot s = tick();
+        for (int i = 0; i < 30 * 50 && s.mission().state() == MissionState.RUNNING; i++) {
+            s = tick();
+        }
+        assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
+        assertEquals(Math.PI / 2, s.pose().pose().theta(), 0.2, "turned on the spot: " + s.pose().pose());
+    }
+
+    @Test
     void aPausedWaitResumesWithTheRestOfItsTime() {
         rig.run(0.1);
         start(List.of(target(3, 5, 0, Action.WAIT, 4), target(4, 5, 0, Action.STOP, 0)));
