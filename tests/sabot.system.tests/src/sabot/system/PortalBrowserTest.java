@@ -57,6 +57,12 @@ class PortalBrowserTest extends RigTest {
         }
     }
 
+    /** @return the text of the element {@code id} once the page that a click submitted shows it */
+    static String shown(WebDriver b, String id) throws InterruptedException {
+        await(() -> !b.findElements(By.id(id)).isEmpty(), 10, "#" + id);
+        return b.findElement(By.id(id)).getText();
+    }
+
     static void screenshot(WebDriver browser, String name) throws Exception {
         Files.createDirectories(IMAGES);
         Files.write(IMAGES.resolve("portal-" + name + ".png"), ((ChromeDriver) browser).getScreenshotAs(OutputType
@@ -129,8 +135,7 @@ class PortalBrowserTest extends RigTest {
                 b.findElement(By.linkText("Configuration")).click();
                 b.findElement(By.cssSelector("#f-remotefs-readOnly option[value='true']")).click();
                 b.findElement(By.id("apply-remotefs")).click();
-                assertTrue(b.findElement(By.id("config-message")).getText().contains(
-                        "task 'remotefs' restarts with its new settings"));
+                assertTrue(shown(b, "config-message").contains("task 'remotefs' restarts with its new settings"));
                 assertTrue(Files.readString(conf).contains("\nremotefs.readOnly = true\n"));
                 rig.onboard.await(l -> l.contains("remote FS task started") && l.contains("read-only"),
                         "restarting remotefs read-only");
@@ -145,15 +150,15 @@ class PortalBrowserTest extends RigTest {
                 chunk.clear();
                 chunk.sendKeys("0");
                 b.findElement(By.id("apply-remotefs")).click();
-                String error = b.findElement(By.id("config-error")).getText();
+                String error = shown(b, "config-error");
                 assertTrue(error.endsWith("key 'remotefs.maxChunk': '0' is below the minimum 1"), error);
                 screenshot(b, "config-refused");
                 assertEquals(403, forgedPost(b), "a change without the CSRF token");
                 assertTrue(java.util.Arrays.equals(before, Files.readAllBytes(conf)), "the file changed");
 
                 // log-out
-                b.findElement(By.id("logout")).click();
-                assertTrue(b.getCurrentUrl().endsWith("/login"), b.getCurrentUrl());
+                b.findElement(By.id("logout")).click(); // a form's POST: the click returns before its redirect
+                await(() -> b.getCurrentUrl().endsWith("/login"), 10, "the log-in page after the log-out");
                 b.get(base + "/");
                 assertTrue(b.getCurrentUrl().endsWith("/login"), "still logged in: " + b.getCurrentUrl());
 
