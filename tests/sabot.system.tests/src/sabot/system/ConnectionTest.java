@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.Arrays;
 import java.util.Map;
 import java.util.Random;
@@ -94,7 +95,7 @@ class ConnectionTest extends RigTest {
     void robotBrakesWhenTheLinkGoesSilentAndStandsStillWhenItComesBack(@TempDir Path dir) throws Exception {
         try (SilentRelay relay = new SilentRelay(xmpp.port());
                 RobotRig rig = RobotRig.start(xmpp, relay.port(), dir, START, START, new String[0],
-                        "controlml.reconnectMin = 0.2\ncontrolml.reconnectMax = 1\n")) {
+                        "controlml.reconnectMin = 0.2\ncontrolml.reconnectMax = 1\ncontrolml.staleCommandAfter = 2\n")) {
             assertTrue(rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3))
                     .isSuccess(), rig.onboard.output());
             SimProcess.Truth moving = awaitSpeed(rig.sim, 0.2, 20);
@@ -111,14 +112,17 @@ class ConnectionTest extends RigTest {
                     "reporting why it stopped");
 
             // The operator sends a new goal into the silence: the server holds it for the robot's session, and the
-            // operator's request times out (as the workbench's does) before the link is back.
+            // operator's request times out (as the workbench's does, here after 3 s) before the link is back: older
+            // than the robot's staleCommandAfter (2 s) when it arrives.
             BlockingQueue<ControlMlElement> late = new LinkedBlockingQueue<>();
             rig.operatorConnection.addAsyncStanzaListener(iq -> late.add(((ControlMlIQ) iq).element()),
                     stanza -> stanza instanceof ControlMlIQ iq && iq.getType() == IQ.Type.error);
             ControlMlElement held = ControlMlElement.request(ControlMlType.SET, new RequestIdGenerator().next(),
                     "cm.goal", Resources.GOAL.codec().encode(new Goal(new Pose2D(9.5, 1.0, 0), 0.15, 0.3)));
+            rig.operator.setRequestTimeout(Duration.ofSeconds(3));
             Outcome<ControlMlElement> timedOut = rig.operator.exchange(rig.robot, held);
             assertEquals(ControlMlCondition.TIMEOUT, timedOut.errorOrNull().cmCondition(), timedOut::toString);
+            rig.operator.setRequestTimeout(Duration.ofSeconds(10));
 
             relay.resume();
             rig.onboard.awaitCount(l -> l.contains("XMPP session online"), 2, "saying the session is back");

@@ -32,10 +32,10 @@ class MissionTest extends RigTest {
     /** Position tolerance of every target, m, judged on the truth (as {@link NavigationTest}). */
     static final double TOLERANCE = 0.15;
     /** How long the robot stands on the wait target, s. */
-    static final double WAIT = 2.0;
-    /** The lower corridor, west to east: a pass, a wait, a stop off the corridor's axis, a stop. */
-    static final List<MissionTarget> FOUR = List.of(target(3.0, 1.0, 0, Action.PASS, 0), target(4.5, 1.0, 0,
-            Action.WAIT, WAIT), target(6.0, 1.5, 0, Action.STOP, 0), target(7.0, 1.0, 0, Action.STOP, 0));
+    static final double WAIT = 1.0;
+    /** The lower corridor, west to east from x = 1.5 m: a pass, a wait, a stop off the corridor's axis, a stop. */
+    static final List<MissionTarget> FOUR = List.of(target(2.5, 1.0, 0, Action.PASS, 0), target(3.5, 1.0, 0,
+            Action.WAIT, WAIT), target(4.5, 1.5, 0, Action.STOP, 0), target(5.5, 1.0, 0, Action.STOP, 0));
 
     static MissionTarget target(double x, double y, double theta, Action action, double wait) {
         return MissionTarget.pending(new Goal(new Pose2D(x, y, theta), TOLERANCE, 0.3), action, wait);
@@ -103,10 +103,10 @@ class MissionTest extends RigTest {
             assertEquals(0, end.contacts(), "contacts: " + end);
 
             // a second mission, back west: aborted on the way to its second target, the robot stops and stays
-            List<MissionTarget> back = List.of(target(5.5, 1.0, Math.PI, Action.PASS, 0), target(2.0, 1.0, Math.PI,
+            List<MissionTarget> back = List.of(target(4.5, 1.0, Math.PI, Action.PASS, 0), target(2.0, 1.0, Math.PI,
                     Action.STOP, 0));
             assertTrue(rig.operator.set(rig.robot, Resources.MISSION, start(back)).isSuccess());
-            awaitTruth(rig.sim, t -> t.x() < 5.0 && Math.abs(t.v()) > 0.15, 60, "driving past the first target");
+            awaitTruth(rig.sim, t -> t.x() < 4.0 && Math.abs(t.v()) > 0.15, 60, "driving past the first target");
             assertEquals(1, rig.get(Resources.MISSION).current(), "on its way to the second target");
             assertTrue(rig.operator.set(rig.robot, Resources.MISSION, new MissionStatus(MissionState.ABORTED, false,
                     0, "the test")).isSuccess());
