@@ -39,6 +39,8 @@
 #define CATCH_UP_SLICE_S 0.005 /* the longest stretch of stepping without I/O when behind */
 #define LATE_WAKE_S 0.020      /* this far behind the wall clock at a wake-up is logged (at most once a second) */
 #define TRUTH_PERIOD_US 10000  /* ground-truth log at 100 Hz */
+#define START_SPACING_Y 0.8    /* m in y between robots placed from --start (or the map centre) */
+#define POSE_TEXT_MAX 128      /* the longest X,Y,THETA of --starts */
 
 typedef struct {
     int pty_master, pty_slave;
@@ -51,11 +53,14 @@ typedef struct {
     const char *map_path;
     double start_x, start_y, start_theta;
     bool start_given;
+    double starts[MAX_ROBOTS][3];  /* x, y, theta of each robot: --starts, else filled in from the start pose */
+    int n_starts;                  /* poses --starts gave, 0 without it */
     uint64_t seed;
     double speed;
     int tcp_port;               /* -1: no TCP */
     int control_port;           /* -1: no control channel */
     int robots;
+    bool robots_given;
     bus_faults_t faults;
     double gear_ratio, track;
     const char *truth_path;
@@ -107,7 +112,10 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: sabot-sim [options]\n"
             "  --map FILE.yaml        ROS map_server map (default maps/lab.yaml)\n"
-            "  --start X,Y,THETA      start pose of robot 1 in m, m, rad; others 0.8 m apart in y\n"
+            "  --start X,Y,THETA      start pose of robot 1 in m, m, rad; others %g m apart in y\n"
+            "                         (default: the map centre)\n"
+            "  --starts X,Y,THETA/... one start pose per robot, '/' between them; sets the number of robots\n"
+            "                         (with --robots N: N poses); not with --start\n"
             "  --seed N               seed of every random process (default 1)\n"
             "  --speed F              simulated seconds per wall second (default 1)\n"
             "  --realtime             same as --speed 1\n"
@@ -125,7 +133,7 @@ static void usage(FILE *f)
             "  --duration S           stop after S simulated seconds\n"
             "  --bench [S]            run one robot flat out for S simulated s (default 20), print JSON\n"
             "  --map-file             print the path of the Modbus register map and exit\n",
-            (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M);
+            START_SPACING_Y, (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M);
 }
 
 /* Argument parsers: each refuses anything but the whole argument as the expected kind. */
@@ -180,12 +188,48 @@ static bool arg_port(const char *option, const char *text, int *port)
     return true;
 }
 
+/* X,Y,THETA: three finite numbers and nothing else. */
+static bool parse_pose(const char *text, double pose[3])
+{
+    char extra;
+    return sscanf(text, "%lf,%lf,%lf%c", &pose[0], &pose[1], &pose[2], &extra) == 3 && isfinite(pose[0]) &&
+           isfinite(pose[1]) && isfinite(pose[2]);
+}
+
+/* --starts X,Y,THETA/X,Y,THETA/...: one pose per robot, at most MAX_ROBOTS. */
+static bool parse_starts(const char *text, options_t *o)
+{
+    int n = 0;
+    for (const char *p = text;; n++) {
+        const char *slash = strchr(p, '/');
+        size_t len = slash ? (size_t)(slash - p) : strlen(p);
+        if (n == MAX_ROBOTS) {
+            fprintf(stderr, "sabot-sim: --starts gives more than %d poses (at most %d robots), got '%s'\n", MAX_ROBOTS,
+                    MAX_ROBOTS, text);
+            return false;
+        }
+        char pose[POSE_TEXT_MAX];
+        snprintf(pose, sizeof pose, "%.*s", (int)(len < sizeof pose ? len : sizeof pose - 1), p);
+        if (len >= sizeof pose || !parse_pose(pose, o->starts[n])) {
+            fprintf(stderr, "sabot-sim: --starts wants X,Y,THETA (three numbers) per robot, '/' between them; "
+                            "pose %d is '%.*s' in '%s'\n", n + 1, (int)len, p, text);
+            return false;
+        }
+        if (!slash)
+            break;
+        p = slash + 1;
+    }
+    o->n_starts = n + 1;
+    return true;
+}
+
 static int parse_options(int argc, char **argv, options_t *o)
 {
-    enum { O_MAP = 256, O_START, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_CONTROL, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
+    enum { O_MAP = 256, O_START, O_STARTS, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_CONTROL, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
            O_GEAR, O_TRACK, O_TRUTH, O_LINK, O_DURATION, O_BENCH, O_MAPFILE, O_HELP };
     static const struct option longopts[] = {
         { "map", required_argument, 0, O_MAP },        { "start", required_argument, 0, O_START },
+        { "starts", required_argument, 0, O_STARTS },
         { "seed", required_argument, 0, O_SEED },      { "speed", required_argument, 0, O_SPEED },
         { "realtime", no_argument, 0, O_REALTIME },    { "tcp", required_argument, 0, O_TCP },
         { "control", required_argument, 0, O_CONTROL },
@@ -205,15 +249,21 @@ static int parse_options(int argc, char **argv, options_t *o)
         switch (c) {
         case O_MAP: o->map_path = optarg; break;
         case O_START: {
-            char extra;
-            if (sscanf(optarg, "%lf,%lf,%lf%c", &o->start_x, &o->start_y, &o->start_theta, &extra) != 3 ||
-                !isfinite(o->start_x) || !isfinite(o->start_y) || !isfinite(o->start_theta)) {
+            double pose[3];
+            if (!parse_pose(optarg, pose)) {
                 fprintf(stderr, "sabot-sim: --start wants X,Y,THETA (three numbers), got '%s'\n", optarg);
                 return -1;
             }
+            o->start_x = pose[0];
+            o->start_y = pose[1];
+            o->start_theta = pose[2];
             o->start_given = true;
             break;
         }
+        case O_STARTS:
+            if (!parse_starts(optarg, o))
+                return -1;
+            break;
         case O_SEED: {
             char *end;
             errno = 0;
@@ -242,6 +292,7 @@ static int parse_options(int argc, char **argv, options_t *o)
             if (!arg_integer("--robots", optarg, 1, MAX_ROBOTS, &n))
                 return -1;
             o->robots = (int)n;
+            o->robots_given = true;
             break;
         case O_CRC:
             if (!arg_range("--fault-crc", optarg, 0, 1, false, &o->faults.crc_error_rate))
@@ -305,6 +356,17 @@ static int parse_options(int argc, char **argv, options_t *o)
         fprintf(stderr, "sabot-sim: unexpected argument '%s' (--help lists the options)\n", argv[optind]);
         return -1;
     }
+    if (o->n_starts && o->start_given) {
+        fprintf(stderr, "sabot-sim: --start and --starts: give one or the other\n");
+        return -1;
+    }
+    if (o->n_starts && o->robots_given && o->n_starts != o->robots) {
+        fprintf(stderr, "sabot-sim: --starts gives %d pose%s for %d robot%s (--robots %d)\n", o->n_starts,
+                o->n_starts == 1 ? "" : "s", o->robots, o->robots == 1 ? "" : "s", o->robots);
+        return -1;
+    }
+    if (o->n_starts)
+        o->robots = o->n_starts;
     if (o->tcp_port > 0 && o->tcp_port + o->robots - 1 > 65535) {
         fprintf(stderr, "sabot-sim: --tcp %d with %d robots needs ports up to %d, beyond 65535\n", o->tcp_port,
                 o->robots, o->tcp_port + o->robots - 1);
@@ -475,6 +537,27 @@ static int run_bench(const options_t *o, const world_t *world, robot_config_t *c
     return 0;
 }
 
+/* A robot whose footprint, where it starts, overlaps the map's obstacles (or its edge) or another robot's footprint is
+ * a warning on stderr, naming the robot and its pose; the simulation still runs (robots in contact can part). The rig
+ * refuses to go on after such a warning (product/bin/lib.sh, sabot_rig_start). */
+static void warn_start_poses(const options_t *o, const world_t *world, double radius)
+{
+    for (int i = 0; i < o->robots; i++) {
+        const double *p = o->starts[i];
+        if (world_clearance(world, p[0], p[1]) < radius)
+            fprintf(stderr, "sabot-sim: warning: robot %d starts inside an obstacle: its footprint (radius %g m) at "
+                            "(%g, %g) overlaps the map's obstacles or edge\n", i + 1, radius, p[0], p[1]);
+        for (int j = 0; j < i; j++) {
+            const double *q = o->starts[j];
+            double apart = hypot(p[0] - q[0], p[1] - q[1]);
+            if (apart < 2 * radius)
+                fprintf(stderr, "sabot-sim: warning: robot %d at (%g, %g) overlaps robot %d at (%g, %g): %.3f m "
+                                "apart, their footprints (radius %g m) need %g m\n", i + 1, p[0], p[1], j + 1, q[0],
+                        q[1], apart, radius, 2 * radius);
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .control_port = -1, .robots = 1, .gear_ratio = SABOT_ROBOT_GEAR_RATIO,
@@ -491,10 +574,17 @@ int main(int argc, char **argv)
         fprintf(stderr, "sabot-sim: %s\n", err);
         return 2;
     }
-    if (!o.start_given) {
-        /* Default start: map centre. */
-        o.start_x = world.origin_x + world.width * world.resolution / 2.0;
-        o.start_y = world.origin_y + world.height * world.resolution / 2.0;
+    if (!o.n_starts) {
+        if (!o.start_given) {
+            /* Default start: map centre. */
+            o.start_x = world.origin_x + world.width * world.resolution / 2.0;
+            o.start_y = world.origin_y + world.height * world.resolution / 2.0;
+        }
+        for (int i = 0; i < o.robots; i++) {
+            o.starts[i][0] = o.start_x;
+            o.starts[i][1] = o.start_y + START_SPACING_Y * i;
+            o.starts[i][2] = o.start_theta;
+        }
     }
 
     robot_config_t base;
@@ -503,11 +593,12 @@ int main(int argc, char **argv)
     base.params.track = o.track;
     base.faults = o.faults;
     base.seed = o.seed;
-    base.x = o.start_x;
-    base.y = o.start_y;
-    base.theta = o.start_theta;
+    base.x = o.starts[0][0];
+    base.y = o.starts[0][1];
+    base.theta = o.starts[0][2];
     if (o.bench)
         return run_bench(&o, &world, &base);
+    warn_start_poses(&o, &world, base.params.radius);
 
     static robot_t robots[MAX_ROBOTS];
     static robot_t *robot_list[MAX_ROBOTS];
@@ -518,11 +609,11 @@ int main(int argc, char **argv)
         robot_config_t cfg = base;
         cfg.id = i + 1;
         cfg.seed = o.seed * 7919u + (uint64_t)i;   /* distinct, reproducible streams per robot */
-        cfg.y = o.start_y + 0.8 * i;
+        cfg.x = o.starts[i][0];
+        cfg.y = o.starts[i][1];
+        cfg.theta = o.starts[i][2];
         robot_list[i] = &robots[i];
         robot_init(&robots[i], &cfg, &arena);
-        if (world_clearance(&world, cfg.x, cfg.y) < cfg.params.radius)
-            fprintf(stderr, "sabot-sim: warning: robot %d starts inside an obstacle\n", cfg.id);
         transports_t *t = &tr[i];
         t->listen_fd = -1;
         for (int k = 0; k < MAX_CLIENTS; k++)

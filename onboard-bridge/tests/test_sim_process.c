@@ -246,6 +246,9 @@ static void start_lab_robot(sim_t *s, const char *truth_csv)
     CHECK(ok && s->control_port > 0 && s->tcp_port > 0, "first line: %s", s->first_line);
 }
 
+#define FOUR_POSES "1,1,0/1,1,0/1,1,0/1,1,0/"
+#define SEVENTEEN_POSES FOUR_POSES FOUR_POSES FOUR_POSES FOUR_POSES "1,1,0"
+
 static void badArgumentsAreRefusedWithStatusTwoAndAMessage(void)
 {
     static const struct {
@@ -263,6 +266,13 @@ static void badArgumentsAreRefusedWithStatusTwoAndAMessage(void)
         { { "--robots", "17" }, "--robots wants an integer in 1..16" },
         { { "--seed", "1x" }, "--seed wants an integer" },
         { { "--start", "1,2" }, "--start wants X,Y,THETA" },
+        { { "--starts", "1,1,0/1,2" }, "pose 2 is '1,2' in '1,1,0/1,2'" },
+        { { "--starts", "1,1,0/" }, "pose 2 is '' in '1,1,0/'" },
+        { { "--starts", "1,1,0/2,2,0", "--robots", "3" }, "--starts gives 2 poses for 3 robots (--robots 3)" },
+        { { "--robots", "1", "--starts", "1,1,0/2,2,0" }, "--starts gives 2 poses for 1 robot (--robots 1)" },
+        { { "--start", "1,1,0", "--starts", "1,1,0" }, "--start and --starts: give one or the other" },
+        { { "--starts", SEVENTEEN_POSES }, "--starts gives more than 16 poses (at most 16 robots)" },
+        { { "--starts", "1,1,0/2,2,0", "--tcp", "65535" }, "--tcp 65535 with 2 robots needs ports up to 65536" },
         { { "--tcp", "65535", "--robots", "2" }, "beyond 65535" },
         { { "--frobnicate" }, "unknown option '--frobnicate'" },
         { { "--tcp" }, "--tcp wants an argument" },
@@ -286,6 +296,86 @@ static void badArgumentsAreRefusedWithStatusTwoAndAMessage(void)
               strtok(err, "\n"), cases[i].message);
         CHECK(s.first_line[0] == '\0', "started anyway: %s", s.first_line);
     }
+}
+
+/* Each robot stands where its pose says: the truth over the control channel. */
+static void check_poses(const sim_t *s, int n, const double (*poses)[3])
+{
+    int ctl = connect_to(s->control_port);
+    for (int i = 0; i < n; i++) {
+        truth_t t = { 0 };
+        CHECK(truth(ctl, i + 1, &t), "truth %d", i + 1);
+        CHECK(fabs(t.x - poses[i][0]) < 1e-3 && fabs(t.y - poses[i][1]) < 1e-3 && fabs(t.theta - poses[i][2]) < 1e-3,
+              "robot %d at (%.4f, %.4f, %.4f), expected (%g, %g, %g)", i + 1, t.x, t.y, t.theta, poses[i][0],
+              poses[i][1], poses[i][2]);
+    }
+    char none[64];
+    snprintf(none, sizeof none, "error no robot '%d' (robots are 1..%d)", n + 1, n);
+    const char *a = command(ctl, "truth %d", n + 1);
+    CHECK(!strcmp(a, none), "truth %d: %s", n + 1, a);
+    close(ctl);
+}
+
+/* Nothing on stderr yet: a start pose's warning comes before the first stdout line, so it would be in the pipe. */
+static bool no_warning(const sim_t *s)
+{
+    struct pollfd p = { s->err_fd, POLLIN, 0 };
+    return poll(&p, 1, 0) == 0;
+}
+
+static void theStartsOptionPlacesEachRobotAndCountsThem(void)
+{
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/starts-robot", tmp_dir);
+    /* two-rooms: one robot in each room, one in the door between them (maps/make_two_rooms.py) */
+    static const double three[3][3] = { { 1.0, 1.0, 0.0 }, { 5.0, 1.0, 3.14 }, { 4.3, 2.2, 1.5708 } };
+    sim_t s;
+    CHECK(sim_start(&s, SIM_ARGS("--map", "maps/two-rooms.yaml", "--control", "0", "--link", link, "--starts",
+                                 "1.0,1.0,0/5.0,1.0,3.14/4.3,2.2,1.5708")),
+          "start: %s", s.first_line);
+    CHECK(strstr(s.first_line, "\"id\": 3,") && !strstr(s.first_line, "\"id\": 4,"),
+          "not three robots: %s", s.first_line);
+    CHECK(no_warning(&s), "a warning for free, distinct start poses");
+    check_poses(&s, 3, three);
+    CHECK(sim_stop(&s) == 0, "exit status");
+
+    /* --starts with as many poses as --robots */
+    static const double two[2][3] = { { 1.0, 3.0, -1.0 }, { 7.5, 3.5, 2.0 } };
+    CHECK(sim_start(&s, SIM_ARGS("--map", "maps/two-rooms.yaml", "--control", "0", "--link", link, "--robots", "2",
+                                 "--starts", "1,3,-1/7.5,3.5,2")),
+          "start: %s", s.first_line);
+    check_poses(&s, 2, two);
+    CHECK(sim_stop(&s) == 0, "exit status");
+
+    /* --start as before: robot 1 there, the others 0.8 m apart in y */
+    static const double spaced[2][3] = { { 1.0, 1.0, 0.5 }, { 1.0, 1.8, 0.5 } };
+    CHECK(sim_start(&s, SIM_ARGS("--map", "maps/two-rooms.yaml", "--control", "0", "--link", link, "--robots", "2",
+                                 "--start", "1,1,0.5")),
+          "start: %s", s.first_line);
+    CHECK(no_warning(&s), "a warning for free, distinct start poses");
+    check_poses(&s, 2, spaced);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void aStartPoseInAWallOrOnAnotherRobotIsAWarningNamingTheRobot(void)
+{
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/starts-robot", tmp_dir);
+    sim_t s;
+    /* robot 1 in the wall between the rooms, robot 3 0.32 m from robot 2 */
+    CHECK(sim_start(&s, SIM_ARGS("--duration", "0.01", "--map", "maps/two-rooms.yaml", "--link", link, "--starts",
+                                 "4.3,1,0/1,1,0/1.3,1.1,0")),
+          "start: %s", s.first_line);
+    char wall[512], overlap[512];
+    read_until_newline(s.err_fd, wall, sizeof wall, now_s() + DEADLINE_S);
+    read_until_newline(s.err_fd, overlap, sizeof overlap, now_s() + DEADLINE_S);
+    CHECK(strstr(wall, "sabot-sim: warning: robot 1 starts inside an obstacle: its footprint (radius 0.25 m) at "
+                       "(4.3, 1) overlaps the map's obstacles or edge"),
+          "%s", wall);
+    CHECK(strstr(overlap, "sabot-sim: warning: robot 3 at (1.3, 1.1) overlaps robot 2 at (1, 1): 0.316 m apart, their "
+                          "footprints (radius 0.25 m) need 0.5 m"),
+          "%s", overlap);
+    CHECK(sim_stop(&s) == 0, "exit status");
 }
 
 static void anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved(void)
@@ -694,6 +784,8 @@ int main(int argc, char **argv)
     signal(SIGPIPE, SIG_IGN);
     RUN(badArgumentsAreRefusedWithStatusTwoAndAMessage);
     RUN(theControlPortIsAnnouncedOnlyWhenAsked);
+    RUN(theStartsOptionPlacesEachRobotAndCountsThem);
+    RUN(aStartPoseInAWallOrOnAnotherRobotIsAWarningNamingTheRobot);
     RUN(anObstacleAheadEchoesAtItsRangeAndIsGoneWhenRemoved);
     RUN(aBoardSwitchedOffIsSilentAndItsDeadmanStillStopsTheRobot);
     RUN(aJammedWheelLatchesAFollowingErrorAndTheBoardRefusesToDrive);
