@@ -216,9 +216,11 @@ sabot_onboard_exec() {
         -consoleLog ${args[@]+"${args[@]}"}
 }
 
-# --- the rig: private XMPP server + sabot-sim on the lab map + one onboard product per robot -----------------------
+# --- the rig: private XMPP server + sabot-sim on a map + one onboard product per robot ------------------------------
 # ./sabot demo's and ./sabot bench onboard's (tests/sabot.system.tests build the same rig in Java from the fixtures
 # of sabot.testsupport, which also give a test the simulator's control channel and the product's console).
+# The rig's map, the simulator's and every robot's planner's: the lab, unless a caller sets another ROS map_server
+# YAML here before sabot_rig_start (./sabot demo --map).
 SABOT_RIG_MAP="$SABOT_ROOT/onboard-bridge/maps/lab.yaml"
 SABOT_RIG_DOMAIN=sabot.local
 SABOT_RIG_OPERATOR=operator SABOT_RIG_OPERATOR_PASSWORD=sabot
@@ -250,25 +252,62 @@ sabot_patrol_route() {
     echo "4.3,$y,3.1416,stop 5.3,$y,0,pass 7.0,$y,0,wait,1 6.0,$y,3.1416,stop"
 }
 
+# sabot_map_key YAML KEY: the value of KEY in a map_server YAML, as sabot-sim reads it (the text after "KEY:", without
+# a # comment and the blanks around it; the last such line); nothing when the key is absent.
+sabot_map_key() {
+    sed -n -E "s/^[[:space:]]*$2[[:space:]]*:[[:space:]]*([^#]*[^#[:space:]])?[[:space:]]*(#.*)?\$/\1/p" "$1" | tail -n 1
+}
+
+# sabot_map_copy YAML DIR
+# Copies the map YAML into folder DIR as DIR/map.yaml, and the files it names (image, sabot_landmarks) beside it
+# under their own base names, the YAML's lines naming them rewritten so: how a robot's remote files hold its map for
+# the workbench (sabot.workbench.controlml's RobotMaps: map.yaml, the image in the same folder).
+sabot_map_copy() {
+    local yaml=$1 dir=$2 key name src base script=""
+    for key in image sabot_landmarks; do
+        name=$(sabot_map_key "$yaml" "$key")
+        [ -n "$name" ] || continue
+        case "$name" in /*) src=$name ;; *) src="$(dirname "$yaml")/$name" ;; esac
+        [ -f "$src" ] || sabot_die "map $yaml: its $key file $src does not exist"
+        base=$(basename "$name")
+        cp "$src" "$dir/$base"
+        script+="s|^[[:space:]]*$key[[:space:]]*:.*|$key: $(printf '%s' "$base" | sed 's/[\\&|]/\\&/g')|;"
+    done
+    sed -E "$script" "$yaml" >"$dir/map.yaml"
+}
+
 # Builds what the rig runs (the onboard product, sabot-sim) before the first process starts.
 sabot_rig_build() {
     sabot_products onboard
     make -s -C "$SABOT_ROOT/onboard-bridge" build/sabot-sim >&2 || sabot_die "building sabot-sim failed"
 }
 
-# sabot_rig_start DIR PORT ROBOTS X,Y,THETA [JVM_OPTION...]
+# sabot_rig_start DIR PORT ROBOTS X,Y,THETA[/X,Y,THETA...] [JVM_OPTION...]
 # Brings the rig up in folder DIR (made empty first): a private Prosody on 127.0.0.1:PORT (0: a free port) with state
 # in DIR/xmpp, the accounts sabot-0I@sabot.local (enrolled: a token in DIR/robotI/password, replaced by the robot)
 # and the operator's,
-# sabot-sim on the lab map with ROBOTS robots, robot 1 at X,Y,THETA (ground truth DIR/truth.csv, its control channel
-# on a free loopback port), and per robot an onboard product (configuration DIR/robotI/onboard.conf, remote files
-# DIR/robotI/files, console DIR/robotI/onboard.log; JVM options added). Returns once they are started, not online
-# (sabot_rig_await_online). With SABOT_RIG_PORTAL_PORT set, robot I serves its web page on 127.0.0.1 at that port + I - 1.
+# sabot-sim on map SABOT_RIG_MAP with ROBOTS robots (ground truth DIR/truth.csv, its control channel on a free loopback
+# port): robot 1 at X,Y,THETA and robot I SABOT_RIG_ROBOT_SPACING_Y (I - 1) m further in y, or, given a pose per robot
+# ('/' between them, as many as ROBOTS), each at its own; and per robot an onboard product on that map from that
+# pose (configuration DIR/robotI/onboard.conf, remote files DIR/robotI/files, console DIR/robotI/onboard.log; JVM
+# options added). A start pose the simulator warns of (in a wall, on another robot) is the rig's error, the warning
+# shown. Returns once they are started, not online (sabot_rig_await_online). With SABOT_RIG_PORTAL_PORT set, robot I serves its web page on 127.0.0.1 at that port + I - 1.
 # Sets RIG_DIR, RIG_PORT, RIG_CA (the server's lab CA, PEM), RIG_SIM_PID, RIG_SIM_CONTROL,
 # RIG_ROBOT_PIDS (robot I at I-1).
 sabot_rig_start() {
-    local dir=$1 port=$2 robots=$3 start=$4 i line x y theta links=()
+    local dir=$1 port=$2 robots=$3 start=$4 i line x y theta links=() poses=() sim_start=()
     shift 4
+    if [[ "$start" == */* ]]; then
+        IFS=/ read -r -a poses <<<"$start"
+        [ ${#poses[@]} = "$robots" ] || sabot_die "the rig's start poses $start: ${#poses[@]} poses for $robots robots"
+        sim_start=(--starts "$start")
+    else
+        IFS=, read -r x y theta <<<"$start"
+        for ((i = 1; i <= robots; i++)); do
+            poses+=("$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta")
+        done
+        sim_start=(--start "$start")
+    fi
     RIG_DIR=$dir RIG_PORT="" RIG_CA="" RIG_SIM_PID="" RIG_SIM_CONTROL="" RIG_ROBOT_PIDS=()
     rm -rf "$dir"; mkdir -p "$dir"
     line=$("$SABOT_ROOT/product/bin/sabot-xmpp" start --run "$dir/xmpp" --port "$port" \
@@ -297,7 +336,7 @@ sabot_rig_start() {
     # machine loaded by other work, every robot's answers with it (in its own, 11.5 s: docs/ONBOARD.md); it needs a few
     # % of a core. setsid execs in place (a background job of a script is no group leader): the pid is the
     # simulator's, sabot_rig_stop stops it.
-    setsid "$SABOT_ROOT/onboard-bridge/build/sabot-sim" --map "$SABOT_RIG_MAP" --robots "$robots" --seed 1 --start "$start" \
+    setsid "$SABOT_ROOT/onboard-bridge/build/sabot-sim" --map "$SABOT_RIG_MAP" --robots "$robots" --seed 1 "${sim_start[@]}" \
         --link "$dir/sim-robot" --truth "$dir/truth.csv" --control 0 >"$dir/sim.out" 2>"$dir/sim.log" &
     RIG_SIM_PID=$!
     sabot_await_line "$dir/sim.out" '"robots"' 10 "$RIG_SIM_PID" "the simulator" "$dir/sim.log"
@@ -309,12 +348,10 @@ for r in j["robots"]: print(r["link"])')
     RIG_SIM_CONTROL=${links[0]}
     links=("${links[@]:1}")
     [ ${#links[@]} = "$robots" ] || sabot_die "the simulator announced ${#links[@]} robots, not $robots: $(head -n 1 "$dir/sim.out")"
-    sabot_log "simulator: $robots robot(s) on the lab map (pid $RIG_SIM_PID), buses ${links[*]}, control channel 127.0.0.1:$RIG_SIM_CONTROL, ground truth $dir/truth.csv"
+    sabot_log "simulator: $robots robot(s) on the map $SABOT_RIG_MAP (pid $RIG_SIM_PID), buses ${links[*]}, control channel 127.0.0.1:$RIG_SIM_CONTROL, ground truth $dir/truth.csv"
 
-    IFS=, read -r x y theta <<<"$start"
     for ((i = 1; i <= robots; i++)); do
-        sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" \
-            "$x,$(awk -v y="$y" -v d="$SABOT_RIG_ROBOT_SPACING_Y" -v i="$i" 'BEGIN { printf "%.3f", y + d * (i - 1) }'),$theta" \
+        sabot_onboard_conf "sabot-0$i@$SABOT_RIG_DOMAIN" "${links[$((i - 1))]}" "$SABOT_RIG_MAP" "${poses[$((i - 1))]}" \
             "$RIG_PORT" "$dir/robot$i/password" "$dir/robot$i/files" "$RIG_CA" \
             "${SABOT_RIG_PORTAL_PORT:+$((SABOT_RIG_PORTAL_PORT + i - 1))}" >"$dir/robot$i/onboard.conf"
         (sabot_onboard_exec --osgi-area "$dir/robot$i/osgi" "$dir/robot$i/onboard.conf" "$@") \
