@@ -105,13 +105,6 @@ public final class FleetJobs {
         }
     }
 
-    /**
-     * @param what    what the operator asked, e.g. "sabot-01: go to (1.50, 4.00)"
-     * @param fleet   the fleet service (null: no ControlML plug-in)
-     * @param command the request
-     * @param report  on the UI thread: the text to show and whether it is a refusal or failure
-     * @return the scheduled job
-     */
     /** @return a command's failure for the operator: the robot's text and its ControlML reason, or the cause */
     public static String describe(Throwable failure) {
         FleetCommandException refusal = FleetCommandException.in(failure);
@@ -120,6 +113,13 @@ public final class FleetJobs {
                         ? failure.getCause() : failure);
     }
 
+    /**
+     * @param what    what the operator asked, e.g. "sabot-01: go to (1.50, 4.00)"
+     * @param fleet   the fleet service (null: no ControlML plug-in)
+     * @param command the request
+     * @param report  on the UI thread: the text to show and whether it is a refusal or failure
+     * @return the scheduled job
+     */
     public static Job run(String what, Display display, FleetState fleet, Function<FleetState,
             java.util.concurrent.CompletableFuture<?>> command, BiConsumer<String, Boolean> report) {
         Job job = Job.create(what, monitor -> {

@@ -3,6 +3,8 @@ package sabot.workbench.internal;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.Arrays;
+import java.util.stream.Collectors;
 
 import org.eclipse.swt.SWT;
 import org.eclipse.swt.graphics.GC;
@@ -18,6 +20,7 @@ import org.eclipse.ui.application.ActionBarAdvisor;
 import org.eclipse.ui.application.IActionBarConfigurer;
 import org.eclipse.ui.application.IWorkbenchWindowConfigurer;
 import org.eclipse.ui.application.WorkbenchWindowAdvisor;
+import org.eclipse.ui.views.IViewDescriptor;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -49,10 +52,20 @@ final class SabotWindowAdvisor extends WorkbenchWindowAdvisor {
         c.setTitle("Sabot Workbench");
     }
 
+    /**
+     * @return the names of the Sabot views this installation has, sorted, e.g. {@code Fleet, Joystick, Workspace}: the
+     *         core's and those of the plug-ins installed (Window › Show View lists them)
+     */
+    static String sabotViews() {
+        return Arrays.stream(PlatformUI.getWorkbench().getViewRegistry().getViews()).filter(v -> v.getId()
+                .startsWith("sabot.")).map(IViewDescriptor::getLabel).sorted().collect(Collectors.joining(", "));
+    }
+
     @Override
     public void postWindowOpen() {
         Shell shell = getWindowConfigurer().getWindow().getShell();
-        LOG.info("Sabot Workbench window open ({}x{})", shell.getSize().x, shell.getSize().y);
+        LOG.info("Sabot Workbench window open ({}x{}); views: {}", shell.getSize().x, shell.getSize().y,
+                sabotViews());
         if (options.screenshot() == null && !options.exitAfterStartup()) {
             return;
         }

@@ -97,6 +97,8 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     /** What the map says while a mission is edited (after the robot's name). */
     static final String MISSION_HINT = "new mission: click the targets in order (drag for the heading); right-click a "
             + "target for its action; Enter starts, Shift+Enter queues, Esc cancels";
+    /** Added to a refused mission's answer: the editor is open again with its targets. */
+    static final String MISSION_KEPT = " — the targets are kept: change them and press Enter again, or Esc";
     /** Trail points that make a running mission visible in a picture: 4 spacings, at least 20 cm driven. */
     static final int MISSION_TRAIL_POINTS = 5;
 
@@ -208,7 +210,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
             return;
         }
         if (mission != null) {
-            gesture.press(new Point(e.x, e.y)); // a target: the release gives its heading
+            if (e.count < 2) { // the second press of a double-click is not a second target on the same spot
+                gesture.press(new Point(e.x, e.y)); // a target: the release gives its heading
+            }
             return;
         }
         String hit = robotAt(e.x, e.y);
@@ -302,7 +306,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     /**
      * Sends the mission being edited to its robot ({@code FleetState.startMission}) in a job and closes the editor; the
-     * answer appears in the status line and on the map, as a goal's. Without a target it says so and keeps editing.
+     * answer appears in the status line and on the map, as a goal's. A refused or failed mission opens the editor again
+     * with its targets (unless the operator has begun another mission or chosen another robot meanwhile), to be
+     * corrected and sent again. Without a target it says so and keeps editing.
      *
      * @param queue true: after the robot's other missions (Shift+Enter); false: now (Enter)
      */
@@ -319,8 +325,14 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         mission = null;
         String what = String.format(Locale.ROOT, "%s: %s a mission of %d target(s)", name(m.robot()), queue ? "queue"
                 : "start", targets.size());
-        FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.startMission(m.robot(), targets, queue),
-                this::show);
+        FleetJobs.run(what, canvas.getDisplay(), fleet.fleet(), f -> f.startMission(m.robot(), targets, queue), (
+                text, failed) -> {
+                    boolean reopen = failed && mission == null && m.robot().equals(selected) && !canvas.isDisposed();
+                    if (reopen) {
+                        mission = m;
+                    }
+                    show(reopen ? text + MISSION_KEPT : text, failed);
+                });
         canvas.redraw();
     }
 

@@ -52,6 +52,8 @@ final class DrivenFleet implements FleetState, AutoCloseable {
     private final List<FleetListener> listeners = new CopyOnWriteArrayList<>();
     /** The missions the views sent ({@link #startMission}), in order; any thread. */
     final List<SentMission> missions = new CopyOnWriteArrayList<>();
+    /** When set, missions are refused with this text ({@code invalid-value}) and not kept; any thread. */
+    volatile String refuseMissions;
     private final ServiceRegistration<FleetState> registration;
 
     /** A mission of several targets as a view sent it. */
@@ -173,9 +175,14 @@ final class DrivenFleet implements FleetState, AutoCloseable {
         return refused();
     }
 
-    /** {@inheritDoc} Taken as it is, into {@link #missions}. */
+    /** {@inheritDoc} Taken as it is, into {@link #missions}; refused while {@link #refuseMissions} is set. */
     @Override
     public CompletableFuture<Void> startMission(String robot, List<MissionTarget> targets, boolean queue) {
+        String refusal = refuseMissions;
+        if (refusal != null) {
+            return CompletableFuture.failedFuture(new FleetCommandException(ControlMlCondition.INVALID_VALUE,
+                    refusal));
+        }
         missions.add(new SentMission(robot, List.copyOf(targets), queue));
         return CompletableFuture.completedFuture(null);
     }

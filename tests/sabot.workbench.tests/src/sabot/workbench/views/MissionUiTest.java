@@ -155,6 +155,47 @@ class MissionUiTest {
         assertEquals(1, fleet.missions.size(), "a cancelled mission was sent");
     }
 
+    /**
+     * A double-click (two presses, the second with a click count of 2) is one target; a mission the robot refuses
+     * comes back into the editor with its targets, and goes once the operator sends it again.
+     */
+    @Test
+    void aDoubleClickIsOneTargetAndARefusedMissionKeepsItsTargets() {
+        WorkspaceView workspace = robotSelected();
+        MapViewport v = workspace.viewport();
+        Canvas canvas = workspace.canvas();
+        workspace.newMission();
+        int px = sx(v, 4);
+        int py = sy(v, 2);
+        click(canvas, px, py);
+        Event second = new Event();
+        second.x = px;
+        second.y = py;
+        second.button = 1;
+        second.count = 2;
+        canvas.notifyListeners(SWT.MouseDown, second);
+        canvas.notifyListeners(SWT.MouseDoubleClick, second);
+        canvas.notifyListeners(SWT.MouseUp, second);
+        assertEquals(1, workspace.missionEditor().targets().size(), "a double-click added two targets");
+        drag(canvas, v, 5, 3, 0, 0);
+        List<MissionTarget> clicked = workspace.missionEditor().targets();
+
+        fleet.refuseMissions = "target 2 (5.00, 3.00): no path to it";
+        WorkbenchUiTest.key(canvas, SWT.CR, '\r', 0);
+        String refused = "driven-000: start a mission of 2 target(s): target 2 (5.00, 3.00): no path to it "
+                + "(invalid-value)" + WorkspaceView.MISSION_KEPT;
+        waitFor(() -> refused.equals(workspace.lastMessage()), 10, () -> "status: " + workspace.lastMessage());
+        assertTrue(workspace.editsMission(), "the editor did not come back after the refusal");
+        assertEquals(clicked, workspace.missionEditor().targets(), "the refused mission's targets");
+        assertTrue(fleet.missions.isEmpty(), "a refused mission was kept");
+
+        fleet.refuseMissions = null;
+        WorkbenchUiTest.key(canvas, SWT.CR, '\r', 0);
+        waitFor(() -> fleet.missions.size() == 1, 10, () -> "no mission sent: " + workspace.lastMessage());
+        assertEquals(clicked, fleet.missions.get(0).targets());
+        assertFalse(workspace.editsMission(), "the editor stays open after an accepted mission");
+    }
+
     @Test
     void theContextMenuSetsATargetsActionReordersAndRemovesTargetsAndQueues() {
         WorkspaceView workspace = robotSelected();

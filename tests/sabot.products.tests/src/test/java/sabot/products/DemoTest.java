@@ -47,6 +47,26 @@ class DemoTest {
     /** Fewer footprint pixels than this: no robot (its 0.25 m footprint fills some 150). */
     private static final int MIN_ROBOT_PIXELS = 50;
 
+    /** The views of the plug-ins the demo's workbench comes with (docs/WORKBENCH-PLUGINS.md). */
+    private static final List<String> PLUGIN_VIEWS = List.of("Joystick", "PID Tuning", "Remote Files", "Identity",
+            "Traffic");
+
+    /** @return the first line of another process's log that contains {@code text}, read again until it is there */
+    private static String awaitLine(Path log, String text, int seconds) throws Exception {
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
+        while (System.nanoTime() < deadline) {
+            if (Files.isRegularFile(log)) {
+                for (String line : Files.readAllLines(log)) {
+                    if (line.contains(text)) {
+                        return line;
+                    }
+                }
+            }
+            Thread.sleep(100); // another process's log file: there is no event to wait on
+        }
+        throw new AssertionError("no '" + text + "' in " + log + " within " + seconds + " s");
+    }
+
     @Test
     void theDemoRobotReachesItsGoalAndTheScreenshotShowsTheMapAndTheRobot() throws Exception {
         Path root = ProductProcess.root();
@@ -61,6 +81,11 @@ class DemoTest {
         try {
             // the demo first builds what is older than its sources (nothing, after the reactor's own build)
             console.await(l -> l.contains("workbench started"), "saying the workbench started", BUILD_LIMIT_S);
+            // the demo's workbench comes with the plug-ins installed from the update site (DEMO_PLUGINS in ./sabot)
+            String window = awaitLine(demo.resolve("workbench.log"), "Sabot Workbench window open", 120);
+            for (String view : PLUGIN_VIEWS) {
+                assertTrue(window.matches(".*views: .*\\b" + view + "\\b.*"), "no " + view + " view: " + window);
+            }
             // the demo's status line of robot 1 each second, until its mission has ended one way or the other
             String ended = console.await(l -> l.matches(".*\\d+s sabot-01: .*mission (done|failed|aborted).*"),
                     "with sabot-01's mission ended", DEMO_LIMIT_S + 60);
