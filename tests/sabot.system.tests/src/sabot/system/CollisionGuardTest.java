@@ -26,8 +26,8 @@ import sabot.testsupport.robot.SimProcess;
 /**
  * The collision guard on the running robot, judged on the simulator's truth: a joystick held towards the lab's
  * partition (a wall of the map), towards a crate that is on no map and towards a standing robot (only the sonar sees
- * them) stops the robot short of each without a contact; in open space the joystick's speed is not cut. An imposed
- * trajectory through a wall is refused, a free one followed.
+ * them) stops the robot short of each without a contact; until an obstacle is within its stopping distance the
+ * joystick's speed is not cut. An imposed trajectory through a wall is refused, a free one followed.
  */
 class CollisionGuardTest extends RigTest {
 
@@ -89,7 +89,10 @@ class CollisionGuardTest extends RigTest {
                 assertEquals(0, stopped.contacts(), "touched the crate at " + speed + " m/s: " + stopped);
                 assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the crate at " + speed
                         + " m/s");
-                assertTrue(top[0] >= 0.9 * Math.min(speed, 0.3), "the guard cut the approach: top " + top[0]);
+                // until the crate is within its stopping distance the guard leaves the joystick alone: the commanded
+                // speed is reached (at the top speed, the metre leaves the guard little room: 0.27 m/s at least)
+                double reached = speed < TOP_SPEED ? 0.95 * speed : 0.27;
+                assertTrue(top[0] >= reached, "the guard cut the approach at " + speed + " m/s: top " + top[0]);
             }
             assertEquals(0, rig.sim.contactsInTruthFile(), "the truth file records a contact");
         }
@@ -113,20 +116,6 @@ class CollisionGuardTest extends RigTest {
             assertTrue(gap >= 0 && gap <= GAP_BOUND, "stopped " + gap + " m short of the other robot");
             SimProcess.Truth still = rig.sim.truth(2);
             assertTrue(still.distanceTo(other.x(), other.y()) < 0.005, "the other robot was pushed: " + still);
-        }
-    }
-
-    @Test
-    void joystickInOpenSpaceDrivesAtTheCommandedSpeed(@TempDir Path dir) throws Exception {
-        // the lower corridor: 9 m free ahead
-        try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[0], "")) {
-            double speed = 0.3;
-            double top = 0;
-            for (int i = 0; i < 3 * JOYSTICK_HZ; i++) {
-                twist(rig, speed);
-                top = Math.max(top, rig.sim.truth().v());
-            }
-            assertTrue(top >= 0.95 * speed, "the guard cut the speed in open space: top " + top + " m/s");
         }
     }
 
