@@ -276,6 +276,20 @@ sabot_map_copy() {
     sed -E "$script" "$yaml" >"$dir/map.yaml"
 }
 
+# sabot_patrol_start PYTHON I LOG [--duration SECONDS]: robot I of the rig (sabot_rig_start) patrols its lane
+# (sabot_patrol_route) in the background, commanded by the operator through controlml.py patrol (the second ControlML
+# implementation, as an operator's script), its output to LOG; sets PATROL_PID.
+sabot_patrol_start() {
+    local python=$1 i=$2 log=$3 route
+    shift 3
+    # shellcheck disable=SC2207
+    route=($(sabot_patrol_route "$i"))
+    "$python" "$SABOT_ROOT/tools/controlml-py/controlml.py" --jid "$SABOT_RIG_OPERATOR@$SABOT_RIG_DOMAIN" \
+        --password "$SABOT_RIG_OPERATOR_PASSWORD" --port "$RIG_PORT" --ca-file "$RIG_CA" --timeout 60 \
+        patrol "sabot-0$i@$SABOT_RIG_DOMAIN" "$@" -- "${route[@]}" >"$log" 2>&1 &
+    PATROL_PID=$!
+}
+
 # Builds what the rig runs (the onboard product, sabot-sim) before the first process starts.
 sabot_rig_build() {
     sabot_products onboard

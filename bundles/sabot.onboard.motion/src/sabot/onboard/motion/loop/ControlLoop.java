@@ -3,8 +3,6 @@ package sabot.onboard.motion.loop;
 import java.io.IOException;
 import java.time.Duration;
 import java.time.Instant;
-import java.util.ArrayDeque;
-import java.util.Deque;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
@@ -118,12 +116,9 @@ public final class ControlLoop {
 
     private Mode mode = Mode.IDLE;
     private Mode pausedFrom;
-    private MissionStatus mission = new MissionStatus(MissionState.IDLE, false, 0, "idle");
+    /** The status the operator reads, the mission of targets being run and the queue. */
+    private final MissionLedger missions;
     private Goal goal;
-    /** The mission of targets being run, or the last one (its targets' states stay reported); null for a goal. */
-    private MissionRun run;
-    /** Missions of targets waiting for the current one to be done. */
-    private final Deque<List<MissionTarget>> queue = new ArrayDeque<>();
     /** The goal of the leg whose plan the loop waits for (the next target's), or null. */
     private Goal legPlanFor;
     /** When the robot's wait on a target ends (loop time), or NaN while none. */
@@ -164,6 +159,7 @@ public final class ControlLoop {
     public ControlLoop(LoopHost host, LoopClock clock, RobotBoards boards, RobotDescription robot, Localizer localizer,
             NavigationPlanner planner, LoopControllers controllers, LoopSettings settings, MotionLimits limits) {
         this.host = host;
+        this.missions = new MissionLedger(host);
         this.clock = clock;
         this.t0 = clock.nanoTime();
         this.boards = boards;
@@ -275,8 +271,9 @@ public final class ControlLoop {
         if (settings.statusPeriod() > 0 && t - lastStatus >= settings.statusPeriod()) {
             lastStatus = t;
             STATUS.info("status pose x={} y={} theta={} v={} | mission {} {}% {}| mode {}{}", fmt(pose.x()),
-                    fmt(pose.y()), fmt(pose.theta()), f2(velocity[0]), mission.state().name().toLowerCase(Locale.ROOT),
-                    Math.round(mission.progress()), mission.detail().isBlank() ? "" : "(" + mission.detail() + ") ",
+                    fmt(pose.y()), fmt(pose.theta()), f2(velocity[0]), missions.status().state().name().toLowerCase(
+                    Locale.ROOT), Math.round(missions.status().progress()), missions.status().detail().isBlank() ? ""
+                            : "(" + missions.status().detail() + ") ",
                     mode.name().toLowerCase(Locale.ROOT), guard.status().isEmpty() ? "" : " | " + guard.status());
         }
         return snapshot();
@@ -424,7 +421,7 @@ public final class ControlLoop {
             return Twist2D.ZERO;
         }
         passThrough();
-        updateProgress(Math.min(99, legProgress(tau / trajectory.duration())));
+        missions.progress(Math.min(99, missions.legProgress(tau / trajectory.duration())));
         TrajectorySample ref = trajectory.sample(tau);
         ControlCommand c = tracker.update(t, pose, shift(ref, t));
         return c.twist();
@@ -482,21 +479,21 @@ public final class ControlLoop {
 
     /** @return the pass targets the robot still drives through before the leg's goal (none without a mission) */
     private List<Goal> via() {
-        return run == null || !run.hasCurrent() ? List.of() : run.via();
+        return missions.onTarget() ? missions.run().via() : List.of();
     }
 
     /** The plan asked for with {@code request} (ignored when the mission has moved on meanwhile). */
     public void replanned(LoopHost.PlanRequest request, Plan plan) {
         if (legPlanFor != null && request.goal() == legPlanFor) {
             legPlanFor = null;
-            if (mission.state() != MissionState.RUNNING || request.goal() != goal) {
+            if (missions.status().state() != MissionState.RUNNING || request.goal() != goal) {
                 return; // paused, aborted or replaced meanwhile: a resume plans again
             }
             if (plan.refusal() != null) {
-                fail(run.label() + ": " + plan.refusal());
+                fail(missions.run().label() + ": " + plan.refusal());
                 return;
             }
-            LOG.info("{}: path {} m", run.label(), fmt(plan.length()));
+            LOG.info("{}: path {} m", missions.run().label(), fmt(plan.length()));
             clearFault(); // a target the robot stopped on braked it
             drive(plan, now());
             return;
@@ -553,7 +550,7 @@ public final class ControlLoop {
 
     /** Starts a mission to one goal with its first plan; replaces a running mission (the queue stays). */
     public void startMission(Goal g, Plan plan) {
-        run = null;
+        missions.single();
         startLeg(g, plan, "to (" + fmt(g.pose().x()) + ", " + fmt(g.pose().y()) + ")");
     }
 
@@ -565,7 +562,7 @@ public final class ControlLoop {
      */
     public void startMission(List<MissionTarget> targets) {
         startRun(List.copyOf(targets), now());
-        LOG.info("mission of {} targets started", run.size());
+        LOG.info("mission of {} targets started", targets.size());
     }
 
     /**
@@ -575,28 +572,26 @@ public final class ControlLoop {
      * @return false when the queue is full ({@link MissionStatus#MAX_QUEUED}): nothing changed
      */
     public boolean enqueue(List<MissionTarget> targets) {
-        if (mission.state().isActive()) {
-            if (queue.size() >= MissionStatus.MAX_QUEUED) {
+        if (missions.status().state().isActive()) {
+            if (!missions.enqueue(targets)) {
                 return false;
             }
-            queue.add(List.copyOf(targets));
-            LOG.info("mission of {} targets queued ({} waiting)", targets.size(), queue.size());
-            setMission(mission.state(), mission.progress(), mission.detail());
+            LOG.info("mission of {} targets queued ({} waiting)", targets.size(), missions.queued());
             return true;
         }
         startRun(List.copyOf(targets), now());
-        LOG.info("mission of {} targets started from the queue", run.size());
+        LOG.info("mission of {} targets started from the queue", targets.size());
         return true;
     }
 
     /** @return the missions waiting in the queue */
     public int queued() {
-        return queue.size();
+        return missions.queued();
     }
 
     private void startRun(List<MissionTarget> targets, double t) {
         clearFault();
-        run = new MissionRun(targets);
+        missions.start(targets);
         waitUntil = Double.NaN;
         trajectory = null;
         trajectoryPayload = new TrajectoryPayload(clock.now(), List.of());
@@ -611,7 +606,7 @@ public final class ControlLoop {
         legPlanFor = null;
         waitUntil = Double.NaN;
         goalChecker = checkerFor(g);
-        setMission(MissionState.RUNNING, run == null ? 0 : run.progress(0), detail);
+        missions.report(MissionState.RUNNING, missions.legProgress(0), detail);
         drive(plan, t);
     }
 
@@ -632,12 +627,12 @@ public final class ControlLoop {
         double t = now();
         clearFault();
         this.goal = null;
-        this.run = null;
+        missions.single();
         legPlanFor = null;
         waitUntil = Double.NaN;
         Trajectory path = new SampledTrajectory(imposed.points());
         goalChecker = new GoalChecker(settings.goalTolerance(), Math.PI, true);
-        setMission(MissionState.RUNNING, 0, "imposed trajectory");
+        missions.report(MissionState.RUNNING, 0, "imposed trajectory");
         setTrajectory(new Plan(path, path.length(), null), t);
     }
 
@@ -756,7 +751,7 @@ public final class ControlLoop {
     }
 
     public void pause() {
-        if (mission.state() != MissionState.RUNNING) {
+        if (missions.status().state() != MissionState.RUNNING) {
             return;
         }
         pausedFrom = mode;
@@ -766,7 +761,7 @@ public final class ControlLoop {
             waitUntil = Double.NaN;
         }
         setMode(Mode.PAUSED, t);
-        setMission(MissionState.PAUSED, mission.progress(), "paused");
+        missions.report(MissionState.PAUSED, missions.status().progress(), "paused");
     }
 
     public void resume() {
@@ -775,7 +770,7 @@ public final class ControlLoop {
         }
         double t = now();
         clearFault(); // a robot paused on a target it stopped on is braked
-        setMission(MissionState.RUNNING, mission.progress(), "resumed");
+        missions.report(MissionState.RUNNING, missions.status().progress(), "resumed");
         if (pausedFrom == Mode.WAIT && waitLeft > 0) {
             // the rest of a target's wait
             waitUntil = t + waitLeft;
@@ -794,9 +789,10 @@ public final class ControlLoop {
     public void abort(String reason) {
         double t = now();
         brake();
-        if (mission.state() == MissionState.RUNNING || mission.state() == MissionState.PAUSED) {
+        MissionState state = missions.status().state();
+        if (state == MissionState.RUNNING || state == MissionState.PAUSED) {
             endRun();
-            setMission(MissionState.ABORTED, mission.progress(), reason + dropped());
+            missions.report(MissionState.ABORTED, missions.status().progress(), reason + missions.dropQueue());
         }
         setMode(Mode.IDLE, t);
         LOG.info("stopped: {}", reason);
@@ -809,36 +805,34 @@ public final class ControlLoop {
 
     public void maintenance(boolean on, String detail) {
         brake();
-        MissionState state = mission.state();
+        MissionState state = missions.status().state();
         String dropped = "";
         if (on && (state == MissionState.RUNNING || state == MissionState.PAUSED)) {
             state = MissionState.ABORTED;
             endRun();
-            dropped = dropped();
+            dropped = missions.dropQueue();
             LOG.info("mission aborted for maintenance");
         }
         setMode(Mode.IDLE, now());
-        mission = status(state, on, mission.progress(),
-                (on ? (detail == null || detail.isBlank() ? "maintenance" : detail) : "maintenance ended") + dropped);
-        host.missionChanged(mission);
+        missions.report(state, on, missions.status().progress(), (on ? (detail == null || detail.isBlank()
+                ? "maintenance" : detail) : "maintenance ended") + dropped);
         LOG.info("maintenance {}", on ? "on" : "off");
     }
 
     /** Brakes and marks the mission failed with the reason; the robot stays still until a new command. */
     public void fault(String reason) {
-        if (mode == Mode.FAULT && reason.equals(mission.detail())) {
+        if (mode == Mode.FAULT && reason.equals(missions.status().detail())) {
             return;
         }
         LOG.warn("fault: {} - braking", reason);
         brake();
         setMode(Mode.FAULT, now());
         String dropped = "";
-        if (mission.state().isActive()) {
+        if (missions.status().state().isActive()) {
             endRun();
-            dropped = dropped();
+            dropped = missions.dropQueue();
         }
-        mission = status(MissionState.FAILED, mission.maintenance(), mission.progress(), reason + dropped);
-        host.missionChanged(mission);
+        missions.report(MissionState.FAILED, missions.status().progress(), reason + dropped);
     }
 
     /** Releases the brake (after a stop or a fault) so that a new command can move the robot. */
@@ -875,7 +869,8 @@ public final class ControlLoop {
     }
 
     private void complete(double t) {
-        if (run != null && run.hasCurrent()) {
+        MissionRun run = missions.run();
+        if (missions.onTarget()) {
             if (run.passing()) {
                 // the trajectory went through a pass target outside its tolerance: the mission says so
                 Goal missed = run.target().goal();
@@ -888,14 +883,14 @@ public final class ControlLoop {
             if (target.action() == MissionTarget.Action.WAIT) {
                 waitUntil = t + target.dwell();
                 setMode(Mode.WAIT, t);
-                setMission(MissionState.RUNNING, run.progress(1), "waiting " + fmtWait(target.dwell()) + " s at "
-                        + run.label());
+                missions.report(MissionState.RUNNING, run.progress(1), "waiting " + fmtWait(target.dwell())
+                        + " s at " + run.label());
                 return;
             }
             targetReached(t);
             return;
         }
-        setMission(MissionState.DONE, 100, "goal reached");
+        missions.report(MissionState.DONE, 100, "goal reached");
         setMode(Mode.IDLE, t);
         LOG.info("goal reached at ({}, {}, {})", fmt(pose.x()), fmt(pose.y()), fmt(pose.theta()));
         startNextQueued(t);
@@ -903,6 +898,7 @@ public final class ControlLoop {
 
     /** The current target is done (reached, and its wait over): on to the next, or the mission is done. */
     private void targetReached(double t) {
+        MissionRun run = missions.run();
         boolean docked = run.target().action() == MissionTarget.Action.DOCK;
         run.reached();
         if (run.hasCurrent()) {
@@ -911,7 +907,8 @@ public final class ControlLoop {
         }
         trajectory = null;
         setMode(Mode.IDLE, t);
-        setMission(MissionState.DONE, 100, "all " + run.size() + " targets reached" + (docked ? ", docked" : ""));
+        missions.report(MissionState.DONE, 100, "all " + run.size() + " targets reached" + (docked ? ", docked"
+                : ""));
         LOG.info("mission done: all {} targets reached", run.size());
         startNextQueued(t);
     }
@@ -921,17 +918,19 @@ public final class ControlLoop {
      * target it stops on; the robot stands until the plan comes (within a period or two).
      */
     private void requestLeg(double t) {
+        MissionRun run = missions.run();
         run.legStarted();
         goal = run.legGoal();
         goalChecker = checkerFor(goal);
         legPlanFor = goal;
         setMode(Mode.WAIT, t);
-        setMission(MissionState.RUNNING, run.progress(0), legDetail());
+        missions.report(MissionState.RUNNING, run.progress(0), legDetail());
         host.planRequested(new LoopHost.PlanRequest(pose, via(), goal, echoes.points()));
     }
 
     /** A pass target the leg's trajectory goes through is reached once the robot is within its tolerance. */
     private void passThrough() {
+        MissionRun run = missions.run();
         if (run == null || !run.passing()) {
             return;
         }
@@ -939,16 +938,12 @@ public final class ControlLoop {
         if (Math.hypot(pass.pose().x() - pose.x(), pass.pose().y() - pose.y()) <= pass.positionTolerance()) {
             LOG.info("{} passed at ({}, {})", run.label(), fmt(pose.x()), fmt(pose.y()));
             run.reached();
-            setMission(MissionState.RUNNING, mission.progress(), legDetail());
+            missions.report(MissionState.RUNNING, missions.status().progress(), legDetail());
         }
     }
 
-    /** @return the mission's progress for the fraction {@code leg} of the current leg's trajectory done, percent */
-    private double legProgress(double leg) {
-        return run == null ? 100 * leg : run.progress(leg);
-    }
-
     private String legDetail() {
+        MissionRun run = missions.run();
         Pose2D p = run.hasCurrent() ? run.target().goal().pose() : run.legGoal().pose();
         return run.label() + ": to (" + fmt(p.x()) + ", " + fmt(p.y()) + ")";
     }
@@ -963,34 +958,25 @@ public final class ControlLoop {
 
     /** After a mission is done, the next queued one starts. */
     private void startNextQueued(double t) {
-        List<MissionTarget> next = queue.poll();
+        List<MissionTarget> next = missions.nextQueued();
         if (next != null) {
             startRun(next, t);
-            LOG.info("mission of {} targets started from the queue", run.size());
+            LOG.info("mission of {} targets started from the queue", next.size());
         }
     }
 
     /** The mission ends short of its targets (failed or aborted): its current target failed, no leg awaited. */
     private void endRun() {
-        if (run != null) {
-            run.failed();
-        }
+        missions.endShort();
         legPlanFor = null;
         waitUntil = Double.NaN;
         waitLeft = 0;
     }
 
-    /** Empties the queue: @return what the operator reads about it, "" when it was empty */
-    private String dropped() {
-        int n = queue.size();
-        queue.clear();
-        return n == 0 ? "" : "; " + n + " queued mission" + (n == 1 ? "" : "s") + " dropped";
-    }
-
     private void fail(String reason) {
         brake();
         endRun();
-        setMission(MissionState.FAILED, mission.progress(), reason + dropped());
+        missions.report(MissionState.FAILED, missions.status().progress(), reason + missions.dropQueue());
         setMode(Mode.IDLE, now());
         LOG.warn("mission failed: {}", reason);
     }
@@ -1001,26 +987,6 @@ public final class ControlLoop {
         }
         mode = m;
         modeSince = t;
-    }
-
-    private void setMission(MissionState state, double progress, String detail) {
-        mission = status(state, mission.maintenance(), progress, detail);
-        host.missionChanged(mission);
-    }
-
-    /** @return a status with the mission's targets (of the run, or none) and the queue's length now */
-    private MissionStatus status(MissionState state, boolean maintenance, double progress, String detail) {
-        return run == null ? new MissionStatus(state, maintenance, progress, detail, List.of(), 0, queue.size())
-                : new MissionStatus(state, maintenance, progress, detail, run.targets(), run.current(), queue.size());
-    }
-
-    private void updateProgress(double progress) {
-        // listeners hear about whole-percent steps only; the snapshot carries the exact figure
-        boolean step = Math.floor(progress / 10) != Math.floor(mission.progress() / 10);
-        mission = mission.with(mission.state(), progress, mission.detail());
-        if (step) {
-            host.missionChanged(mission);
-        }
     }
 
     // ----------------------------------------------------------------------------------------------- snapshot
@@ -1034,7 +1000,7 @@ public final class ControlLoop {
         VelocityCommand v = new VelocityCommand(now, new Twist2D(velocity[0], velocity[1]));
         boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
-        return new Snapshot(p, v, withGuardStatus(mission), Optional.ofNullable(goal), trajectoryPayload,
+        return new Snapshot(p, v, withGuardStatus(missions.status()), Optional.ofNullable(goal), trajectoryPayload,
                 new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode);
     }
 
