@@ -346,8 +346,9 @@ PATROL_RETRY_S = 5.0  # s a patrol waits after a failed round before it starts t
 
 async def patrol(client, robot: str, targets: list[dict], args: argparse.Namespace) -> dict:
     """Runs the mission of ``targets`` again each time it is done, for ``args.rounds`` rounds or ``args.duration``
-    seconds (whichever ends first; 0: no limit). A failed round is reported and the next starts after
-    PATROL_RETRY_S. One line per round; returns the summary (rounds, targets reached, per minute, failures)."""
+    seconds (whichever ends first; 0: no limit). A failed round, or one the robot refuses (e.g. a target it cannot
+    reach now: an echo of a passing robot on it), is reported and the next starts after PATROL_RETRY_S. One line per
+    round; returns the summary (rounds, targets reached, per minute, failures)."""
     start = time.monotonic()
     rounds = failed = reached = 0
     limit_s = args.duration if args.duration > 0 else float("inf")
@@ -357,7 +358,15 @@ async def patrol(client, robot: str, targets: list[dict], args: argparse.Namespa
 
     while not over():
         t0 = time.monotonic()
-        await client.request(robot, "set", "cm.mission", cm.mission(targets), args.timeout)
+        try:
+            await client.request(robot, "set", "cm.mission", cm.mission(targets), args.timeout)
+        except Failure as e:
+            if e.status != EXIT_REFUSED:
+                raise
+            failed += 1
+            print(f"round refused: {e}", flush=True)
+            await asyncio.sleep(PATROL_RETRY_S)
+            continue
         state, value = "running", {}
         while state in ("running", "paused") and time.monotonic() - start < limit_s:
             await asyncio.sleep(PATROL_POLL_S)
