@@ -87,6 +87,11 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     static final double WATCH_MARGIN_M = 1;
     /** Most robots the map leases at their full rate: those nearest its centre (and the selected one). */
     static final int FULL_RATE_ROBOTS = 20;
+    /**
+     * Telemetry repaints the map at most this often, Hz: each robot's pose comes at 10 Hz, at its own moment, and five
+     * patrolling robots repainted the map some 50 times a second (a core of the demo's machine). RViz renders at 30.
+     */
+    static final int TELEMETRY_FPS = 25;
     /** Goal tolerances sent with a click-to-goal: position m, heading rad (as {@code ./sabot controlml set-goal}). */
     public static final double GOAL_POSITION_TOLERANCE_M = 0.1;
     public static final double GOAL_HEADING_TOLERANCE_RAD = 0.2;
@@ -122,6 +127,9 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
     private boolean messageIsError;
     private String mapFrom;
     private MapFetch mapFetch;
+    /** When the map was last painted (UI thread), and whether a telemetry frame waits for its time. */
+    private long lastPaintNanos = System.nanoTime();
+    private boolean frameScheduled;
     /** The mission being edited, or null (UI thread). */
     private MissionEditor mission;
     private Action newMissionAction;
@@ -550,7 +558,26 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
         if (painter.map() == null) {
             mapFetch.request();
         }
-        canvas.redraw();
+        telemetryFrame();
+    }
+
+    /** Redraws for new telemetry now, or once {@link #TELEMETRY_FPS}'s frame time since the last paint has passed. */
+    private void telemetryFrame() {
+        if (frameScheduled) {
+            return;
+        }
+        long wait = lastPaintNanos + 1_000_000_000L / TELEMETRY_FPS - System.nanoTime();
+        if (wait <= 0) {
+            canvas.redraw();
+            return;
+        }
+        frameScheduled = true;
+        canvas.getDisplay().timerExec((int) Math.max(1, wait / 1_000_000), () -> {
+            frameScheduled = false;
+            if (!canvas.isDisposed()) {
+                canvas.redraw();
+            }
+        });
     }
 
     /**
@@ -663,6 +690,7 @@ public final class WorkspaceView extends ViewPart implements ISelectionProvider 
 
     private void paint(PaintEvent e) {
         long start = System.nanoTime();
+        lastPaintNanos = start;
         Display d = canvas.getDisplay();
         Rectangle area = canvas.getClientArea();
         if (area.width <= 0 || area.height <= 0) {
