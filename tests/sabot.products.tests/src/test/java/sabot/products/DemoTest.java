@@ -51,22 +51,6 @@ class DemoTest {
     private static final List<String> PLUGIN_VIEWS = List.of("Joystick", "PID Tuning", "Remote Files", "Identity",
             "Traffic");
 
-    /** @return the first line of another process's log that contains {@code text}, read again until it is there */
-    private static String awaitLine(Path log, String text, int seconds) throws Exception {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
-        while (System.nanoTime() < deadline) {
-            if (Files.isRegularFile(log)) {
-                for (String line : Files.readAllLines(log)) {
-                    if (line.contains(text)) {
-                        return line;
-                    }
-                }
-            }
-            Thread.sleep(100); // another process's log file: there is no event to wait on
-        }
-        throw new AssertionError("no '" + text + "' in " + log + " within " + seconds + " s");
-    }
-
     @Test
     void theDemoRobotReachesItsGoalAndTheScreenshotShowsTheMapAndTheRobot() throws Exception {
         Path root = ProductProcess.root();
@@ -82,7 +66,8 @@ class DemoTest {
             // the demo first builds what is older than its sources (nothing, after the reactor's own build)
             console.await(l -> l.contains("workbench started"), "saying the workbench started", BUILD_LIMIT_S);
             // the demo's workbench comes with the plug-ins installed from the update site (DEMO_PLUGINS in ./sabot)
-            String window = awaitLine(demo.resolve("workbench.log"), "Sabot Workbench window open", 120);
+            String window = ProcessConsole.tail("the demo's workbench", process, demo.resolve("workbench.log"))
+                    .await(l -> l.contains("Sabot Workbench window open"), "saying its window is open", 120);
             for (String view : PLUGIN_VIEWS) {
                 assertTrue(window.matches(".*views: .*\\b" + view + "\\b.*"), "no " + view + " view: " + window);
             }
