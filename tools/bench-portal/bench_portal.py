@@ -34,9 +34,9 @@ def proc_sample(pid):
     return rss_kb, int(fields[11]) + int(fields[12])  # utime, stime: fields 14 and 15 of proc(5)
 
 
-# The web service's own threads: the portal's pool, and the JDK HTTP server's dispatcher and timer (names as
-# /proc/PID/task/TID/comm shows them, cut to 15 characters)
-PORTAL_THREADS = re.compile(r"^(sabot-portal|HTTP-Dispatcher|idle-timeout|req-rsp-timeout)")
+# The web service's own threads: Jetty's pool (acceptor, selector and the threads answering requests), its scheduler
+# and its session housekeeper (names as /proc/PID/task/TID/comm shows them, cut to 15 characters)
+PORTAL_THREADS = re.compile(r"^(qtp[0-9]+-|Scheduler-|Session-HouseKe)")
 
 
 def portal_ticks(pid):

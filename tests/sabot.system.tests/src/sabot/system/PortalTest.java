@@ -24,6 +24,7 @@ import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
 import javax.net.ssl.SSLContext;
+import javax.net.ssl.SSLSocket;
 import javax.net.ssl.TrustManagerFactory;
 
 import org.junit.jupiter.api.Test;
@@ -52,6 +53,8 @@ class PortalTest extends RigTest {
 
     /** The page's poll interval in the tests (the default's). */
     static final int POLL_MS = 250;
+    /** How long a request's body may take in the tests: short, so that the test of slow clients does not wait long. */
+    static final int REQUEST_TIMEOUT_S = 2;
     static final Pattern CSRF = Pattern.compile("name=\"csrf\" value=\"([A-Za-z0-9_-]+)\"");
     static final Pattern POSE_X = Pattern.compile("\"pose\":\\{\"x\":(-?[0-9.]+)");
 
@@ -67,7 +70,8 @@ class PortalTest extends RigTest {
                 + "portal.tls = true\n"
                 + "portal.certificateFile = " + certs.resolve("localhost.crt") + "\n"
                 + "portal.keyFile = " + certs.resolve("localhost.key") + "\n"
-                + "portal.pollInterval = " + POLL_MS + "\n";
+                + "portal.pollInterval = " + POLL_MS + "\n"
+                + "portal.requestTimeout = " + REQUEST_TIMEOUT_S + "\n";
     }
 
     static int freePort() throws IOException {
@@ -81,6 +85,12 @@ class PortalTest extends RigTest {
      * reads each 303).
      */
     static HttpClient client(PrivateXmppServer xmpp) throws Exception {
+        return HttpClient.newBuilder().sslContext(labTls(xmpp)).followRedirects(HttpClient.Redirect.NEVER)
+                .connectTimeout(Duration.ofSeconds(5)).build();
+    }
+
+    /** @return a TLS context that trusts the lab CA only */
+    static SSLContext labTls(PrivateXmppServer xmpp) throws Exception {
         KeyStore trust = KeyStore.getInstance("PKCS12");
         trust.load(null, null);
         try (InputStream in = Files.newInputStream(xmpp.caFile())) {
@@ -90,8 +100,53 @@ class PortalTest extends RigTest {
         tmf.init(trust);
         SSLContext tls = SSLContext.getInstance("TLS");
         tls.init(null, tmf.getTrustManagers(), null);
-        return HttpClient.newBuilder().sslContext(tls).followRedirects(HttpClient.Redirect.NEVER).connectTimeout(
-                Duration.ofSeconds(5)).build();
+        return tls;
+    }
+
+    /**
+     * A client that sends a request's start and then nothing more: its headers complete and part of a body
+     * ({@code body} true), or half a header.
+     */
+    static final class SlowClient implements AutoCloseable {
+        final SSLSocket socket;
+
+        SlowClient(SSLContext tls, int port, boolean body) throws IOException {
+            socket = (SSLSocket) tls.getSocketFactory().createSocket("127.0.0.1", port);
+            socket.startHandshake();
+            String start = body ? "POST /logout HTTP/1.1\r\nHost: 127.0.0.1:" + port + "\r\nContent-Type: "
+                    + "application/x-www-form-urlencoded\r\nContent-Length: 100\r\n\r\ncsrf=slow"
+                    : "GET /api/status HTTP/1.1\r\nHost: 127.0.0.1";
+            socket.getOutputStream().write(start.getBytes(StandardCharsets.US_ASCII));
+            socket.getOutputStream().flush();
+        }
+
+        /** @return the status line the server has sent, null when it has sent nothing within {@code waitMs} */
+        String statusLine(int waitMs) throws IOException {
+            socket.setSoTimeout(waitMs);
+            try {
+                StringBuilder line = new StringBuilder();
+                int c;
+                while ((c = socket.getInputStream().read()) >= 0 && c != '\r') {
+                    line.append((char) c);
+                }
+                return line.toString();
+            } catch (java.net.SocketTimeoutException nothingYet) {
+                return null;
+            }
+        }
+
+        /** Sends the rest of the announced body. */
+        void finish() throws IOException {
+            String rest = "&x=";
+            socket.getOutputStream().write((rest + "x".repeat(100 - "csrf=slow".length() - rest.length())).getBytes(
+                    StandardCharsets.US_ASCII));
+            socket.getOutputStream().flush();
+        }
+
+        @Override
+        public void close() throws IOException {
+            socket.close();
+        }
     }
 
     /** One person's browser: the base address, the session cookie once logged in. */
@@ -195,6 +250,22 @@ class PortalTest extends RigTest {
             }
             assertTrue(m.get("/map.svg").body().startsWith("<svg"));
 
+            // clients that send slowly hold no thread: more of them than Jetty's threads, bodies and headers
+            // unfinished, and the page still answers at once; each slow body is answered (408) after its time
+            SSLContext tls = labTls(xmpp);
+            List<SlowClient> slow = new java.util.ArrayList<>();
+            for (int i = 0; i < 12; i++) {
+                slow.add(new SlowClient(tls, port, i % 2 == 0));
+            }
+            assertEquals(200, m.get("/api/status").statusCode());
+            assertTrue(m.get("/").body().contains(RobotRig.ROBOT));
+            for (SlowClient c : slow) {
+                assertEquals(null, c.statusLine(1), "a slow client was answered before its request was complete");
+            }
+            SlowClient finished = slow.get(0);
+            finished.finish();
+            assertEquals("HTTP/1.1 401 Unauthorized", finished.statusLine(20_000), "a slow body, complete");
+
             // the robot drives: the page's pose follows it
             double x0 = poseX(m);
             var goal = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.0, 1.0, 0), 0.15, 0.3));
@@ -275,6 +346,14 @@ class PortalTest extends RigTest {
             }
             assertTrue(rig.onboard.output().lines().noneMatch(l -> l.matches(".*portal: [A-Z]+ /\\S* failed.*")), rig
                     .onboard.output()); // no request ended in an exception (PortalRoutes' 500)
+
+            // the slow bodies not finished: 408 once their time is over (REQUEST_TIMEOUT_S after their headers)
+            for (int i = 2; i < slow.size(); i += 2) {
+                assertEquals("HTTP/1.1 408 Request Timeout", slow.get(i).statusLine(20_000), "slow body " + i);
+            }
+            for (SlowClient c : slow) {
+                c.close();
+            }
 
             // log-out ends the session
             assertEquals(303, m.post("/logout", "csrf=" + m.csrf()).statusCode());

@@ -148,7 +148,8 @@ public final class OnboardApplication implements IApplication {
             settingsService.unregister();
             stopTasks(scr, enabled.keySet());
             for (String task : enabled.keySet()) {
-                deleteConfiguration(configAdmin, OnboardTask.PID_PREFIX + task);
+                deleteConfiguration(configAdmin, "(" + org.osgi.framework.Constants.SERVICE_PID + "="
+                        + OnboardTask.PID_PREFIX + task + ")");
             }
             tracker.close();
             for (ServiceReference<OnboardTask> r : retried) {
@@ -234,21 +235,23 @@ public final class OnboardApplication implements IApplication {
             if (enabled.containsKey(task)) {
                 configAdmin.getConfiguration(pid, "?").update(enabled.get(task));
             } else {
-                deleteConfiguration(configAdmin, pid);
+                deleteConfiguration(configAdmin, "(" + org.osgi.framework.Constants.SERVICE_PID + "=" + pid + ")");
+                deleteConfiguration(configAdmin, "(" + OnboardTask.TASK_PROPERTY + "=" + task + ")");
             }
         }
     }
 
-    private static void deleteConfiguration(ConfigurationAdmin configAdmin, String pid) {
+    /** Deletes the configurations that {@code filter} selects. */
+    private static void deleteConfiguration(ConfigurationAdmin configAdmin, String filter) {
         try {
-            Configuration[] existing = configAdmin.listConfigurations("(service.pid=" + pid + ")");
+            Configuration[] existing = configAdmin.listConfigurations(filter);
             if (existing != null) {
                 for (Configuration c : existing) {
                     c.delete();
                 }
             }
         } catch (IOException | org.osgi.framework.InvalidSyntaxException e) {
-            LOG.warn("could not delete the configuration of {}: {}", pid, e.toString());
+            LOG.warn("could not delete the configurations {}: {}", filter, e.toString());
         }
     }
 

@@ -32,6 +32,16 @@ public interface OnboardTask {
      */
     String ROBOT_NAME = "robot.name";
 
+    /**
+     * Property marking a configuration that a task writes for another service (e.g. the {@code portal} task's
+     * configuration of the HTTP service): its value is the task's name. The task deletes it when it stops; at start
+     * the onboard application also deletes those of the tasks not enabled, as a process that was killed leaves them
+     * in Config Admin.
+     *
+     * @since 0.3
+     */
+    String TASK_PROPERTY = "sabot.task";
+
     /** @return the task's name as written in the configuration file, e.g. {@code heartbeat}; never null */
     String name();
 

@@ -30,6 +30,9 @@ final class PemIdentity {
     record Files(Path certificate, Path key) {
     }
 
+    /** The key's alias in {@link #keyStore}. */
+    static final String ALIAS = "portal";
+
     private static final Pattern BLOCK = Pattern.compile("-----BEGIN ([A-Z ]+)-----([A-Za-z0-9+/=\\s]+)-----END \\1-----");
 
     private PemIdentity() {
@@ -37,6 +40,19 @@ final class PemIdentity {
 
     /** @return a TLS context serving the certificate (and the chain after it in the file) with the key */
     static SSLContext load(Files files) throws IOException, GeneralSecurityException {
+        char[] password = new char[0];
+        KeyManagerFactory kmf = KeyManagerFactory.getInstance(KeyManagerFactory.getDefaultAlgorithm());
+        kmf.init(keyStore(files, password), password);
+        SSLContext context = SSLContext.getInstance("TLS");
+        context.init(kmf.getKeyManagers(), null, null);
+        return context;
+    }
+
+    /**
+     * @return a PKCS #12 key store holding the key under the alias {@value #ALIAS} with the certificate and the chain
+     *         after it in the file, the key and the store protected by {@code password}
+     */
+    static KeyStore keyStore(Files files, char[] password) throws IOException, GeneralSecurityException {
         List<Certificate> chain = new ArrayList<>();
         CertificateFactory x509 = CertificateFactory.getInstance("X.509");
         for (byte[] der : blocks(files.certificate(), "CERTIFICATE")) {
@@ -51,15 +67,10 @@ final class PemIdentity {
         }
         String algorithm = chain.get(0).getPublicKey().getAlgorithm();
         PrivateKey key = KeyFactory.getInstance(algorithm).generatePrivate(new PKCS8EncodedKeySpec(keys.get(0)));
-        char[] password = new char[0];
         KeyStore store = KeyStore.getInstance("PKCS12");
         store.load(null, null);
-        store.setKeyEntry("portal", key, password, chain.toArray(Certificate[]::new));
-        KeyManagerFactory kmf = KeyManagerFactory.getInstance(KeyManagerFactory.getDefaultAlgorithm());
-        kmf.init(store, password);
-        SSLContext context = SSLContext.getInstance("TLS");
-        context.init(kmf.getKeyManagers(), null, null);
-        return context;
+        store.setKeyEntry(ALIAS, key, password, chain.toArray(Certificate[]::new));
+        return store;
     }
 
     private static List<byte[]> blocks(Path file, String type) throws IOException {

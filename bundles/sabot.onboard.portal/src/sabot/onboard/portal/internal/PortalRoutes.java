@@ -1,8 +1,7 @@
 package sabot.onboard.portal.internal;
 
+import java.io.ByteArrayOutputStream;
 import java.io.IOException;
-import java.io.InputStream;
-import java.io.OutputStream;
 import java.net.URLDecoder;
 import java.nio.charset.StandardCharsets;
 import java.time.Duration;
@@ -15,9 +14,14 @@ import java.util.Set;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
-import com.sun.net.httpserver.HttpExchange;
-import com.sun.net.httpserver.HttpHandler;
-
+import jakarta.servlet.AsyncContext;
+import jakarta.servlet.AsyncEvent;
+import jakarta.servlet.AsyncListener;
+import jakarta.servlet.ReadListener;
+import jakarta.servlet.ServletInputStream;
+import jakarta.servlet.http.HttpServlet;
+import jakarta.servlet.http.HttpServletRequest;
+import jakarta.servlet.http.HttpServletResponse;
 import sabot.controlml.Role;
 import sabot.onboard.config.SettingForm;
 import sabot.onboard.config.SettingsChange;
@@ -25,12 +29,16 @@ import sabot.onboard.config.TaskForm;
 import sabot.onboard.portal.internal.PortalSessions.Session;
 
 /**
- * Every request of the page: one handler, one table of paths and methods. A request that does not fit is answered
- * with its HTTP error and a one-line reason: 400 (a malformed path or form), 401/303 (not logged in), 403 (a role
- * too low, a missing or wrong CSRF token, a foreign {@code Origin}), 404, 405 (with {@code Allow}), 413 (a body over
- * {@value #MAX_BODY} bytes), 415, 429 (log-ins throttled, with {@code Retry-After}).
+ * Every request of the page: one servlet on the Servlet Whiteboard, one table of paths and methods. A request that does
+ * not fit is answered with its HTTP error and a one-line reason: 400 (a malformed path or form), 401/303 (not logged
+ * in), 403 (a role too low, a missing or wrong CSRF token, a foreign {@code Origin}), 404, 405 (with {@code Allow}), 408
+ * (a body not arrived within the request timeout), 413 (a body over {@value #MAX_BODY} bytes), 415, 429
+ * (log-ins throttled, with {@code Retry-After}). A body is read without blocking ({@link ReadListener}): a client
+ * sending slowly holds no thread, only its connection.
  */
-final class PortalRoutes implements HttpHandler {
+final class PortalRoutes extends HttpServlet {
+
+    private static final long serialVersionUID = 1L;
 
     private static final Logger LOG = LoggerFactory.getLogger(PortalRoutes.class);
 
@@ -64,63 +72,193 @@ final class PortalRoutes implements HttpHandler {
         }
     }
 
-    private final PortalRobot robot;
-    private final PortalSessions sessions;
-    private final LoginThrottle throttle;
+    private final transient PortalRobot robot;
+    private final transient PortalSessions sessions;
+    private final transient LoginThrottle throttle;
     private final boolean secure;
     private final long pollMs;
-    private final Map<String, byte[]> assets;
+    private final long bodyTimeoutMs;
+    private final transient Map<String, byte[]> assets;
 
     PortalRoutes(PortalRobot robot, PortalSessions sessions, LoginThrottle throttle, boolean secure, Duration poll,
-            Map<String, byte[]> assets) {
+            Duration bodyTimeout, Map<String, byte[]> assets) {
         this.robot = robot;
         this.sessions = sessions;
         this.throttle = throttle;
         this.secure = secure;
         this.pollMs = poll.toMillis();
+        this.bodyTimeoutMs = bodyTimeout.toMillis();
         this.assets = assets;
     }
 
     @Override
-    public void handle(HttpExchange exchange) throws IOException {
+    protected void service(HttpServletRequest request, HttpServletResponse response) {
+        Exchange x = new Exchange(request, response);
+        response.setHeader("X-Content-Type-Options", "nosniff");
+        response.setHeader("Referrer-Policy", "same-origin");
+        response.setHeader("X-Frame-Options", "DENY");
+        if (secure) { // browsers that once saw the page over HTTPS never try it in clear
+            response.setHeader("Strict-Transport-Security", "max-age=31536000");
+        }
+        response.setHeader("Content-Security-Policy", "default-src 'none'; img-src 'self'; style-src 'self'; "
+                + "script-src 'self'; connect-src 'self'; form-action 'self'; frame-ancestors 'none'; base-uri 'none'");
         try {
-            var h = exchange.getResponseHeaders();
-            h.set("X-Content-Type-Options", "nosniff");
-            h.set("Referrer-Policy", "same-origin");
-            h.set("X-Frame-Options", "DENY");
-            if (secure) { // browsers that once saw the page over HTTPS never try it in clear
-                h.set("Strict-Transport-Security", "max-age=31536000");
-            }
-            h.set("Content-Security-Policy", "default-src 'none'; img-src 'self'; style-src 'self'; script-src 'self'; "
-                    + "connect-src 'self'; form-action 'self'; frame-ancestors 'none'; base-uri 'none'");
-            route(exchange);
-        } catch (HttpError e) {
-            e.headers.forEach(exchange.getResponseHeaders()::set);
-            if (exchange.getRequestURI().getRawPath().startsWith("/api/")) {
-                send(exchange, e.status, "application/json", Json.write(Map.of("error", e.getMessage())).getBytes(
-                        StandardCharsets.UTF_8));
+            String path = check(x);
+            if (x.method().equals("POST")) {
+                readBody(x, path);
             } else {
-                send(exchange, e.status, "text/html; charset=utf-8", PortalPages.error(e.status, reason(e.status), e
-                        .getMessage()).getBytes(StandardCharsets.UTF_8));
+                answer(x, () -> route(x, path, null));
             }
-        } catch (IOException e) {
-            LOG.debug("portal: {} {}: {}", exchange.getRequestMethod(), exchange.getRequestURI(), e.toString());
-        } catch (RuntimeException e) {
-            LOG.warn("portal: {} {} failed", exchange.getRequestMethod(), exchange.getRequestURI().getRawPath(), e);
-            try {
-                send(exchange, 500, "text/html; charset=utf-8", PortalPages.error(500, reason(500), "the robot could "
-                        + "not answer: " + e).getBytes(StandardCharsets.UTF_8));
-            } catch (IOException | RuntimeException ignored) {
-                // headers already sent: the connection is closed below
-            }
-        } finally {
-            exchange.close();
+        } catch (HttpError e) {
+            answer(x, () -> {
+                throw e;
+            });
         }
     }
 
-    private void route(HttpExchange x) throws IOException, HttpError {
-        String path = x.getRequestURI().getRawPath();
-        String method = x.getRequestMethod();
+    /** One step of answering a request, which may end in an {@link HttpError}. */
+    private interface Step {
+        void run() throws IOException, HttpError;
+    }
+
+    /** Runs {@code step}; its {@link HttpError} (or failure) becomes the error's page or JSON. */
+    private void answer(Exchange x, Step step) {
+        try {
+            step.run();
+        } catch (HttpError e) {
+            e.headers.forEach(x.response()::setHeader);
+            try {
+                if (x.path().startsWith("/api/")) {
+                    send(x, e.status, "application/json", Json.write(Map.of("error", e.getMessage())).getBytes(
+                            StandardCharsets.UTF_8));
+                } else {
+                    send(x, e.status, "text/html; charset=utf-8", PortalPages.error(e.status, reason(e.status), e
+                            .getMessage()).getBytes(StandardCharsets.UTF_8));
+                }
+            } catch (IOException | IllegalStateException ignored) {
+                LOG.debug("portal: {} {}: the error {} could not be sent: {}", x.method(), x.path(), e.status,
+                        ignored.toString());
+            }
+        } catch (IOException e) {
+            LOG.debug("portal: {} {}: {}", x.method(), x.path(), e.toString());
+        } catch (RuntimeException e) {
+            LOG.warn("portal: {} {} failed", x.method(), x.path(), e);
+            try {
+                send(x, 500, "text/html; charset=utf-8", PortalPages.error(500, reason(500), "the robot could "
+                        + "not answer: " + e).getBytes(StandardCharsets.UTF_8));
+            } catch (IOException | RuntimeException ignored) {
+                // headers already sent: the container closes the connection
+            }
+        }
+    }
+
+    /**
+     * Reads a POST's form without holding a thread while it arrives, then answers it: 413 by {@code Content-Length}
+     * before reading or while reading, 408 when the body has not arrived within the request timeout.
+     */
+    private void readBody(Exchange x, String path) throws HttpError {
+        String length = x.request().getHeader("Content-Length");
+        if (length != null) {
+            long n;
+            try {
+                n = Long.parseLong(length.strip());
+            } catch (NumberFormatException e) {
+                throw new HttpError(400, "Content-Length '" + length + "' is not a number");
+            }
+            if (n > MAX_BODY) {
+                throw tooLarge(" of " + n + " bytes");
+            }
+        }
+        AsyncContext async = x.request().startAsync();
+        async.setTimeout(bodyTimeoutMs);
+        ServletInputStream in;
+        try {
+            in = x.request().getInputStream();
+        } catch (IOException e) {
+            async.complete();
+            LOG.debug("portal: POST {}: {}", path, e.toString());
+            return;
+        }
+        ByteArrayOutputStream body = new ByteArrayOutputStream();
+        java.util.concurrent.atomic.AtomicBoolean done = new java.util.concurrent.atomic.AtomicBoolean();
+        async.addListener(new AsyncListener() {
+            @Override
+            public void onTimeout(AsyncEvent event) {
+                if (done.compareAndSet(false, true)) {
+                    LOG.debug("portal: POST {} from {}: the body did not arrive in time", path, x.request()
+                            .getRemoteAddr());
+                    x.response().setHeader("Connection", "close");
+                    answer(x, () -> {
+                        throw new HttpError(408, "the request's body did not arrive within " + bodyTimeoutMs
+                                + " ms");
+                    });
+                    async.complete();
+                }
+            }
+
+            @Override
+            public void onError(AsyncEvent event) {
+                done.set(true);
+            }
+
+            @Override
+            public void onStartAsync(AsyncEvent event) {
+                // nothing: one asynchronous phase per request
+            }
+
+            @Override
+            public void onComplete(AsyncEvent event) {
+                // nothing: the answer is written before completing
+            }
+        });
+        in.setReadListener(new ReadListener() {
+            private final byte[] buffer = new byte[4096];
+
+            @Override
+            public void onDataAvailable() throws IOException {
+                while (in.isReady() && !done.get()) {
+                    int n = in.read(buffer);
+                    if (n < 0) {
+                        return; // onAllDataRead follows
+                    }
+                    body.write(buffer, 0, n);
+                    if (body.size() > MAX_BODY && done.compareAndSet(false, true)) {
+                        answer(x, () -> {
+                            throw tooLarge("");
+                        });
+                        async.complete();
+                        return;
+                    }
+                }
+            }
+
+            @Override
+            public void onAllDataRead() {
+                if (done.compareAndSet(false, true)) {
+                    answer(x, () -> route(x, path, body.toByteArray()));
+                    async.complete();
+                }
+            }
+
+            @Override
+            public void onError(Throwable t) {
+                if (done.compareAndSet(false, true)) {
+                    LOG.debug("portal: POST {} from {}: {}", path, x.request().getRemoteAddr(), t.toString());
+                    async.complete();
+                }
+            }
+        });
+    }
+
+    private static HttpError tooLarge(String size) {
+        return new HttpError(413, "the request's body" + size + " is over this page's limit of " + MAX_BODY
+                + " bytes", Map.of("Connection", "close"));
+    }
+
+    /** @return the request's path, checked: one of the page's, with a method it accepts */
+    private static String check(Exchange x) throws HttpError {
+        String path = x.path();
+        String method = x.method();
         if (path == null || !path.matches("/[A-Za-z0-9._/-]*") || path.contains("..") || path.contains("//")) {
             throw new HttpError(400, "the path '" + (path == null ? "" : path) + "' is not one of this page's (only "
                     + "letters, digits, '.', '_', '-' and single '/', no '..')");
@@ -134,28 +272,34 @@ final class PortalRoutes implements HttpHandler {
                     methods.stream().sorted().toList()) + ")", Map.of("Allow", String.join(", ", methods.stream()
                             .sorted().toList())));
         }
+        return path;
+    }
+
+    /** Answers a checked request; {@code body} is a POST's body, {@code null} for the other methods. */
+    private void route(Exchange x, String path, byte[] body) throws IOException, HttpError {
+        String method = x.method();
         if (path.startsWith("/static/")) {
             byte[] asset = assets.get(path);
             if (asset == null) {
                 throw new HttpError(404, "this page has nothing at " + path);
             }
-            x.getResponseHeaders().set("Cache-Control", "max-age=3600");
+            x.response().setHeader("Cache-Control", "max-age=3600");
             send(x, 200, path.endsWith(".css") ? "text/css; charset=utf-8" : "text/javascript; charset=utf-8", asset);
             return;
         }
-        x.getResponseHeaders().set("Cache-Control", "no-store");
+        x.response().setHeader("Cache-Control", "no-store");
         if (path.equals("/login")) {
             if (method.equals("GET")) {
                 html(x, 200, PortalPages.login(robotName(), null, ""));
             } else {
-                login(x);
+                login(x, body);
             }
             return;
         }
         Optional<Session> found = sessions.find(cookie(x));
         if (found.isEmpty()) {
             if (method.equals("GET") && !path.startsWith("/api/")) {
-                x.getResponseHeaders().set("Location", "/login");
+                x.response().setHeader("Location", "/login");
                 send(x, 303, "text/plain; charset=utf-8", "log in first\n".getBytes(StandardCharsets.UTF_8));
                 return;
             }
@@ -182,12 +326,12 @@ final class PortalRoutes implements HttpHandler {
             case "/qr.png" -> send(x, 200, "image/png", robot.inventoryQr().orElseThrow(() -> new HttpError(404,
                     "the robot's QR inventory is not available (not published yet, or the session is offline)")));
             case "/logout" -> {
-                Map<String, String> form = form(x);
+                Map<String, String> form = form(x, body);
                 checkCsrf(session, form);
                 sessions.close(session.id());
                 LOG.info("portal: {} logged out", session.account());
-                x.getResponseHeaders().add("Set-Cookie", cookieHeader("", 0));
-                x.getResponseHeaders().set("Location", "/login");
+                x.response().addHeader("Set-Cookie", cookieHeader("", 0));
+                x.response().setHeader("Location", "/login");
                 send(x, 303, "text/plain; charset=utf-8", "logged out\n".getBytes(StandardCharsets.UTF_8));
             }
             case "/config" -> {
@@ -199,7 +343,7 @@ final class PortalRoutes implements HttpHandler {
                     html(x, 200, PortalPages.config(robotName(), session, role, robot.settings().file().toString(),
                             robot.settings().tasks(), null, null, null));
                 } else {
-                    Map<String, String> form = form(x);
+                    Map<String, String> form = form(x, body);
                     checkCsrf(session, form);
                     change(x, session, role, form);
                 }
@@ -208,15 +352,15 @@ final class PortalRoutes implements HttpHandler {
         }
     }
 
-    private void login(HttpExchange x) throws IOException, HttpError {
+    private void login(Exchange x, byte[] body) throws IOException, HttpError {
         checkOrigin(x);
-        Map<String, String> form = form(x);
+        Map<String, String> form = form(x, body);
         String account = form.getOrDefault("account", "").strip();
         String password = form.getOrDefault("password", "");
         if (account.isEmpty() || password.isEmpty() || account.length() > 256 || password.length() > 1024) {
             throw new HttpError(400, "the log-in form needs an account (name@domain) and a password");
         }
-        String client = x.getRemoteAddress().getAddress().getHostAddress();
+        String client = x.request().getRemoteAddr();
         Duration wait = throttle.wait(client, account);
         if (!wait.isZero() && !wait.isNegative()) {
             long seconds = Math.max(1, (wait.toMillis() + 999) / 1000);
@@ -245,12 +389,12 @@ final class PortalRoutes implements HttpHandler {
         }
         Session session = sessions.open(account);
         LOG.info("portal: {} logged in from {} as {}", account, client, role.withArticle());
-        x.getResponseHeaders().add("Set-Cookie", cookieHeader(session.id(), -1));
-        x.getResponseHeaders().set("Location", "/");
+        x.response().addHeader("Set-Cookie", cookieHeader(session.id(), -1));
+        x.response().setHeader("Location", "/");
         send(x, 303, "text/plain; charset=utf-8", "logged in\n".getBytes(StandardCharsets.UTF_8));
     }
 
-    private void change(HttpExchange x, Session session, Role role, Map<String, String> form) throws IOException,
+    private void change(Exchange x, Session session, Role role, Map<String, String> form) throws IOException,
             HttpError {
         String task = form.get("task");
         if (task == null || task.isBlank()) {
@@ -294,38 +438,17 @@ final class PortalRoutes implements HttpHandler {
     }
 
     /** A browser's log-in from another site's page is refused (the session forms carry a CSRF token instead). */
-    private static void checkOrigin(HttpExchange x) throws HttpError {
-        String origin = x.getRequestHeaders().getFirst("Origin");
-        String host = x.getRequestHeaders().getFirst("Host");
+    private static void checkOrigin(Exchange x) throws HttpError {
+        String origin = x.request().getHeader("Origin");
+        String host = x.request().getHeader("Host");
         if (origin != null && !origin.equals("null") && host != null && !origin.endsWith("://" + host)) {
             throw new HttpError(403, "a log-in from another site (" + origin + ") is refused");
         }
     }
 
-    /** @return the request's form: application/x-www-form-urlencoded, at most {@value #MAX_BODY} bytes */
-    static Map<String, String> form(HttpExchange x) throws IOException, HttpError {
-        String type = x.getRequestHeaders().getFirst("Content-Type");
-        String length = x.getRequestHeaders().getFirst("Content-Length");
-        if (length != null) {
-            long n;
-            try {
-                n = Long.parseLong(length.strip());
-            } catch (NumberFormatException e) {
-                throw new HttpError(400, "Content-Length '" + length + "' is not a number");
-            }
-            if (n > MAX_BODY) {
-                throw new HttpError(413, "the request's body of " + n + " bytes is over this page's limit of "
-                        + MAX_BODY + " bytes", Map.of("Connection", "close"));
-            }
-        }
-        byte[] body;
-        try (InputStream in = x.getRequestBody()) {
-            body = in.readNBytes(MAX_BODY + 1);
-        }
-        if (body.length > MAX_BODY) {
-            throw new HttpError(413, "the request's body is over this page's limit of " + MAX_BODY + " bytes", Map.of(
-                    "Connection", "close"));
-        }
+    /** @return the request's form: application/x-www-form-urlencoded, its body read by {@link #readBody} */
+    static Map<String, String> form(Exchange x, byte[] body) throws HttpError {
+        String type = x.request().getContentType();
         if (type == null || !type.toLowerCase(java.util.Locale.ROOT).startsWith(FORM_TYPE)) {
             throw new HttpError(415, "a form (" + FORM_TYPE + ") is expected, not " + (type == null ? "no type"
                     : "'" + type + "'"));
@@ -372,12 +495,8 @@ final class PortalRoutes implements HttpHandler {
                 + (maxAge >= 0 ? "; Max-Age=" + maxAge : "");
     }
 
-    private static String cookie(HttpExchange x) {
-        List<String> headers = x.getRequestHeaders().get("Cookie");
-        if (headers == null) {
-            return null;
-        }
-        for (String header : headers) {
+    private static String cookie(Exchange x) {
+        for (String header : java.util.Collections.list(x.request().getHeaders("Cookie"))) {
             for (String part : header.split(";")) {
                 String p = part.strip();
                 if (p.startsWith(COOKIE + "=")) {
@@ -392,18 +511,19 @@ final class PortalRoutes implements HttpHandler {
         return robot.settings().robotName();
     }
 
-    private static void html(HttpExchange x, int status, String page) throws IOException {
+    private static void html(Exchange x, int status, String page) throws IOException {
         send(x, status, "text/html; charset=utf-8", page.getBytes(StandardCharsets.UTF_8));
     }
 
-    private static void send(HttpExchange x, int status, String type, byte[] body) throws IOException {
-        x.getResponseHeaders().set("Content-Type", type);
-        x.sendResponseHeaders(status, body.length == 0 ? -1 : body.length);
+    private static void send(Exchange x, int status, String type, byte[] body) throws IOException {
+        HttpServletResponse r = x.response();
+        r.setStatus(status);
+        r.setContentType(type);
+        r.setContentLength(body.length);
         if (body.length > 0) {
-            try (OutputStream out = x.getResponseBody()) {
-                out.write(body);
-            }
+            r.getOutputStream().write(body);
         }
+        r.flushBuffer();
     }
 
     private static String reason(int status) {
@@ -413,11 +533,24 @@ final class PortalRoutes implements HttpHandler {
             case 403 -> "Forbidden";
             case 404 -> "Not Found";
             case 405 -> "Method Not Allowed";
+            case 408 -> "Request Timeout";
             case 413 -> "Content Too Large";
             case 415 -> "Unsupported Media Type";
             case 429 -> "Too Many Requests";
             case 503 -> "Service Unavailable";
             default -> "Internal Server Error";
         };
+    }
+
+    /** A request and its response; the path is the raw (not decoded) request URI's path. */
+    record Exchange(HttpServletRequest request, HttpServletResponse response) {
+
+        String path() {
+            return request.getRequestURI();
+        }
+
+        String method() {
+            return request.getMethod();
+        }
     }
 }

@@ -28,9 +28,10 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param sessionTimeout a log-in's life without a request
  * @param throttle       how many failed log-ins a client or an account may have in which window
  * @param poll           how often the status page asks for the robot's state
+ * @param requestTimeout how long a request's body may take to arrive once its headers have
  */
 public record PortalSettings(InetAddress bind, int port, String address, PemIdentity.Files tls, Duration sessionTimeout,
-        LoginThrottle.Limits throttle, Duration poll) {
+        LoginThrottle.Limits throttle, Duration poll, Duration requestTimeout) {
 
     /** The task's name. */
     public static final String TASK = "portal";
@@ -41,6 +42,7 @@ public record PortalSettings(InetAddress bind, int port, String address, PemIden
     static final int DEFAULT_LOGIN_FAILURES = 5;
     static final int DEFAULT_LOGIN_WINDOW_S = 60;
     static final int DEFAULT_POLL_MS = 250;
+    static final int DEFAULT_REQUEST_TIMEOUT_S = 10;
 
     /** The task's settings: its Metatype description, generated from these annotations. */
     @ObjectClassDefinition(id = OnboardTask.PID_PREFIX + TASK, name = "Web page",
@@ -88,6 +90,11 @@ public record PortalSettings(InetAddress bind, int port, String address, PemIden
         @AttributeDefinition(name = "Status poll interval", description = "Milliseconds between two requests of the "
                 + "status page for the robot's state (while somebody looks at it).", min = "50", max = "10000")
         int pollInterval() default DEFAULT_POLL_MS;
+
+        @AttributeDefinition(name = "Request timeout", description = "Seconds a request's body may take to arrive "
+                + "once its headers have; a slower one is answered 408. Read without holding a thread, so slow "
+                + "clients do not keep others waiting.", min = "1", max = "300")
+        int requestTimeout() default DEFAULT_REQUEST_TIMEOUT_S;
     }
 
     /**
@@ -135,6 +142,7 @@ public record PortalSettings(InetAddress bind, int port, String address, PemIden
         long failures = integer(p, "loginFailures", DEFAULT_LOGIN_FAILURES, 1, 1000, problems);
         long window = integer(p, "loginWindow", DEFAULT_LOGIN_WINDOW_S, 1, 86400, problems);
         long poll = integer(p, "pollInterval", DEFAULT_POLL_MS, 50, 10000, problems);
+        long request = integer(p, "requestTimeout", DEFAULT_REQUEST_TIMEOUT_S, 1, 300, problems);
         boolean tls = false;
         try {
             tls = p.bool("tls", false);
@@ -166,7 +174,8 @@ public record PortalSettings(InetAddress bind, int port, String address, PemIden
             return null;
         }
         return new PortalSettings(bind, (int) port, address, files, Duration.ofSeconds(timeout),
-                new LoginThrottle.Limits((int) failures, Duration.ofSeconds(window)), Duration.ofMillis(poll));
+                new LoginThrottle.Limits((int) failures, Duration.ofSeconds(window)), Duration.ofMillis(poll),
+                Duration.ofSeconds(request));
     }
 
     private static String hostName() {

@@ -33,6 +33,7 @@ class PortalSettingsTest {
         assertEquals(s.throttle().failures(), Integer.parseInt(d.get("loginFailures")));
         assertEquals(s.throttle().window().toSeconds(), Long.parseLong(d.get("loginWindow")));
         assertEquals(s.poll().toMillis(), Long.parseLong(d.get("pollInterval")));
+        assertEquals(s.requestTimeout().toSeconds(), Long.parseLong(d.get("requestTimeout")));
         assertEquals("false", d.get("tls"));
         assertNull(s.tls());
     }
@@ -57,6 +58,8 @@ class PortalSettingsTest {
         assertEquals(1, p.size(), p.toString());
         assertTrue(p.get(0).message().startsWith("cannot use " + junk), p.get(0).message());
         assertThrows(InvalidSettings.class, () -> PortalSettings.of(Map.of("port", 0)));
+        assertEquals(List.of(new Problem("requestTimeout", "'0' is outside 1..300")), PortalSettings.problems(Map.of(
+                "requestTimeout", 0)));
     }
 
     @Test
@@ -72,6 +75,12 @@ class PortalSettingsTest {
                 .toString(), "port", 8443, "bind", "127.0.0.1"));
         assertEquals("https://127.0.0.1:8443/", s.url());
         assertEquals("TLS", PemIdentity.load(s.tls()).getProtocol());
+        char[] password = "p".toCharArray(); // the store written for Jetty: the key under its alias, with the chain
+        java.security.KeyStore store = PemIdentity.keyStore(s.tls(), password);
+        assertTrue(store.isKeyEntry(PemIdentity.ALIAS));
+        assertEquals("CN=robot.sabot.local", ((java.security.cert.X509Certificate) store.getCertificate(
+                PemIdentity.ALIAS)).getSubjectX500Principal().getName());
+        assertTrue(store.getKey(PemIdentity.ALIAS, password) instanceof java.security.PrivateKey);
     }
 
     @Test
