@@ -163,6 +163,46 @@ class PrivateXmppServerTest {
         assertEquals(List.of(), processesOf(server.runDir()), "processes left running after the stop");
     }
 
+    /**
+     * {@code sabot-xmpp cert} (docs/PORTAL.md): a lab computer's certificate, signed by the lab CA (made when missing),
+     * with every name and address given, its key for the owner only, and the portal's settings printed; a name that
+     * is no host name or address is refused and writes nothing.
+     */
+    @Test
+    void certMakesALabComputersCertificateSignedByTheLabCa(@org.junit.jupiter.api.io.TempDir Path run)
+            throws Exception {
+        Path out = run.resolve("robot-1");
+        String printed = sabotXmpp(0, "cert", "--run", run.toString(), "robot-1.lab", "10.0.0.7", "--out", out
+                .toString());
+        Path crt = out.resolve("robot-1.lab.crt");
+        Path key = out.resolve("robot-1.lab.key");
+        assertTrue(printed.contains("portal.certificateFile = " + crt + "\n"), printed);
+        assertTrue(printed.contains("portal.keyFile = " + key + "\n"), printed);
+        assertTrue(printed.contains("portal.address = robot-1.lab\n"), printed);
+        var x509 = java.security.cert.CertificateFactory.getInstance("X.509");
+        java.security.cert.X509Certificate ca, cert;
+        try (var in = Files.newInputStream(run.resolve("ca/ca.pem"))) {
+            ca = (java.security.cert.X509Certificate) x509.generateCertificate(in);
+        }
+        try (var in = Files.newInputStream(crt)) {
+            cert = (java.security.cert.X509Certificate) x509.generateCertificate(in);
+        }
+        cert.verify(ca.getPublicKey()); // signed by the lab CA, or this throws
+        cert.checkValidity();
+        assertEquals(List.of(List.of(2, "robot-1.lab"), List.of(7, "10.0.0.7")), cert.getSubjectAlternativeNames()
+                .stream().map(List::copyOf).toList());
+        assertEquals(-1, cert.getBasicConstraints(), "a CA certificate");
+        assertEquals("rw-------", java.nio.file.attribute.PosixFilePermissions.toString(Files.getPosixFilePermissions(
+                key)));
+        for (String bad : List.of("a b", "../x", "robot_1.lab", "x-.lab", "a..b")) {
+            String refused = sabotXmpp(1, "cert", "--run", run.toString(), bad, "--out", out.toString());
+            assertTrue(refused.contains("'" + bad + "' is neither a host name nor an IP address"), refused);
+        }
+        try (var files = Files.list(out)) {
+            assertEquals(2, files.count(), "a refused name wrote a file");
+        }
+    }
+
     /** Runs {@code sabot-xmpp ARGS...}; @return its output (both streams) */
     private static String sabotXmpp(int expectedStatus, String... args) throws Exception {
         List<String> command = new java.util.ArrayList<>(List.of(PrivateXmppServer.repositoryRoot().resolve(
