@@ -228,7 +228,7 @@ public final class OnboardApplication implements IApplication {
      * Enabled tasks get their configuration (DS then activates them); installed but disabled tasks lose any
      * configuration left from an earlier run (Config Admin persists configurations across restarts).
      */
-    private static void applyTaskConfigurations(ConfigurationAdmin configAdmin, Set<String> installed,
+    static void applyTaskConfigurations(ConfigurationAdmin configAdmin, Set<String> installed,
             Map<String, Hashtable<String, Object>> enabled) throws IOException {
         for (String task : installed) {
             String pid = OnboardTask.PID_PREFIX + task;

@@ -36,6 +36,34 @@ class HeartbeatTaskInOsgiTest {
         assertTrue(heartbeat.containsKey("warnLoad"));
     }
 
+    /**
+     * A configuration a task wrote for another service (the portal's of Felix HTTP) outlives a killed process: the
+     * next start deletes it when its task is not enabled, and keeps it when it is (two tasks with no component, so
+     * that nothing activates).
+     */
+    @Test
+    void aStartDeletesWhatDisabledTasksLeftForOtherServices() throws Exception {
+        ConfigurationAdmin cm = service(ConfigurationAdmin.class);
+        Configuration left = cm.getConfiguration("sabot.test.http", "?");
+        Configuration kept = cm.getConfiguration("sabot.test.other", "?");
+        left.update(new Hashtable<>(Map.of(OnboardTask.TASK_PROPERTY, "stopped", "port", 8080)));
+        kept.update(new Hashtable<>(Map.of(OnboardTask.TASK_PROPERTY, "running")));
+        try {
+            OnboardApplication.applyTaskConfigurations(cm, java.util.Set.of("running", "stopped"), Map.of(
+                    "running", new Hashtable<>(Map.of("robot.name", "r"))));
+            assertNull(cm.listConfigurations("(service.pid=sabot.test.http)"), "the disabled task's left-over");
+            assertNotNull(cm.listConfigurations("(service.pid=sabot.test.other)"), "the enabled task's");
+            assertNotNull(cm.listConfigurations("(service.pid=sabot.task.running)"), "the enabled task's own");
+        } finally {
+            for (String pid : new String[] { "sabot.test.other", "sabot.task.running", "sabot.test.http" }) {
+                Configuration[] c = cm.listConfigurations("(service.pid=" + pid + ")");
+                if (c != null) {
+                    c[0].delete();
+                }
+            }
+        }
+    }
+
     @Test
     void heartbeatRunsOnlyWhileConfigured() throws Exception {
         ServiceTracker<OnboardTask, OnboardTask> tasks = new ServiceTracker<>(context, OnboardTask.class, null);
