@@ -181,4 +181,18 @@ class TrafficCountersTest {
     void utf8LengthIsTheEncodedLength(String text) {
         assertEquals(text.getBytes(StandardCharsets.UTF_8).length, FleetTraffic.utf8Length(text));
     }
+
+    /** A stanza as Smack builds it (nested XML builders, as the listeners count it): its encoded length. */
+    @Test
+    void aStanzasLengthIsItsEncodedXmlsLength() throws Exception {
+        var inner = org.jivesoftware.smack.packet.StandardExtensionElement.builder("pose", "urn:example").addAttribute(
+                "x", "1.5").addElement("note", "Ω € \uD83E\uDD16 <&>").build();
+        var outer = org.jivesoftware.smack.packet.StandardExtensionElement.builder("event", "urn:example:event")
+                .addElement(inner).addElement(inner).build();
+        org.jivesoftware.smack.packet.Message m = org.jivesoftware.smack.packet.StanzaBuilder.buildMessage("m1").to(
+                "sabot-01@sabot.local/onboard").setBody("é").addExtension(outer).build();
+        CharSequence xml = m.toXML();
+        assertTrue(xml instanceof org.jivesoftware.smack.util.XmlStringBuilder, xml.getClass().getName());
+        assertEquals(xml.toString().getBytes(StandardCharsets.UTF_8).length, FleetTraffic.utf8Length(xml));
+    }
 }
