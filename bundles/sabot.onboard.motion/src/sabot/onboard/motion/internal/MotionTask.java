@@ -53,6 +53,7 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
+import sabot.model.robot.BatteryState;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.motion.loop.ControlLoop;
@@ -424,6 +425,16 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     @Override
     public PoseEstimate pose() {
         return snapshot.pose();
+    }
+
+    @Override
+    public BatteryState battery() throws CommandRefused {
+        ControlLoop.Snapshot s = snapshot;
+        if (!s.batteryFault().isEmpty()) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, s.batteryFault());
+        }
+        return s.battery().orElseThrow(() -> new CommandRefused(ControlMlCondition.DEVICE_FAULT,
+                "the power board has not been read yet"));
     }
 
     @Override
