@@ -40,6 +40,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
+import sabot.model.robot.BatteryState;
 import sabot.onboard.controlml.internal.session.ControlMlSettings;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
@@ -70,7 +71,7 @@ public final class ControlMlEndpoint {
 
     /** The resources this endpoint serves (the remote FS task serves {@code cm.fs.*}). */
     static final List<Resource<?, ?>> SERVED = List.of(Resources.POSITION, Resources.VELOCITY, Resources.GOAL,
-            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.PID, Resources.LIMITS,
+            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.BATTERY, Resources.PID, Resources.LIMITS,
             Resources.MISSION, Resources.TASKS);
 
     /** The {@code state} values a {@code cm.mission} set may ask for, besides a maintenance switch. */
@@ -107,6 +108,7 @@ public final class ControlMlEndpoint {
         checkRate("velocityRate", config.velocityRate());
         checkRate("missionRate", config.missionRate());
         checkRate("obstaclesRate", config.obstaclesRate());
+        checkRate("batteryRate", config.batteryRate());
         checkRate("baseRate", config.baseRate());
         if (!(config.leaseMax() >= 1 && config.leaseMax() <= TelemetryRates.MAX_LEASE_S)) {
             throw new IllegalArgumentException("controlml.leaseMax must be 1 to " + TelemetryRates.MAX_LEASE_S
@@ -134,13 +136,15 @@ public final class ControlMlEndpoint {
             publish(Resources.VELOCITY, motion::velocity, config.velocityRate());
             publish(Resources.MISSION, motion::mission, config.missionRate());
             publish(Resources.OBSTACLES, motion::obstacles, config.obstaclesRate());
+            // no reading yet, or the power board failing: a skipped tick (a get says why)
+            publish(Resources.BATTERY, this::batteryOrNull, config.batteryRate());
         }
         motion.addListener(presence);
         showCurrentMission(); // the listener reports changes only
         LOG.info("ControlML endpoint serving {} resources for {}; telemetry while leased (at most {} s): position {} "
-                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz; else {} Hz", SERVED.size(), session.jid(), config
-                        .leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(), config
-                                .obstaclesRate(), config.baseRate());
+                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz, battery {} Hz; else {} Hz", SERVED.size(), session
+                        .jid(), config.leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(),
+                config.obstaclesRate(), config.batteryRate(), config.baseRate());
     }
 
     /** Stops telemetry and presence updates and unregisters the handlers. */
@@ -186,6 +190,7 @@ public final class ControlMlEndpoint {
         m.onGet(Resources.MAP, (request, none) -> Outcome.success(motion.map()));
         m.onSet(Resources.MAP, (request, map) -> apply(() -> motion.replaceMap(map)));
         m.onGet(Resources.OBSTACLES, (request, none) -> Outcome.success(motion.obstacles()));
+        m.onGet(Resources.BATTERY, (request, none) -> read(motion::battery));
         m.onGet(Resources.PID, (request, none) -> read(motion::gains));
         m.onSet(Resources.PID, (request, gains) -> read(() -> motion.setGains(gains)));
         m.onGet(Resources.LIMITS, (request, none) -> Outcome.success(motion.limits()));
@@ -227,6 +232,14 @@ public final class ControlMlEndpoint {
 
     private static <T> Outcome<T> refusal(CommandRefused refused) {
         return Outcome.failure(ControlMlError.of(refused.condition(), refused.getMessage()));
+    }
+
+    private BatteryState batteryOrNull() {
+        try {
+            return motion.battery();
+        } catch (CommandRefused refused) {
+            return null;
+        }
     }
 
     /** Without a goal there is nothing true to answer with: a pose would look like a target the robot does not have. */
