@@ -109,6 +109,15 @@ public interface RobotMotion {
      */
     BatteryState battery() throws CommandRefused;
 
+    /**
+     * @return whether the robot stands on its dock charging after a low battery, until it is charged again (presence
+     *         Away "charging"); listeners hear of a change as a {@link MotionListener#missionChanged} with the mission
+     *         as it is
+     */
+    default boolean charging() {
+        return false;
+    }
+
     /** @return the motor gains read back from the motor board; DEVICE_FAULT when the board does not answer */
     PidGains gains() throws CommandRefused;
 

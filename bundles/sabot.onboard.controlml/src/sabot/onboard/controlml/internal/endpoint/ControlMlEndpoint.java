@@ -356,9 +356,15 @@ public final class ControlMlEndpoint {
 
     // ---------------------------------------------------------------------------------------------- presence
 
-    /** Free when idle, done or aborted; busy running or paused; away in maintenance or after a failure. */
-    static PresenceLevel presenceOf(MissionStatus mission) {
-        if (mission.maintenance()) {
+    /** The presence's text while the robot charges on its dock after a low battery (docs/CONTROLML.md section 7). */
+    static final String CHARGING = "charging";
+
+    /**
+     * Free when idle, done or aborted; busy running or paused; away in maintenance, after a failure, or while charging
+     * on the dock after a low battery.
+     */
+    static PresenceLevel presenceOf(MissionStatus mission, boolean charging) {
+        if (mission.maintenance() || charging) {
             return PresenceLevel.AWAY;
         }
         return switch (mission.state()) {
@@ -368,8 +374,11 @@ public final class ControlMlEndpoint {
         };
     }
 
-    /** The presence's status text: the mission's detail, else what the level stands for. */
-    static String reasonOf(MissionStatus mission) {
+    /** The presence's status text: "charging" on the dock after a low battery, the mission's detail, else the level's. */
+    static String reasonOf(MissionStatus mission, boolean charging) {
+        if (charging && !mission.maintenance()) {
+            return CHARGING;
+        }
         if (!mission.detail().isBlank()) {
             return mission.detail();
         }
@@ -386,8 +395,9 @@ public final class ControlMlEndpoint {
      * {@link #showCurrentMission}.
      */
     private synchronized void missionChanged(MissionStatus mission) {
-        PresenceLevel level = presenceOf(mission);
-        String reason = reasonOf(mission);
+        boolean charging = motion.charging();
+        PresenceLevel level = presenceOf(mission, charging);
+        String reason = reasonOf(mission, charging);
         if (level == shownLevel && reason.equals(shownReason)) {
             return;
         }
