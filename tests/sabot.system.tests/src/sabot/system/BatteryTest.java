@@ -7,6 +7,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.time.Instant;
+import java.util.List;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Predicate;
 import java.util.regex.Matcher;
@@ -15,9 +16,16 @@ import java.util.regex.Pattern;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import org.jivesoftware.smack.packet.Presence;
+
 import sabot.controlml.ControlMlCondition;
 import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
+import sabot.controlml.payload.Goal;
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.MissionTarget;
+import sabot.model.geometry.Pose2D;
 import sabot.model.robot.BatteryState;
 import sabot.testsupport.robot.SimProcess;
 
@@ -88,6 +96,43 @@ class BatteryTest extends RigTest {
                     "back at 12 %").orElseThrow();
             assertEquals(truth(rig.sim, "soc"), low.stateOfCharge(), 0.002, low.summary());
             assertTrue(low.voltage() < b.voltage(), low.summary() + " after " + b.summary());
+        }
+    }
+
+    /**
+     * Issue 34's proof: a robot whose battery is nearly empty mid-mission aborts it, drives to the lab's nearest dock,
+     * is Away "charging" there, and Free again once charged; judged on the simulator's truth (where the robot stands,
+     * the battery docked and charging, the charge reached). A 0.05 Ah battery charged at 10 A drains and charges in
+     * seconds: at the 15 W base load it loses 0.33 % a second, and charges from 20 % to 90 % in about 15 s.
+     */
+    @Test
+    void aRobotLowMidMissionGoesToItsDockChargesAwayAndIsFreeWhenCharged(@TempDir Path dir) throws Exception {
+        try (RobotRig rig = RobotRig.start(xmpp, dir, CORRIDOR_WEST, new String[] { "--battery-soc", "0.6",
+                "--battery-capacity", "0.05", "--battery-charge", "10" }, "")) {
+            PresenceWatch presence = PresenceWatch.subscribe(rig.operatorConnection, rig.robot.asBareJid());
+            MissionTarget east = new MissionTarget(new Goal(new Pose2D(6.0, 1.0, 0), 0.1, 0.3),
+                    MissionTarget.Action.STOP, 0, MissionTarget.State.PENDING);
+            assertTrue(rig.operator.set(rig.robot, Resources.MISSION, new MissionStatus(MissionState.RUNNING, false,
+                    0, "", List.of(east), 0, 0)).isSuccess(), rig.onboard.output());
+            awaitTruth(rig.sim, t -> t.x() > 2.5, 20, "on its way east");
+            // nearly empty mid-mission: the lab's dock at (1, 1) is nearer than the one at (11, 1)
+            assertTrue(rig.sim.command("battery 1 soc 0.205").startsWith("ok"));
+            rig.onboard.await(l -> l.contains("battery low (") && l.contains("to the dock at (1.00, 1.00)"),
+                    "going to its dock");
+            Presence away = presence.await(p -> p.getMode() == Presence.Mode.away && "charging".equals(p
+                    .getStatus()), "Away \"charging\"");
+            SimProcess.Truth there = rig.sim.truth();
+            assertTrue(there.distanceTo(1.0, 1.0) < 0.15, "on the dock's contacts: " + there);
+            assertEquals(1.0, truth(rig.sim, "docked"), 0.0);
+            assertEquals(1.0, truth(rig.sim, "charging"), 0.0, "charging while Away");
+            assertTrue(truth(rig.sim, "soc") < 0.9);
+            MissionStatus docked = rig.get(Resources.MISSION);
+            assertEquals(MissionTarget.Action.DOCK, docked.targets().get(0).action(), docked.toString());
+
+            presence.awaitAfter(away, p -> p.getMode() == Presence.Mode.available, "Free again once charged");
+            assertTrue(truth(rig.sim, "soc") >= 0.9 || truth(rig.sim, "full") == 1.0, "charged: " + rig.sim.command(
+                    "battery 1"));
+            assertEquals(0, rig.sim.truth().contacts(), "no contact on the way");
         }
     }
 }
