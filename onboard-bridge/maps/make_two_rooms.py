@@ -14,6 +14,9 @@ ROOM = 4.0               # m, inside width and depth of each room
 DOOR_WIDTH = 1.0         # m, the door in the wall between the rooms
 DOOR_Y = 1.7             # m, the door's lower edge (it spans DOOR_Y .. DOOR_Y + DOOR_WIDTH)
 FREE, OCCUPIED = 254, 0  # PGM values, as lab.pgm
+# Charging docks (the Sabot key sabot_docks), one against the far wall of each room at the rooms' middle height:
+# 0.6 m from the wall, so a robot (footprint radius 0.25 m) stands on it with room to turn.
+DOCKS = [(0.8, 2.2), (7.8, 2.2)]
 
 WIDTH = WALL + ROOM + WALL + ROOM + WALL   # 8.6 m: west wall, west room, middle wall, east room, east wall
 HEIGHT = WALL + ROOM + WALL               # 4.4 m
@@ -62,7 +65,9 @@ def main():
                 "origin: [0.0, 0.0, 0.0]\n"
                 "negate: 0\n"
                 "occupied_thresh: 0.65\n"
-                "free_thresh: 0.196\n")
+                "free_thresh: 0.196\n"
+                "# Sabot extension (map_server ignores keys it does not know): charging docks, metres in the map frame\n"
+                f"sabot_docks: [{', '.join(f'[{x}, {y}]' for x, y in DOCKS)}]\n")
 
 
 if __name__ == "__main__":

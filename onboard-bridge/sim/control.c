@@ -140,9 +140,9 @@ static robot_t *robot_arg(const control_target_t *t, const char *word, char *out
 
 static bool board_command(const control_target_t *t, char **w, int n, char *out, size_t len)
 {
-    static const char *const names[BOARD_COUNT] = { "sact", "ins", "sonar", "landmark" };
+    static const char *const names[BOARD_COUNT] = { "sact", "ins", "sonar", "landmark", "power" };
     if (n != 4)
-        return answer(out, len, false, "board wants ROBOT sact|ins|sonar|landmark off|on");
+        return answer(out, len, false, "board wants ROBOT sact|ins|sonar|landmark|power off|on");
     robot_t *r = robot_arg(t, w[1], out, len);
     if (!r)
         return false;
@@ -150,7 +150,7 @@ static bool board_command(const control_target_t *t, char **w, int n, char *out,
     while (b < BOARD_COUNT && strcmp(w[2], names[b]))
         b++;
     if (b == BOARD_COUNT)
-        return answer(out, len, false, "no board '%s' (sact, ins, sonar or landmark)", w[2]);
+        return answer(out, len, false, "no board '%s' (sact, ins, sonar, landmark or power)", w[2]);
     bool off = !strcmp(w[3], "off");
     if (!off && strcmp(w[3], "on"))
         return answer(out, len, false, "board state must be off or on, was '%s'", w[3]);
@@ -186,6 +186,28 @@ static bool truth_command(const control_target_t *t, char **w, int n, char *out,
     /* The --truth CSV's formats, so the two compare digit for digit. */
     return answer(out, len, true, "t=%.3f x=%.5f y=%.5f theta=%.5f v=%.5f omega=%.5f contacts=%llu",
                   *t->sim_us * 1e-6, b->x, b->y, b->theta, b->v, b->omega, (unsigned long long)b->collisions);
+}
+
+/* battery ROBOT: the battery's truth; battery ROBOT soc F: sets its state of charge (0..1). */
+static bool battery_command(const control_target_t *t, char **w, int n, char *out, size_t len)
+{
+    if (n != 2 && !(n == 4 && !strcmp(w[2], "soc")))
+        return answer(out, len, false, "battery wants ROBOT, or ROBOT soc F (0..1)");
+    robot_t *r = robot_arg(t, w[1], out, len);
+    if (!r)
+        return false;
+    battery_t *b = &r->battery;
+    if (n == 4) {
+        double soc;
+        if (!number(w[3], &soc))
+            return answer(out, len, false, "F is not a number: '%.40s'", w[3]);
+        if (soc < 0 || soc > 1)
+            return answer(out, len, false, "F must be in 0..1, was %s", w[3]);
+        battery_set_soc(b, soc);
+        return answer(out, len, true, "robot %d battery soc %.5f", r->cfg.id, b->soc);
+    }
+    return answer(out, len, true, "t=%.3f soc=%.5f voltage=%.4f current=%.4f docked=%d charging=%d full=%d",
+                  *t->sim_us * 1e-6, b->soc, b->voltage, b->current, b->docked, b->charging, b->full);
 }
 
 static bool list_command(const control_target_t *t, int n, char *out, size_t len)
@@ -228,9 +250,12 @@ bool control_execute(const control_target_t *t, const char *line, char *out, siz
         return wheel_command(t, w, n, out, out_len);
     if (!strcmp(w[0], "truth"))
         return truth_command(t, w, n, out, out_len);
+    if (!strcmp(w[0], "battery"))
+        return battery_command(t, w, n, out, out_len);
     if (!strcmp(w[0], "list"))
         return list_command(t, n, out, out_len);
-    return answer(out, out_len, false, "unknown command '%.40s' (obstacle, person, board, wheel, truth, list)", w[0]);
+    return answer(out, out_len, false,
+                  "unknown command '%.40s' (obstacle, person, board, wheel, truth, battery, list)", w[0]);
 }
 
 int control_open(control_server_t *s, int port)

@@ -44,6 +44,11 @@ void drivetrain_init(drivetrain_t *d, const robot_params_t *p, double dt)
 
 static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
 
+double drivetrain_bridge_voltage(const drivetrain_t *d, bridge_input_t in)
+{
+    return in.brake ? 0.0 : d->p.supply_v * (2.0 * in.pwm / 1024.0 - 1.0);
+}
+
 void drivetrain_step(drivetrain_t *d, body_state_t *s, const bridge_input_t in[2],
                      bool (*blocked)(void *ctx, double x, double y), void *ctx)
 {
@@ -56,7 +61,7 @@ void drivetrain_step(drivetrain_t *d, body_state_t *s, const bridge_input_t in[2
     for (int w = 0; w < 2; w++) {
         wheel_state_t *ws = &s->wheel[w];
         double omega_m = ws->omega * p->gear_ratio;
-        double volts = in[w].brake ? 0.0 : p->supply_v * (2.0 * in[w].pwm / 1024.0 - 1.0);
+        double volts = drivetrain_bridge_voltage(d, in[w]);
         double i_ss = (volts - p->torque_constant * omega_m) / p->resistance;
         ws->current = i_ss + (ws->current - i_ss) * d->current_decay;
         double tau_m = p->torque_constant * ws->current - p->motor_friction * tanh(omega_m / 0.5);

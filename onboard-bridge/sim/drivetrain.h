@@ -83,6 +83,9 @@ typedef struct {
     bool brake;
 } bridge_input_t;
 
+/* The voltage a bridge puts across its motor's winding (0 while braking: the terminals are shorted). */
+double drivetrain_bridge_voltage(const drivetrain_t *d, bridge_input_t in);
+
 /* Advances wheels and body by dt. `blocked(ctx, x, y)` says whether the footprint at
  * (x, y) collides; a blocked translation is undone and the forward speed zeroed. */
 void drivetrain_step(drivetrain_t *d, body_state_t *s, const bridge_input_t in[2],

@@ -13,6 +13,8 @@ void robot_config_default(robot_config_t *c)
     robot_params_default(&c->params);
     c->seed = 1;
     c->baud = MB_SERIAL_BAUD;
+    battery_params_default(&c->battery);
+    c->battery_soc = 1.0;
 }
 
 static bool footprint_blocked(void *ctx, double x, double y)
@@ -129,6 +131,10 @@ void robot_init(robot_t *r, const robot_config_t *cfg, const arena_t *arena)
     landmark_model_t landmark_model;
     landmark_model_default(&landmark_model);
     landmark_init(&r->landmark, &landmark_model, cfg->seed * 1000003u + 5u, cfg->baud);
+    battery_init(&r->battery, &cfg->battery, cfg->battery_soc);
+    power_model_t power_model;
+    power_model_default(&power_model);
+    power_init(&r->power, &power_model, &r->battery, cfg->seed * 1000003u + 6u, cfg->baud);
 }
 
 static uint16_t adc_sample(robot_t *r, double amps)
@@ -154,6 +160,8 @@ void robot_step(robot_t *r)
             mb_slave_on_byte(&r->sonar.modbus, byte, t);
         if (!r->link_cut[BOARD_LANDMARK])
             mb_slave_on_byte(&r->landmark.modbus, byte, t);
+        if (!r->link_cut[BOARD_POWER])
+            mb_slave_on_byte(&r->power.modbus, byte, t);
     }
 
     /* Sample the hardware, run the control interrupt, apply its outputs. */
@@ -168,6 +176,13 @@ void robot_step(robot_t *r)
         { r->hal.pwm[1], r->hal.pin[HAL_PIN_BRAKE_M2] },
     };
     drivetrain_step(&r->drivetrain, &r->body, in, footprint_blocked, r);
+    /* The bridges' output power, as the drivetrain computed each winding's voltage and current. */
+    double motor_power = 0;
+    for (int w = 0; w < 2; w++)
+        motor_power += drivetrain_bridge_voltage(&r->drivetrain, in[w]) * r->body.wheel[w].current;
+    const world_t *world = r->arena->world;
+    bool docked = world && world_dock_at(world, r->body.x, r->body.y) >= 0;
+    battery_step(&r->battery, motor_power, docked, SACT_TS_US * 1e-6);
     /* A person walking into a standing robot presses on it too. */
     if (!r->body.in_contact && r->arena->scene &&
         scene_overlaps(r->arena->scene, r->body.x, r->body.y, r->cfg.params.radius)) {
@@ -180,8 +195,9 @@ void robot_step(robot_t *r)
 
     ins_update(&r->ins, &r->body, r->now_us);
     sonar_update(&r->sonar, &r->body, r->now_us, arena_raycast, r);
-    const world_t *w = r->arena->world;
-    landmark_update(&r->landmark, &r->body, r->now_us, w ? w->landmarks : NULL, w ? w->n_landmarks : 0);
+    landmark_update(&r->landmark, &r->body, r->now_us, world ? world->landmarks : NULL,
+                    world ? world->n_landmarks : 0);
+    power_update(&r->power, &r->battery, r->now_us, SACT_TS_US);
 
     /* Main loops of the boards. */
     r->hal.time_us = (uint32_t)r->now_us;
@@ -190,6 +206,7 @@ void robot_step(robot_t *r)
     queue_answer(r, BOARD_SONAR, r->sonar.modbus.tx, mb_slave_poll(&r->sonar.modbus, (uint32_t)r->now_us));
     queue_answer(r, BOARD_LANDMARK, r->landmark.modbus.tx,
                  mb_slave_poll(&r->landmark.modbus, (uint32_t)r->now_us));
+    queue_answer(r, BOARD_POWER, r->power.modbus.tx, mb_slave_poll(&r->power.modbus, (uint32_t)r->now_us));
 }
 
 size_t robot_bus_write(robot_t *r, int port, const uint8_t *bytes, size_t len)

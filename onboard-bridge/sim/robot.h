@@ -1,7 +1,8 @@
 /*
  * One simulated SabotOne: the SACT firmware core on the host HAL, the drivetrain
- * physics, the inertial, sonar and ceiling-landmark boards, and the RS-485 bus that
- * joins them.
+ * physics, the battery, the inertial, sonar, ceiling-landmark and power boards, and the
+ * RS-485 bus that joins them. The battery charges while the robot stands on one of the
+ * world's docks.
  *
  * The bus is a multi-drop line: every byte a master sends reaches every board's
  * UART, spaced by one character time (11 bits at the configured baud), and the
@@ -15,10 +16,12 @@
 #ifndef SIM_ROBOT_H
 #define SIM_ROBOT_H
 
+#include "battery.h"
 #include "drivetrain.h"
 #include "hal_host.h"
 #include "ins_board.h"
 #include "landmark_board.h"
+#include "power_board.h"
 #include "rng.h"
 #include "sact.h"
 #include "scene.h"
@@ -42,6 +45,8 @@ typedef struct {
     uint32_t baud;
     bus_faults_t faults;
     int64_t encoder_offset;  /* initial counter value (tests start near a wrap) */
+    battery_params_t battery;
+    double battery_soc;      /* state of charge at start, 0..1 */
 } robot_config_t;
 
 void robot_config_default(robot_config_t *c);
@@ -63,7 +68,7 @@ typedef struct {
 } arena_t;
 
 /* The boards on a robot's bus. */
-typedef enum { BOARD_SACT, BOARD_INS, BOARD_SONAR, BOARD_LANDMARK, BOARD_COUNT } robot_board_t;
+typedef enum { BOARD_SACT, BOARD_INS, BOARD_SONAR, BOARD_LANDMARK, BOARD_POWER, BOARD_COUNT } robot_board_t;
 
 struct robot {
     robot_config_t cfg;
@@ -74,6 +79,8 @@ struct robot {
     ins_board_t ins;
     sonar_board_t sonar;
     landmark_board_t landmark;   /* sees the world's ceiling markers (none without a world) */
+    battery_t battery;
+    power_board_t power;
     const arena_t *arena;
     sim_rng_t noise_rng, fault_rng;
     uint64_t now_us;

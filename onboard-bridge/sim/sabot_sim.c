@@ -68,6 +68,9 @@ typedef struct {
     double duration;            /* simulated seconds, 0 = until signalled */
     bool bench;
     double bench_seconds;
+    battery_params_t battery;      /* every robot's pack */
+    double battery_soc[MAX_ROBOTS]; /* each robot's state of charge at start */
+    int n_socs;                    /* values --battery-soc gave, 0 without it */
 } options_t;
 
 static volatile sig_atomic_t stop_requested;
@@ -109,6 +112,8 @@ static void source_path(char *out, size_t len, const char *relative)
 
 static void usage(FILE *f)
 {
+    battery_params_t battery_defaults;
+    battery_params_default(&battery_defaults);
     fprintf(f,
             "usage: sabot-sim [options]\n"
             "  --map FILE.yaml        ROS map_server map (default maps/lab.yaml)\n"
@@ -120,7 +125,7 @@ static void usage(FILE *f)
             "  --speed F              simulated seconds per wall second (default 1)\n"
             "  --realtime             same as --speed 1\n"
             "  --tcp PORT             Modbus RTU over TCP on 127.0.0.1:PORT+i (0 = any free port)\n"
-            "  --control PORT         control channel (obstacles, people, boards, truth) on 127.0.0.1:PORT\n"
+            "  --control PORT         control channel (obstacles, people, boards, truth, battery) on 127.0.0.1:PORT\n"
             "                         (0 = any free port; see README.md)\n"
             "  --robots N             robots in this process, each with its own bus (default 1)\n"
             "  --fault-crc P          probability that an answer's CRC is corrupted\n"
@@ -131,9 +136,15 @@ static void usage(FILE *f)
             "  --truth FILE.csv       ground truth at 100 Hz\n"
             "  --link PREFIX          pty symlinks PREFIX1..N (default /tmp/sabot-robot)\n"
             "  --duration S           stop after S simulated seconds\n"
+            "  --battery-capacity AH  every robot's battery capacity in Ah (default %g; 0.001..65.535)\n"
+            "  --battery-soc F[/F...] state of charge at start, 0..1: one for every robot, or one per robot\n"
+            "                         with '/' between them (default 1)\n"
+            "  --battery-base-load W  power drawn besides the motors (default %g)\n"
+            "  --battery-charge A     the docks' charging current (default %g)\n"
             "  --bench [S]            run one robot flat out for S simulated s (default 20), print JSON\n"
             "  --map-file             print the path of the Modbus register map and exit\n",
-            START_SPACING_Y, (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M);
+            START_SPACING_Y, (double)SABOT_ROBOT_GEAR_RATIO, (double)SABOT_ROBOT_TRACK_WIDTH_M,
+            battery_defaults.capacity_ah, battery_defaults.base_load_w, battery_defaults.charge_current);
 }
 
 /* Argument parsers: each refuses anything but the whole argument as the expected kind. */
@@ -223,10 +234,41 @@ static bool parse_starts(const char *text, options_t *o)
     return true;
 }
 
+/* --battery-soc F/F/...: one state of charge 0..1 per robot (or one for all), at most MAX_ROBOTS. */
+static bool parse_socs(const char *text, options_t *o)
+{
+    int n = 0;
+    for (const char *p = text;; n++) {
+        const char *slash = strchr(p, '/');
+        size_t len = slash ? (size_t)(slash - p) : strlen(p);
+        if (n == MAX_ROBOTS) {
+            fprintf(stderr, "sabot-sim: --battery-soc gives more than %d values (at most %d robots), got '%s'\n",
+                    MAX_ROBOTS, MAX_ROBOTS, text);
+            return false;
+        }
+        char word[POSE_TEXT_MAX], *end;
+        snprintf(word, sizeof word, "%.*s", (int)(len < sizeof word ? len : sizeof word - 1), p);
+        errno = 0;
+        double v = strtod(word, &end);
+        if (len == 0 || len >= sizeof word || end == word || *end || errno || !(v >= 0 && v <= 1)) {
+            fprintf(stderr, "sabot-sim: --battery-soc wants a number in 0..1 per robot, '/' between them; "
+                            "value %d is '%.*s' in '%s'\n", n + 1, (int)len, p, text);
+            return false;
+        }
+        o->battery_soc[n] = v;
+        if (!slash)
+            break;
+        p = slash + 1;
+    }
+    o->n_socs = n + 1;
+    return true;
+}
+
 static int parse_options(int argc, char **argv, options_t *o)
 {
     enum { O_MAP = 256, O_START, O_STARTS, O_SEED, O_SPEED, O_REALTIME, O_TCP, O_CONTROL, O_ROBOTS, O_CRC, O_DROP, O_LATENCY,
-           O_GEAR, O_TRACK, O_TRUTH, O_LINK, O_DURATION, O_BENCH, O_MAPFILE, O_HELP };
+           O_GEAR, O_TRACK, O_TRUTH, O_LINK, O_DURATION, O_BENCH, O_MAPFILE, O_HELP, O_BATTERY_CAPACITY,
+           O_BATTERY_SOC, O_BATTERY_BASE_LOAD, O_BATTERY_CHARGE };
     static const struct option longopts[] = {
         { "map", required_argument, 0, O_MAP },        { "start", required_argument, 0, O_START },
         { "starts", required_argument, 0, O_STARTS },
@@ -239,6 +281,10 @@ static int parse_options(int argc, char **argv, options_t *o)
         { "truth", required_argument, 0, O_TRUTH },    { "link", required_argument, 0, O_LINK },
         { "duration", required_argument, 0, O_DURATION }, { "bench", optional_argument, 0, O_BENCH },
         { "map-file", no_argument, 0, O_MAPFILE },     { "help", no_argument, 0, O_HELP },
+        { "battery-capacity", required_argument, 0, O_BATTERY_CAPACITY },
+        { "battery-soc", required_argument, 0, O_BATTERY_SOC },
+        { "battery-base-load", required_argument, 0, O_BATTERY_BASE_LOAD },
+        { "battery-charge", required_argument, 0, O_BATTERY_CHARGE },
         { 0, 0, 0, 0 },
     };
     int c;
@@ -337,6 +383,23 @@ static int parse_options(int argc, char **argv, options_t *o)
                     return -1;
             }
             break;
+        case O_BATTERY_CAPACITY:
+            /* The power board reports it in whole mAh in one register. */
+            if (!arg_range("--battery-capacity", optarg, 0.001, 65.535, false, &o->battery.capacity_ah))
+                return -1;
+            break;
+        case O_BATTERY_SOC:
+            if (!parse_socs(optarg, o))
+                return -1;
+            break;
+        case O_BATTERY_BASE_LOAD:
+            if (!arg_range("--battery-base-load", optarg, 0, 1000, false, &o->battery.base_load_w))
+                return -1;
+            break;
+        case O_BATTERY_CHARGE:
+            if (!arg_range("--battery-charge", optarg, 0, INFINITY, true, &o->battery.charge_current))
+                return -1;
+            break;
         case O_MAPFILE: {
             char path[PATH_MAX];
             source_path(path, sizeof path, "../docs/sact-modbus-map.json");
@@ -367,6 +430,11 @@ static int parse_options(int argc, char **argv, options_t *o)
     }
     if (o->n_starts)
         o->robots = o->n_starts;
+    if (o->n_socs > 1 && o->n_socs != o->robots) {
+        fprintf(stderr, "sabot-sim: --battery-soc gives %d values for %d robot%s: give one, or one per robot\n",
+                o->n_socs, o->robots, o->robots == 1 ? "" : "s");
+        return -1;
+    }
     if (o->tcp_port > 0 && o->tcp_port + o->robots - 1 > 65535) {
         fprintf(stderr, "sabot-sim: --tcp %d with %d robots needs ports up to %d, beyond 65535\n", o->tcp_port,
                 o->robots, o->tcp_port + o->robots - 1);
@@ -562,6 +630,7 @@ int main(int argc, char **argv)
 {
     options_t o = { .seed = 1, .speed = 1.0, .tcp_port = -1, .control_port = -1, .robots = 1, .gear_ratio = SABOT_ROBOT_GEAR_RATIO,
                     .track = SABOT_ROBOT_TRACK_WIDTH_M, .link_prefix = "/tmp/sabot-robot", .bench_seconds = 20.0 };
+    battery_params_default(&o.battery);
     if (parse_options(argc, argv, &o))
         return 2;
 
@@ -596,6 +665,8 @@ int main(int argc, char **argv)
     base.x = o.starts[0][0];
     base.y = o.starts[0][1];
     base.theta = o.starts[0][2];
+    base.battery = o.battery;
+    base.battery_soc = o.n_socs ? o.battery_soc[0] : 1.0;
     if (o.bench)
         return run_bench(&o, &world, &base);
     warn_start_poses(&o, &world, base.params.radius);
@@ -612,6 +683,8 @@ int main(int argc, char **argv)
         cfg.x = o.starts[i][0];
         cfg.y = o.starts[i][1];
         cfg.theta = o.starts[i][2];
+        if (o.n_socs > 1)
+            cfg.battery_soc = o.battery_soc[i];
         robot_list[i] = &robots[i];
         robot_init(&robots[i], &cfg, &arena);
         transports_t *t = &tr[i];
@@ -655,13 +728,13 @@ int main(int argc, char **argv)
     printf("{\"robots\": [");
     for (int i = 0; i < o.robots; i++) {
         printf("%s{\"id\": %d, \"pty\": \"%s\", \"link\": \"%s\", \"tcp\": %d, "
-               "\"slaves\": {\"sact\": %d, \"ins\": %d, \"sonar\": %d, \"landmark\": %d}}",
+               "\"slaves\": {\"sact\": %d, \"ins\": %d, \"sonar\": %d, \"landmark\": %d, \"power\": %d}}",
                i ? ", " : "", i + 1, tr[i].pty_path, tr[i].link_path, o.tcp_port >= 0 ? tr[i].tcp_port : -1,
-               MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS, MB_LANDMARK_ADDRESS);
+               MB_SACT_ADDRESS, MB_INS_ADDRESS, MB_SONAR_ADDRESS, MB_LANDMARK_ADDRESS, MB_POWER_ADDRESS);
     }
     printf("], \"seed\": %llu, \"speed\": %g, \"map\": \"%s\", \"map_file\": \"%s\", \"baud\": %d, "
-           "\"landmarks\": %d",
-           (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD, world.n_landmarks);
+           "\"landmarks\": %d, \"docks\": %d",
+           (unsigned long long)o.seed, o.speed, map_path, map_file, MB_SERIAL_BAUD, world.n_landmarks, world.n_docks);
     if (control.listen_fd >= 0)
         printf(", \"control\": %d", control.port);
     printf("}\n");

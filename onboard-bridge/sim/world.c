@@ -257,6 +257,70 @@ out:
     return rc;
 }
 
+static const char *skip_blanks(const char *p)
+{
+    while (*p == ' ' || *p == '\t')
+        p++;
+    return p;
+}
+
+int world_parse_docks(world_t *w, const char *value, char *err, int err_len)
+{
+    world_dock_t docks[WORLD_MAX_DOCKS];
+    int n = 0;
+    const char *p = skip_blanks(value);
+    if (*p != '[')
+        goto bad;
+    p = skip_blanks(p + 1);
+    if (*p == ']') {
+        p++;
+    } else {
+        for (;;) {
+            if (*p != '[')
+                goto bad;
+            double xy[2];
+            for (int k = 0; k < 2; k++) {
+                char *end;
+                xy[k] = strtod(p + 1, &end);
+                if (end == p + 1 || !isfinite(xy[k]))
+                    goto bad;
+                p = skip_blanks(end);
+                if (*p != (k == 0 ? ',' : ']'))
+                    goto bad;
+            }
+            if (n == WORLD_MAX_DOCKS) {
+                snprintf(err, (size_t)err_len, "sabot_docks: more than %d docks", WORLD_MAX_DOCKS);
+                return -1;
+            }
+            docks[n++] = (world_dock_t){ xy[0], xy[1] };
+            p = skip_blanks(p + 1);
+            if (*p == ']') {
+                p++;
+                break;
+            }
+            if (*p != ',')
+                goto bad;
+            p = skip_blanks(p + 1);
+        }
+    }
+    if (*skip_blanks(p))
+        goto bad;
+    memcpy(w->docks, docks, sizeof docks[0] * (size_t)n);
+    w->n_docks = n;
+    return 0;
+bad:
+    snprintf(err, (size_t)err_len, "sabot_docks wants [[x, y], ...] (numbers, metres), got '%.60s'", value);
+    return -1;
+}
+
+int world_dock_at(const world_t *w, double x, double y)
+{
+    for (int k = 0; k < w->n_docks; k++)
+        if (hypot(w->docks[k].x - x, w->docks[k].y - y) <= WORLD_DOCK_REACH)
+            return k;
+    return -1;
+}
+
 int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
 {
     memset(w, 0, sizeof *w);
@@ -300,6 +364,13 @@ int world_load(world_t *w, const char *yaml_path, char *err, int err_len)
                 return -1;
             }
             snprintf(landmarks, sizeof landmarks, "%s", val);
+        } else if (!strcmp(key, "sabot_docks")) {
+            char why[200];
+            if (world_parse_docks(w, val, why, sizeof why)) {
+                snprintf(err, (size_t)err_len, "%s: %s", yaml_path, why);
+                fclose(f);
+                return -1;
+            }
         }
     }
     fclose(f);

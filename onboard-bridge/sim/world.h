@@ -12,6 +12,10 @@
  * key it does not know): `sabot_landmarks: FILE`, relative to the YAML's folder
  * unless absolute, one marker per line `id x y` (id 1..65535, x and y in metres in
  * the map frame), `#` comments and blank lines allowed, ids unique.
+ *
+ * Docks (a Sabot extension too): `sabot_docks: [[x, y], [x, y], ...]` in metres in the map
+ * frame, a flow sequence on one line. A dock's charger contacts meet the robot's when the
+ * robot's centre is within WORLD_DOCK_REACH of the dock's point, whatever its heading.
  */
 #ifndef SIM_WORLD_H
 #define SIM_WORLD_H
@@ -20,6 +24,15 @@
 #include <stdint.h>
 
 #define WORLD_MAX_LANDMARKS 1024
+#define WORLD_MAX_DOCKS 16
+/* m: a robot whose centre is this close to a dock's point charges there. The docking goal's
+ * tolerance must be tighter (sabot.onboard.motion's dock settings). */
+#define WORLD_DOCK_REACH 0.15
+
+/* A charging dock on the floor at (x, y), m, map frame. */
+typedef struct {
+    double x, y;
+} world_dock_t;
 
 /* A passive marker on the ceiling above (x, y). */
 typedef struct {
@@ -35,10 +48,12 @@ typedef struct {
     float *clearance;          /* m from the cell centre to the nearest obstacle cell */
     world_landmark_t *landmarks; /* n_landmarks markers, in file order (NULL when none) */
     int n_landmarks;
+    world_dock_t docks[WORLD_MAX_DOCKS]; /* n_docks, in the YAML's order */
+    int n_docks;
 } world_t;
 
 /* Loads a map_server YAML (image, resolution, origin, negate, occupied_thresh,
- * free_thresh, and Sabot's sabot_landmarks), its PGM (P5 or P2) and its landmarks.
+ * free_thresh, and Sabot's sabot_landmarks and sabot_docks), its PGM (P5 or P2) and its landmarks.
  * Returns 0, or -1 with a message in err (a landmarks file's errors as FILE:LINE: ...). */
 int world_load(world_t *w, const char *yaml_path, char *err, int err_len);
 void world_free(world_t *w);
@@ -46,6 +61,13 @@ void world_free(world_t *w);
 /* Reads a landmarks file into w->landmarks. Returns 0, or -1 with "FILE:LINE: problem"
  * (or "FILE: problem") in err, leaving w's landmarks as they were. */
 int world_load_landmarks(world_t *w, const char *path, char *err, int err_len);
+
+/* Parses a sabot_docks value, "[[x, y], ...]", into w->docks. Returns 0, or -1 with a
+ * message naming what was wrong in err, leaving w's docks as they were. */
+int world_parse_docks(world_t *w, const char *value, char *err, int err_len);
+
+/* The dock whose reach (x, y) is in, or -1. */
+int world_dock_at(const world_t *w, double x, double y);
 
 bool world_occupied(const world_t *w, double x, double y);
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Interoperability: pymodbus (an independent Modbus implementation) as the master.
 
-Starts sabot-sim, then reads and writes the SACT, inertial, sonar and landmark file records over
+Starts sabot-sim, then reads and writes the SACT, inertial, sonar, landmark and power file records over
 the robot's pseudo-terminal and over Modbus RTU framing on loopback TCP. Expected
 values come from docs/sact-modbus-map.json, the same file the firmware is built from.
 (pymodbus's own server ignores file-record contents, so it can only be the client.)
@@ -70,6 +70,9 @@ SONAR = board("sonar")["slave_address"]
 LANDMARK = board("landmark")["slave_address"]
 LANDMARK_LATEST, LANDMARK_LATEST_RECORDS = records("landmark", "latest")
 LANDMARK_CONFIG, LANDMARK_CONFIG_RECORDS = records("landmark", "config")
+POWER = board("power")["slave_address"]
+POWER_LATEST, POWER_LATEST_RECORDS = records("power", "latest")
+POWER_CONFIG, POWER_CONFIG_RECORDS = records("power", "config")
 MOTOR_LEFT, MOTOR = records("sact", "motor_left")
 CONFIG, CONFIG_RECORDS = records("sact", "config")
 DRIVE, _ = records("sact", "drive")
@@ -221,6 +224,35 @@ class Transport:
         deadline = time.monotonic() + 5
         while time.monotonic() < deadline:
             again = read(self.client, LANDMARK, LANDMARK_LATEST["file"], 0, 1)
+            if again[0] != latest[0]:
+                break
+        self.assertNotEqual(again[0], latest[0], "measurement sequence does not advance")
+
+    def test_power_board_reports_a_full_battery_at_rest_and_holds_its_period_bounds(self):
+        rec = {r["name"]: r for r in POWER_LATEST_RECORDS}
+        latest = read(self.client, POWER, POWER_LATEST["file"], 0, len(POWER_LATEST_RECORDS))
+        self.assertIsInstance(latest, list, latest)
+        volts = latest[rec["voltage"]["record"]] * rec["voltage"]["scale"]
+        amps = signed(latest[rec["current"]["record"]]) * rec["current"]["scale"]
+        soc = latest[rec["state_of_charge"]["record"]] * rec["state_of_charge"]["scale"]
+        # 7 lithium-ion cells near full (the simulator's default charge), the base load drawn, no dock
+        self.assertTrue(28.5 < volts < 29.4, volts)
+        self.assertTrue(0.3 < amps < 1.0, amps)
+        self.assertTrue(0.99 < soc <= 1.0, soc)
+        self.assertEqual(latest[rec["status"]["record"]], 0)
+        config = read(self.client, POWER, POWER_CONFIG["file"], 0, len(POWER_CONFIG_RECORDS))
+        self.assertEqual(config, [r["default"] for r in POWER_CONFIG_RECORDS])
+        period = next(r for r in POWER_CONFIG_RECORDS if r["name"] == "period")
+        res = write(self.client, POWER, POWER_CONFIG["file"], period["record"], period["min"] - 1)
+        self.assertTrue(res.isError())
+        self.assertEqual(res.exception_code, EXC["illegal_data_value"])
+        capacity = next(r for r in POWER_CONFIG_RECORDS if r["name"] == "design_capacity")
+        res = write(self.client, POWER, POWER_CONFIG["file"], capacity["record"], 5000)
+        self.assertTrue(res.isError())
+        self.assertEqual(res.exception_code, EXC["illegal_data_address"])
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline:
+            again = read(self.client, POWER, POWER_LATEST["file"], 0, 1)
             if again[0] != latest[0]:
                 break
         self.assertNotEqual(again[0], latest[0], "measurement sequence does not advance")

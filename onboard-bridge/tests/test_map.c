@@ -32,6 +32,7 @@ static const mb_board_desc_t *board_desc(const char *name)
     if (!strcmp(name, "ins")) return &mb_ins_board;
     if (!strcmp(name, "sonar")) return &mb_sonar_board;
     if (!strcmp(name, "landmark")) return &mb_landmark_board;
+    if (!strcmp(name, "power")) return &mb_power_board;
     return NULL;
 }
 
@@ -146,8 +147,9 @@ static void everyRecordOfTheMapIsServedAsDescribed(void)
     json_records = 0;
     each_record(check_descriptor);
     int c_records = 0;
-    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board, &mb_landmark_board };
-    for (int b = 0; b < 4; b++)
+    const mb_board_desc_t *all[] = { &mb_sact_board, &mb_ins_board, &mb_sonar_board, &mb_landmark_board,
+                                     &mb_power_board };
+    for (int b = 0; b < 5; b++)
         for (int f = 0; f < all[b]->n_files; f++)
             c_records += all[b]->files[f].n_records;
     CHECK(json_records == c_records, "JSON has %d records, firmware %d", json_records, c_records);
@@ -243,11 +245,11 @@ static void velocityLimitFollowsTheConfiguration(void)
 static char *map_doc;
 static int doc_rows;
 
-/* A landmark record's row of the table in docs/SACT-MODBUS.md: "| file | rec | name | type | access | unit |
+/* A landmark or power record's row of its board's table in docs/SACT-MODBUS.md: "| file | rec | name | type | access | unit |
  * meaning |", and for a writable record its bounds and default in the meaning. */
 static void check_doc_row(const json_t *board, const json_t *file, const json_t *rec)
 {
-    if (strcmp(json_str(board, "name"), "landmark"))
+    if (strcmp(json_str(board, "name"), "landmark") && strcmp(json_str(board, "name"), "power"))
         return;
     char row[160];
     snprintf(row, sizeof row, "\n| %ld | %ld | %s | %s | %s |", (long)json_num(file, "file", 0),
@@ -265,7 +267,7 @@ static void check_doc_row(const json_t *board, const json_t *file, const json_t 
     CHECK(b && (!end || b < end), "%s row of %s does not say '%s'", MAP_DOC, json_str(rec, "name"), bounds);
 }
 
-static void theLandmarkTableOfTheDocumentIsTheMaps(void)
+static void theLandmarkAndPowerTablesOfTheDocumentAreTheMaps(void)
 {
     FILE *f = fopen(MAP_DOC, "rb");
     CHECK(f != NULL, "cannot read %s", MAP_DOC);
@@ -279,7 +281,7 @@ static void theLandmarkTableOfTheDocumentIsTheMaps(void)
     fclose(f);
     doc_rows = 0;
     each_record(check_doc_row);
-    CHECK(doc_rows == 7, "%d landmark records in the map", doc_rows);
+    CHECK(doc_rows == 14, "%d landmark and power records in the map", doc_rows);
     free(map_doc);
     map_doc = NULL;
 }
@@ -297,7 +299,7 @@ int main(void)
     RUN(writableRecordsStartAtTheMapDefaults);
     RUN(writesAreBoundedExactlyByTheMap);
     RUN(velocityLimitFollowsTheConfiguration);
-    RUN(theLandmarkTableOfTheDocumentIsTheMaps);
+    RUN(theLandmarkAndPowerTablesOfTheDocumentAreTheMaps);
     json_free(doc);
     free(slot);
     return REPORT("test_map");

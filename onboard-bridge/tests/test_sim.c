@@ -1,7 +1,7 @@
 /*
  * The simulated world: map loading and ray casting, drivetrain kinematics,
- * collisions, the inertial, sonar and ceiling-landmark boards, determinism, fault
- * injection, speed.
+ * collisions, the inertial, sonar and ceiling-landmark boards, the battery, its docks
+ * and the power board, determinism, fault injection, speed.
  */
 #include <limits.h>
 #include <math.h>
@@ -253,6 +253,187 @@ static void injectedFaultsCorruptAndDropAnswers(void)
     CHECK(r->answers_corrupted == 1 && r->answers_dropped == 1, "counters %llu %llu",
           (unsigned long long)r->answers_corrupted, (unsigned long long)r->answers_dropped);
     release(&fl);
+}
+
+/* ---- battery, docks, power board ---------------------------------------------------------------- */
+
+static robot_t *place_with_battery(floor_t *fl, int k, double x, double y, double capacity_ah, double soc)
+{
+    robot_config_t c;
+    robot_config_default(&c);
+    c.id = k + 1;
+    c.x = x;
+    c.y = y;
+    c.battery.capacity_ah = capacity_ah;
+    c.battery_soc = soc;
+    fl->list[k] = calloc(1, sizeof(robot_t));
+    fl->arena.world = &lab;
+    fl->arena.robots = fl->list;
+    fl->arena.n_robots = k + 1;
+    robot_init(fl->list[k], &c, &fl->arena);
+    return fl->list[k];
+}
+
+static void theCellCurveRisesFromEmptyToTheChargersVoltage(void)
+{
+    CHECK(battery_cell_ocv(0) == 3.00 && battery_cell_ocv(1) == 4.20, "ends %.3f %.3f", battery_cell_ocv(0),
+          battery_cell_ocv(1));
+    CHECK(fabs(battery_cell_ocv(0.55) - 3.78) < 1e-9, "between 3.74 and 3.82: %.4f", battery_cell_ocv(0.55));
+    for (int k = 0; k < 100; k++)
+        CHECK(battery_cell_ocv((k + 1) / 100.0) > battery_cell_ocv(k / 100.0), "not rising at %d %%", k);
+    CHECK(battery_cell_ocv(-1) == 3.00 && battery_cell_ocv(2) == 4.20, "clamped");
+}
+
+static void theLabAndTheTwoRoomsHaveTheirDocks(void)
+{
+    CHECK(lab.n_docks == 2 && lab.docks[0].x == 1.0 && lab.docks[0].y == 1.0 && lab.docks[1].x == 11.0,
+          "%d docks in the lab", lab.n_docks);
+    world_t rooms;
+    char err[256];
+    CHECK(world_load(&rooms, "maps/two-rooms.yaml", err, sizeof err) == 0, "%s", err);
+    CHECK(rooms.n_docks == 2 && rooms.docks[0].x == 0.8 && rooms.docks[1].x == 7.8 && rooms.docks[1].y == 2.2,
+          "%d docks in the two rooms", rooms.n_docks);
+    for (int k = 0; k < rooms.n_docks; k++)
+        CHECK(world_clearance(&rooms, rooms.docks[k].x, rooms.docks[k].y) > 0.5, "dock %d near a wall", k);
+    for (int k = 0; k < lab.n_docks; k++)
+        CHECK(world_clearance(&lab, lab.docks[k].x, lab.docks[k].y) > 0.5, "lab dock %d near a wall", k);
+    world_free(&rooms);
+    CHECK(world_dock_at(&lab, 1.0 + WORLD_DOCK_REACH * 0.99, 1.0) == 0, "within reach");
+    CHECK(world_dock_at(&lab, 1.0 + WORLD_DOCK_REACH * 1.01, 1.0) == -1, "beyond reach");
+}
+
+static void badDocksListsAreRefusedAndChangeNothing(void)
+{
+    static const char *const bad[] = { "", "[", "[[1, 2]", "[[1, 2],]", "[[1]]", "[[1, 2, 3]]", "[[a, 2]]",
+                                       "[[1, nan]]", "[1, 2]", "[[1, 2]] x", "[[1, 2] [3, 4]]" };
+    world_t w = { 0 };
+    w.n_docks = 1;
+    w.docks[0] = (world_dock_t){ 7, 7 };
+    char err[200];
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        CHECK(world_parse_docks(&w, bad[i], err, sizeof err) == -1 && strstr(err, "sabot_docks wants [[x, y], ...]"),
+              "'%s' taken (%s)", bad[i], err);
+        CHECK(w.n_docks == 1 && w.docks[0].x == 7, "'%s' changed the docks", bad[i]);
+    }
+    char many[400] = "[";
+    for (int k = 0; k <= WORLD_MAX_DOCKS; k++)
+        snprintf(many + strlen(many), sizeof many - strlen(many), "%s[%d, 1]", k ? ", " : "", k);
+    strcat(many, "]");
+    CHECK(world_parse_docks(&w, many, err, sizeof err) == -1 && strstr(err, "more than 16 docks"), "%s", err);
+    CHECK(world_parse_docks(&w, " [ [ -1.5 ,2e-1 ],[3,4] ] ", err, sizeof err) == 0 && w.n_docks == 2 &&
+              w.docks[0].x == -1.5 && w.docks[0].y == 0.2 && w.docks[1].y == 4,
+          "%s", err);
+    CHECK(world_parse_docks(&w, "[]", err, sizeof err) == 0 && w.n_docks == 0, "empty list");
+}
+
+/* At rest the battery carries the base load alone; driving, the motors' power too; the charge falls by the
+ * current's integral over the capacity. */
+static void theBatteryDrainsWithTheBaseLoadAndTheMotors(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place_with_battery(&fl, 0, 6.0, 4.5, 1.0, 0.8);
+    const battery_t *b = &r->battery;
+    double ocv = 7 * battery_cell_ocv(0.8);
+    run(&r, 1, 0.5);
+    double rest_current = b->current, rest_voltage = b->voltage;
+    CHECK(fabs(rest_current - 15.0 / rest_voltage) < 0.02, "at rest %.4f A, base load alone %.4f A", rest_current,
+          15.0 / rest_voltage);
+    CHECK(fabs(rest_voltage - (ocv - 0.1 * rest_current)) < 0.01, "at rest %.4f V, OCV %.4f V", rest_voltage, ocv);
+    double soc0 = b->soc, charge = 0;
+    drive(r, 0.4, 0.4);
+    for (long i = 0; i < 60000; i++) {   /* 3 s */
+        robot_step(r);
+        charge += b->current * SACT_TS_US * 1e-6;
+    }
+    /* rolling resistance (2.2 N at 0.4 m/s) and the motors' friction and copper losses: some 2 W */
+    CHECK(b->current > rest_current + 0.04 && b->voltage < rest_voltage - 0.004,
+          "driving at 0.4 m/s: %.4f A %.4f V, at rest %.4f A %.4f V", b->current, b->voltage, rest_current,
+          rest_voltage);
+    CHECK(fabs((soc0 - b->soc) - charge / 3600.0) < 1e-9, "soc fell %.6f, integral %.6f", soc0 - b->soc,
+          charge / 3600.0);
+    CHECK(!b->docked && !b->charging && !b->full, "flags away from a dock");
+    printf("    figure: at rest %.3f A at %.3f V; at 0.4 m/s %.3f A at %.3f V\n", rest_current, rest_voltage,
+           b->current, b->voltage);
+    release(&fl);
+}
+
+/* On a dock: constant current, then constant voltage until C/20, then full with the dock carrying the load;
+ * off the dock the battery drains again. */
+static void aRobotOnADockChargesUntilFullAndDrainsWhenItLeaves(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place_with_battery(&fl, 0, 11.0, 1.05, 0.01, 0.5);
+    const battery_t *b = &r->battery;
+    run(&r, 1, 0.05);
+    CHECK(b->docked && b->charging && !b->full && fabs(b->current + 5.0) < 1e-9, "docked %d charging %d %.4f A",
+          b->docked, b->charging, b->current);
+    CHECK(fabs(b->voltage - (7 * battery_cell_ocv(b->soc) + 0.5)) < 0.01, "charging at %.4f V", b->voltage);
+    double soc = b->soc;
+    run(&r, 1, 0.1);
+    /* 5 A into 0.01 Ah for 0.1 s */
+    CHECK(fabs(b->soc - soc - 5.0 * 0.1 / 36.0) < 1e-3, "soc rose %.5f", b->soc - soc);
+    run(&r, 1, 8.0);
+    CHECK(b->full && !b->charging && b->current == 0 && b->soc > 0.99, "full %d charging %d %.4f A soc %.5f",
+          b->full, b->charging, b->current, b->soc);
+    CHECK(fabs(b->voltage - 7 * battery_cell_ocv(b->soc)) < 1e-9, "full at rest %.4f V", b->voltage);
+    r->body.y = 2.0;   /* carried off the dock */
+    run(&r, 1, 0.05);
+    CHECK(!b->docked && !b->full && !b->charging && b->current > 0.5, "off the dock: docked %d full %d %.4f A",
+          b->docked, b->full, b->current);
+    release(&fl);
+}
+
+/* The power board's file 1, read in one sub-request as a master would. */
+static bool read_power(robot_t *r, long v[5])
+{
+    frame_t req = read_request(MB_POWER_ADDRESS, MB_POWER_FILE_LATEST, MB_POWER_LATEST_SEQUENCE, 5), a;
+    if (transact(r, &req, &a) == 0 || answer_exception(&a) != 0 || a.len != 5 + 10 + 2)
+        return false;
+    for (int k = 0; k < 5; k++)
+        v[k] = a.data[5 + 2 * k] << 8 | a.data[6 + 2 * k];
+    return true;
+}
+
+static void thePowerBoardAveragesOverItsPeriodAndSaysWhenItCharges(void)
+{
+    floor_t fl = { 0 };
+    robot_t *r = place_with_battery(&fl, 0, 6.0, 4.5, 2.0, 0.6);
+    long v[5];
+    CHECK(read_power(r, v) && v[0] == 0 && labs(v[1] - lround(7000 * battery_cell_ocv(0.6))) <= 20 && v[4] == 0,
+          "at power-on: sequence %ld, %ld mV, status %ld", v[0], v[1], v[4]);
+    CHECK(v[3] == 6000, "soc %ld", v[3]);
+    uint16_t s0 = r->power.sequence;
+    run(&r, 1, 1.0);
+    CHECK((uint16_t)(r->power.sequence - s0) == 10, "%u measurements in 1 s at 100 ms",
+          (unsigned)(uint16_t)(r->power.sequence - s0));
+    /* noise: measurements at rest against the truth */
+    double sv = 0, sc = 0;
+    int n = 0;
+    for (uint16_t last = r->power.sequence; n < 200;) {
+        robot_step(r);
+        if (r->power.sequence == last)
+            continue;
+        last = r->power.sequence;
+        sv += pow(r->power.voltage_mv * 1e-3 - r->battery.voltage, 2);
+        sc += pow(r->power.current_ma * 1e-3 - r->battery.current, 2);
+        n++;
+    }
+    double sigma_v = sqrt(sv / n), sigma_c = sqrt(sc / n);
+    CHECK(sigma_v > 0.003 && sigma_v < 0.007 && sigma_c > 0.003 && sigma_c < 0.007,
+          "sigmas %.4f V %.4f A, model 0.005", sigma_v, sigma_c);
+    printf("    figure: power board noise at rest: voltage sigma %.2f mV, current sigma %.2f mA (model 5, 5)\n",
+           sigma_v * 1e3, sigma_c * 1e3);
+    CHECK(read_power(r, v) && v[0] == r->power.sequence && labs((int16_t)v[2] - lround(r->battery.current * 1000)) < 30,
+          "over the bus: sequence %ld, %d mA, truth %.4f A", v[0], (int16_t)v[2], r->battery.current);
+    release(&fl);
+
+    floor_t docked = { 0 };
+    r = place_with_battery(&docked, 0, 1.0, 1.0, 2.0, 0.6);
+    run(&r, 1, 0.25);
+    CHECK(read_power(r, v) && v[4] == (MB_POWER_LATEST_STATUS_DOCKED | MB_POWER_LATEST_STATUS_CHARGING) &&
+              labs((int16_t)v[2] + 5000) < 30,
+          "on the dock: status %ld, %d mA", v[4], (int16_t)v[2]);
+    release(&docked);
 }
 
 /* The landmark board's file 1, read in one sub-request as a master would. */
@@ -594,6 +775,12 @@ int main(void)
     RUN(landmarkSequenceFollowsThePeriodAndAgeIsReadTime);
     RUN(badLandmarkConfigurationWritesAreRefusedAndChangeNothing);
     RUN(badLandmarksFilesAreRefusedWithFileAndLine);
+    RUN(theCellCurveRisesFromEmptyToTheChargersVoltage);
+    RUN(theLabAndTheTwoRoomsHaveTheirDocks);
+    RUN(badDocksListsAreRefusedAndChangeNothing);
+    RUN(theBatteryDrainsWithTheBaseLoadAndTheMotors);
+    RUN(aRobotOnADockChargesUntilFullAndDrainsWhenItLeaves);
+    RUN(thePowerBoardAveragesOverItsPeriodAndSaysWhenItCharges);
     RUN(theSameSeedGivesTheSameRun);
     RUN(injectedFaultsCorruptAndDropAnswers);
 #if !defined(__SANITIZE_ADDRESS__)

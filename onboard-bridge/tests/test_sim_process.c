@@ -278,6 +278,14 @@ static void badArgumentsAreRefusedWithStatusTwoAndAMessage(void)
         { { "--tcp" }, "--tcp wants an argument" },
         { { "stray" }, "unexpected argument 'stray'" },
         { { "--map", "/nonexistent/lab.yaml" }, "map /nonexistent/lab.yaml: No such file or directory" },
+        { { "--battery-capacity", "0" }, "--battery-capacity wants a number in 0.001..65.535, got '0'" },
+        { { "--battery-capacity", "70" }, "--battery-capacity wants a number in 0.001..65.535, got '70'" },
+        { { "--battery-soc", "1.5" }, "value 1 is '1.5' in '1.5'" },
+        { { "--battery-soc", "0.5/low" }, "value 2 is 'low' in '0.5/low'" },
+        { { "--battery-soc", "0.5/" }, "value 2 is '' in '0.5/'" },
+        { { "--battery-soc", "0.5/0.6", "--robots", "3" }, "--battery-soc gives 2 values for 3 robots" },
+        { { "--battery-base-load", "-1" }, "--battery-base-load wants a number in 0..1000" },
+        { { "--battery-charge", "0" }, "--battery-charge wants a number > 0" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         sim_t s;
@@ -610,7 +618,7 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         const char *command, *answer;
     } bad[] = {
         { "", "error empty command" },
-        { "fly 1", "error unknown command 'fly' (obstacle, person, board, wheel, truth, list)" },
+        { "fly 1", "error unknown command 'fly' (obstacle, person, board, wheel, truth, battery, list)" },
         { "obstacle", "error obstacle wants add, move or remove" },
         { "obstacle add box 5 5 0.3", "error obstacle 'box' exists" },
         { "obstacle add bob 5 5 0.3", "error person 'bob' exists" },
@@ -634,9 +642,9 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         { "person jump bob", "error person wants add, move or remove" },
         { "board 2 sact off", "error no robot '2' (robots are 1..1)" },
         { "board 0 sact off", "error no robot '0' (robots are 1..1)" },
-        { "board 1 motor off", "error no board 'motor' (sact, ins, sonar or landmark)" },
+        { "board 1 motor off", "error no board 'motor' (sact, ins, sonar, landmark or power)" },
         { "board 1 sact dim", "error board state must be off or on, was 'dim'" },
-        { "board 1 sact", "error board wants ROBOT sact|ins|sonar|landmark off|on" },
+        { "board 1 sact", "error board wants ROBOT sact|ins|sonar|landmark|power off|on" },
         { "wheel 1 left", "error wheel wants ROBOT left|right jam|free" },
         { "wheel 1 middle jam", "error no wheel 'middle' (left or right)" },
         { "wheel 1 left stuck", "error wheel state must be jam or free, was 'stuck'" },
@@ -644,6 +652,13 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
         { "truth", "error truth wants ROBOT" },
         { "truth one", "error no robot 'one' (robots are 1..1)" },
         { "list all", "error list takes no arguments" },
+        { "battery", "error battery wants ROBOT, or ROBOT soc F (0..1)" },
+        { "battery 1 soc", "error battery wants ROBOT, or ROBOT soc F (0..1)" },
+        { "battery 1 charge 0.5", "error battery wants ROBOT, or ROBOT soc F (0..1)" },
+        { "battery 2", "error no robot '2' (robots are 1..1)" },
+        { "battery 1 soc full", "error F is not a number: 'full'" },
+        { "battery 1 soc 1.5", "error F must be in 0..1, was 1.5" },
+        { "battery 1 soc -0.1", "error F must be in 0..1, was -0.1" },
         { "a b c d e f g h i", "error too many words (at most 8)" },
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -660,6 +675,9 @@ static void everyBadCommandAnswersAnErrorAndChangesNothing(void)
                      "person bob x=2.0000 y=2.0000 vx=0.0000 vy=0.0000"),
           "scene changed by refused commands: %s", a);
     CHECK(!strncmp(command(ctl, "truth 1"), "ok t=", 5), "truth after errors");
+    double soc = 0;
+    CHECK(sscanf(command(ctl, "battery 1"), "ok t=%*f soc=%lf", &soc) == 1 && soc > 0.999,
+          "battery changed by refused commands: soc %.5f", soc);
     CHECK(sim_alive(&s), "the simulator died");
 
     /* Clients at once and one after another see the one scene. */
@@ -704,7 +722,7 @@ static void theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff(void)
     /* 0.67 m south-east of the lab's marker 5 at (5.6, 3.6), facing north-west */
     CHECK(sim_start(&s, SIM_ARGS("--control", "0", "--tcp", "0", "--start", "6.2,3.3,2.0", "--link", link)),
           "start: %s", s.first_line);
-    CHECK(strstr(s.first_line, "\"landmark\": 4}") && strstr(s.first_line, "\"landmarks\": 10"),
+    CHECK(strstr(s.first_line, "\"landmark\": 4,") && strstr(s.first_line, "\"landmarks\": 10"),
           "first line does not announce the landmark board and markers: %s", s.first_line);
     world_t lab = { 0 };
     char err[256];
@@ -737,6 +755,102 @@ static void theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff(void)
     close(ctl);
     close(bus);
     CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+/* The battery's truth on the control channel: "ok t=... soc=... voltage=... current=... docked=D charging=C full=F". */
+typedef struct {
+    double t, soc, voltage, current;
+    int docked, charging, full;
+} battery_truth_t;
+
+static bool battery_truth(int fd, int robot, battery_truth_t *b)
+{
+    const char *a = command(fd, "battery %d", robot);
+    return sscanf(a, "ok t=%lf soc=%lf voltage=%lf current=%lf docked=%d charging=%d full=%d", &b->t, &b->soc,
+                  &b->voltage, &b->current, &b->docked, &b->charging, &b->full) == 7;
+}
+
+/* The power board's file 1 over TCP against the battery's truth read just after; the soc changes too
+ * little between the two to matter at 0.01 %. */
+static void check_power_reading(int ctl, int bus, int robot, const char *what)
+{
+    long v[5] = { 0 };
+    battery_truth_t b = { 0 };
+    bool read = tcp_read_n(bus, MB_POWER_ADDRESS, MB_POWER_FILE_LATEST, MB_POWER_LATEST_SEQUENCE, 5, v);
+    CHECK(read && battery_truth(ctl, robot, &b), "%s: read power board and truth", what);
+    CHECK(fabs(v[1] * 1e-3 - b.voltage) < 0.05, "%s: voltage %ld mV, truth %.4f V", what, v[1], b.voltage);
+    CHECK(fabs((int16_t)v[2] * 1e-3 - b.current) < 0.2, "%s: current %d mA, truth %.4f A", what, (int16_t)v[2],
+          b.current);
+    CHECK(fabs(v[3] * 1e-4 - b.soc) < 2e-4, "%s: soc %ld (0.01 %%), truth %.5f", what, v[3], b.soc);
+    long bits = (b.docked ? MB_POWER_LATEST_STATUS_DOCKED : 0) | (b.charging ? MB_POWER_LATEST_STATUS_CHARGING : 0) |
+                (b.full ? MB_POWER_LATEST_STATUS_FULL : 0);
+    CHECK(v[4] == bits, "%s: status %ld, truth %ld", what, v[4], bits);
+}
+
+static void thePowerBoardReportsTheBatteryTheControlChannelSetsAndReads(void)
+{
+    sim_t s;
+    char link[PATH_MAX + 16];
+    snprintf(link, sizeof link, "%s/power-robot", tmp_dir);
+    /* robot 1 away from the docks, robot 2 on the lab's dock at (1, 1); each its own charge */
+    CHECK(sim_start(&s, SIM_ARGS("--control", "0", "--tcp", "0", "--starts", "6,6.5,0/1.05,1,0", "--link", link,
+                                 "--battery-soc", "0.4/0.3", "--battery-capacity", "2.5")),
+          "start: %s", s.first_line);
+    CHECK(strstr(s.first_line, "\"power\": 5}") && strstr(s.first_line, "\"docks\": 2"),
+          "first line does not announce the power board and docks: %s", s.first_line);
+    const char *second = strstr(s.first_line, "\"id\": 2");
+    const char *tcp2 = second ? strstr(second, "\"tcp\": ") : NULL;
+    int ctl = connect_to(s.control_port), bus = connect_to(s.tcp_port), bus2 = connect_to(tcp2 ? atoi(tcp2 + 7) : -1);
+    long config[2] = { 0 };
+    CHECK(tcp_read_n(bus, MB_POWER_ADDRESS, MB_POWER_FILE_CONFIG, 0, 2, config) && config[0] == 2500 &&
+              config[1] == MB_POWER_CONFIG_PERIOD_DEFAULT,
+          "config: capacity %ld mAh, period %ld ms", config[0], config[1]);
+    battery_truth_t one = { 0 }, two = { 0 };
+    CHECK(battery_truth(ctl, 1, &one) && battery_truth(ctl, 2, &two), "battery truth");
+    CHECK(fabs(one.soc - 0.4) < 1e-3 && !one.docked && !one.charging && one.current > 0.4,
+          "robot 1: soc %.5f docked %d current %.3f A", one.soc, one.docked, one.current);
+    CHECK(fabs(two.soc - 0.3) < 1e-3 && two.docked && two.charging && two.current < -4.9,
+          "robot 2 on its dock: soc %.5f docked %d charging %d current %.3f A", two.soc, two.docked, two.charging,
+          two.current);
+    /* a fresh measurement each, after a period */
+    long seq[1] = { 0 }, seq0 = -1;
+    double deadline = now_s() + DEADLINE_S;
+    while (now_s() < deadline && tcp_read_n(bus, MB_POWER_ADDRESS, MB_POWER_FILE_LATEST, 0, 1, seq)) {
+        if (seq0 < 0)
+            seq0 = seq[0];
+        else if (((seq[0] - seq0) & 0xFFFF) >= 2)
+            break;
+    }
+    check_power_reading(ctl, bus, 1, "robot 1");
+    check_power_reading(ctl, bus2, 2, "robot 2");
+
+    CHECK(!strcmp(command(ctl, "battery 1 soc 0.05"), "ok robot 1 battery soc 0.05000"), "set soc");
+    CHECK(battery_truth(ctl, 1, &one) && fabs(one.soc - 0.05) < 1e-3, "soc %.5f after setting 0.05", one.soc);
+    switch_board_off_and_on(ctl, bus, "power", MB_POWER_ADDRESS, MB_LANDMARK_ADDRESS);
+    close(ctl);
+    close(bus);
+    close(bus2);
+    CHECK(sim_stop(&s) == 0, "exit status");
+}
+
+static void aBadDocksListStopsTheSimulator(void)
+{
+    char pgm[PATH_MAX], yaml[PATH_MAX + 32];
+    CHECK(realpath("maps/lab.pgm", pgm) != NULL, "maps/lab.pgm (run from onboard-bridge)");
+    snprintf(yaml, sizeof yaml, "%s/bad-docks.yaml", tmp_dir);
+    FILE *f = fopen(yaml, "w");
+    fprintf(f, "image: %s\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nsabot_docks: [[1.0, 1.0], [2.0]]\n", pgm);
+    fclose(f);
+    sim_t s;
+    sim_start(&s, SIM_ARGS("--duration", "0.01", "--map", yaml));
+    char err[1024];
+    size_t len = read_until_newline(s.err_fd, err, sizeof err, now_s() + DEADLINE_S);
+    int status = sim_stop(&s);
+    CHECK(status == 2, "exit status %d", status);
+    CHECK(len > 0 && strstr(err, "bad-docks.yaml: sabot_docks wants [[x, y], ...] (numbers, metres), got "
+                                 "'[[1.0, 1.0], [2.0]]'"),
+          "message '%s'", err);
+    CHECK(s.first_line[0] == '\0', "started anyway: %s", s.first_line);
 }
 
 static void aBadLandmarksFileStopsTheSimulatorWithItsLine(void)
@@ -794,5 +908,7 @@ int main(int argc, char **argv)
     RUN(everyBadCommandAnswersAnErrorAndChangesNothing);
     RUN(theLandmarkBoardSeesTheMarkerOverheadAndCanBeSwitchedOff);
     RUN(aBadLandmarksFileStopsTheSimulatorWithItsLine);
+    RUN(thePowerBoardReportsTheBatteryTheControlChannelSetsAndReads);
+    RUN(aBadDocksListStopsTheSimulator);
     return REPORT("test_sim_process");
 }

@@ -417,6 +417,12 @@ async def run(args: argparse.Namespace) -> int:
             answer = await client.request(robot, "get", args.res, None, args.timeout)
             for path, text in cm.flatten(answer.value):
                 print(f"{path} = {text}")
+        elif args.command == "battery":
+            answer = await client.request(robot, "get", "cm.battery", None, args.timeout)
+            try:
+                print(cm.battery_line(cm.battery(answer.value)))
+            except cm.PayloadError as e:
+                raise Failure(1, f"{robot} answered a cm.battery the spec refuses: {e}") from None
         elif args.command == "set-goal":
             payload = cm.encode_record("cm.goal", cm.goal(args.x, args.y, args.theta, args.tol, args.heading_tol),
                                        text_form=not args.xml_form)
@@ -514,6 +520,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     g = sub.add_parser("get", help="get a resource and print its fields")
     g.add_argument("robot", help="robot JID (bare: its presence gives the resource)")
     g.add_argument("res", help="resource, e.g. cm.position, cm.mission, cm.goal, cm.limits")
+    b = sub.add_parser("battery", help="print the robot's battery in one line (cm.battery)")
+    b.add_argument("robot")
     s = sub.add_parser("set-goal", help="send a navigation goal (m, m, rad)")
     s.add_argument("robot")
     for name in ("x", "y", "theta"):

@@ -53,6 +53,7 @@ UNIT_ALIASES: dict[str, tuple[str, float]] = {
     "cm/s": ("m/s", 0.01), "km/h": ("m/s", 1000.0 / 3600.0),
     "deg/s": ("rad/s", math.pi / 180.0),
     "/s": ("Hz", 1.0), "/min": ("Hz", 1.0 / 60.0),
+    "mV": ("V", 0.001), "mA": ("A", 0.001), "mA.h": ("A.h", 0.001),
 }
 
 
@@ -125,6 +126,11 @@ SETTABLE: dict[str, tuple] = {
     "cm.mission": (("state", "Category", None), ("maintenance", "Boolean", None), ("progress", "Quantity", "%"),
                    ("detail", "Text", None)),
 }
+# cm.battery (section 4): read by a client, never set; its fields in order.
+BATTERY = (("time", "Time", None), ("stateOfCharge", "Quantity", "%"), ("voltage", "Quantity", "V"),
+           ("current", "Quantity", "A"), ("capacity", "Quantity", "A.h"), ("docked", "Boolean", None),
+           ("charging", "Boolean", None), ("full", "Boolean", None))
+BATTERY_BOUND = 1000.0  # V, A and A.h: the protocol's bound on voltage, current and capacity (section 4)
 MISSION_STATES = ("idle", "running", "paused", "done", "failed", "aborted", "queued")
 TARGET_ACTIONS = ("pass", "stop", "wait", "dock")
 TARGET_STATES = ("pending", "active", "reached", "failed")
@@ -358,6 +364,46 @@ def mission(targets: list[dict], queue: bool = False) -> ET.Element:
         _swe("field", rec, {"name": "state"}).append(_scalar("Category", None, "pending"))
         _swe("field", record, {"name": f"target{i}"}).append(rec)
     return record
+
+
+def battery(value: dict) -> dict:
+    """Reads a decoded cm.battery record (section 4) into plain numbers: time (text), state_of_charge (0..1),
+    voltage (V), current (A, positive discharging), capacity (Ah), docked, charging, full. A field, unit or range the
+    spec does not allow is a PayloadError naming it."""
+    names = [name for name, _, _ in BATTERY]
+    if set(value) != set(names):
+        raise PayloadError(f"cm.battery fields are {names}, not {sorted(value)}")
+    out: dict[str, Any] = {"time": value["time"]}
+    for name, kind, unit in BATTERY[1:5]:
+        m = value[name]
+        if not isinstance(m, Measure) or m.uom != unit:
+            raise PayloadError(f"cm.battery {name} must be a Quantity in {unit}, not {m!r}")
+        out[name] = m.value
+    for name in ("docked", "charging", "full"):
+        if not isinstance(value[name], bool):
+            raise PayloadError(f"cm.battery {name} must be a Boolean, not {value[name]!r}")
+        out[name] = value[name]
+    if not 0 <= out["stateOfCharge"] <= 100:
+        raise PayloadError(f"cm.battery stateOfCharge {out['stateOfCharge']:g} % is outside 0..100")
+    for name in ("voltage", "capacity"):
+        if not 0 < out[name] <= BATTERY_BOUND:
+            raise PayloadError(f"cm.battery {name} {out[name]:g} is outside (0, {BATTERY_BOUND:g}]")
+    if not -BATTERY_BOUND <= out["current"] <= BATTERY_BOUND:
+        raise PayloadError(f"cm.battery current {out['current']:g} A is outside -{BATTERY_BOUND:g}..{BATTERY_BOUND:g}")
+    if (out["charging"] or out["full"]) and not out["docked"]:
+        raise PayloadError("cm.battery charging or full away from a dock")
+    if out["charging"] and out["full"]:
+        raise PayloadError("cm.battery both charging and full")
+    return {"time": out["time"], "state_of_charge": out["stateOfCharge"] / 100, "voltage": out["voltage"],
+            "current": out["current"], "capacity": out["capacity"], "docked": out["docked"],
+            "charging": out["charging"], "full": out["full"]}
+
+
+def battery_line(b: dict) -> str:
+    """One line for a person, e.g. 'battery 42.0 % 25.30 V 0.61 A of 10 Ah, docked, charging (at TIME)'."""
+    flags = "".join(f", {f}" for f in ("docked", "charging", "full") if b[f])
+    return (f"battery {b['state_of_charge'] * 100:.1f} % {b['voltage']:.2f} V {b['current']:.2f} A of "
+            f"{b['capacity']:g} Ah{flags} (at {b['time']})")
 
 
 def mission_targets(value: dict) -> tuple[int, int, list[tuple[str, str]]]:

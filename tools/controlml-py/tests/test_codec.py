@@ -293,6 +293,51 @@ class ReadingTest(unittest.TestCase):
         self.assertEqual("-0.0002 m.rad", lines["covariance[0].xtheta"])
 
 
+
+def battery_record(soc="42", soc_unit="%", volts="25.3", volt_unit="V", amps="0.61", docked="false",
+                   charging="false", full="false") -> ET.Element:
+    """A cm.battery record in the XML form, as section 4 lists its fields."""
+    def q(name, value, unit):
+        return (f"<swe:field name='{name}'><swe:Quantity><swe:uom code='{unit}'/><swe:value>{value}</swe:value>"
+                f"</swe:Quantity></swe:field>")
+
+    def b(name, value):
+        return f"<swe:field name='{name}'><swe:Boolean><swe:value>{value}</swe:value></swe:Boolean></swe:field>"
+    return ET.fromstring(
+        f"<swe:DataRecord xmlns:swe='{cm.SWE_NS}' xmlns:xlink='{cm.XLINK_NS}'>"
+        f"<swe:field name='time'><swe:Time><swe:uom xlink:href='{cm.GREGORIAN}'/>"
+        "<swe:value>2026-12-01T10:00:00Z</swe:value></swe:Time></swe:field>"
+        + q("stateOfCharge", soc, soc_unit) + q("voltage", volts, volt_unit) + q("current", amps, "A")
+        + q("capacity", "10", "A.h") + b("docked", docked) + b("charging", charging) + b("full", full)
+        + "</swe:DataRecord>")
+
+
+class BatteryTest(unittest.TestCase):
+    """Section 4's cm.battery as a client reads it."""
+
+    def test_a_battery_reads_into_a_fraction_volts_amps_and_amp_hours(self):
+        b = cm.battery(cm.decode_component(battery_record(volts="25300", volt_unit="mV", docked="true",
+                                                          charging="true", amps="-4.5")))
+        self.assertEqual({"time": "2026-12-01T10:00:00Z", "state_of_charge": 0.42, "voltage": 25.3, "current": -4.5,
+                          "capacity": 10.0, "docked": True, "charging": True, "full": False}, b)
+        self.assertEqual("battery 42.0 % 25.30 V -4.50 A of 10 Ah, docked, charging (at 2026-12-01T10:00:00Z)",
+                         cm.battery_line(b))
+
+    def test_a_reading_no_battery_gives_is_refused_naming_it(self):
+        cases = [(dict(soc="120"), "stateOfCharge 120 % is outside 0..100"),
+                 (dict(volts="0"), "voltage 0 is outside (0, 1000]"),
+                 (dict(charging="true"), "charging or full away from a dock"),
+                 (dict(docked="true", charging="true", full="true"), "both charging and full"),
+                 (dict(volt_unit="m"), "voltage must be a Quantity in V")]
+        for kwargs, message in cases:
+            with self.assertRaises(cm.PayloadError, msg=str(kwargs)) as caught:
+                cm.battery(cm.decode_component(battery_record(**kwargs)))
+            self.assertIn(message, str(caught.exception))
+        value = cm.decode_component(battery_record())
+        del value["full"]
+        with self.assertRaises(cm.PayloadError):
+            cm.battery(value)
+
 if __name__ == "__main__":
     unittest.main()
 

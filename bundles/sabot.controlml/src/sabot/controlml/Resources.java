@@ -7,6 +7,7 @@ import java.util.List;
 import java.util.Map;
 
 import sabot.controlml.payload.AccessRole;
+import sabot.controlml.payload.BatteryPayload;
 import sabot.controlml.payload.DirectoryListing;
 import sabot.controlml.payload.FileChunk;
 import sabot.controlml.payload.FileQuery;
@@ -25,6 +26,7 @@ import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.BatteryState;
 
 /**
  * The resources of the protocol (section 4 of {@code docs/CONTROLML.md}): constant, the same in every process. Each
@@ -59,6 +61,9 @@ public final class Resources {
     /** {@code cm.obstacles} (get): detected obstacles. */
     public static final Resource<Obstacles, NoQuery> OBSTACLES = new Resource<>("cm.obstacles",
             Obstacles.CODEC, null, true, false, "detected obstacles as discs");
+    /** {@code cm.battery} (get): the battery as the power board last measured it; telemetry too. */
+    public static final Resource<BatteryState, NoQuery> BATTERY = new Resource<>("cm.battery", BatteryPayload.CODEC,
+            null, true, false, "battery: state of charge, voltage, current, capacity, dock and charge flags");
     /** {@code cm.pid} (get/set): PID gains per motor. */
     public static final Resource<PidGains, NoQuery> PID = new Resource<>("cm.pid", PidGains.CODEC, null, true, true,
             "speed-loop PID gains per motor");
@@ -99,7 +104,7 @@ public final class Resources {
     private static final Map<String, Resource<?, ?>> BY_NAME = new LinkedHashMap<>();
 
     static {
-        for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, PID, LIMITS, MISSION,
+        for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, BATTERY, PID, LIMITS, MISSION,
                 TASKS, ROLE, TELEMETRY, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
             BY_NAME.put(r.name(), r);
         }

@@ -16,7 +16,9 @@ public class BoardException extends IOException {
         /** the board answered with a Modbus exception ({@link #exceptionCode()}) */
         EXCEPTION,
         /** the board has had no good answer for longer than the bus's {@code faultAfter}; this attempt failed too */
-        FAULTED
+        FAULTED,
+        /** a well-formed answer whose value no working board gives: outside the register map's bounds */
+        IMPLAUSIBLE
     }
 
     /**
@@ -30,7 +32,7 @@ public class BoardException extends IOException {
     private final int exceptionCode;
 
     /**
-     * @param board         the board's name in the register map (sact, ins, sonar)
+     * @param board         the board's name in the register map (sact, ins, sonar, landmark, power)
      * @param kind          what went wrong
      * @param exceptionCode the Modbus exception code for {@link Kind#EXCEPTION}, else 0
      * @param message       what happened, for a person
@@ -42,7 +44,7 @@ public class BoardException extends IOException {
         this.exceptionCode = exceptionCode;
     }
 
-    /** @return the board's name in the register map: sact, ins or sonar */
+    /** @return the board's name in the register map: sact, ins, sonar, landmark or power */
     public String board() {
         return board;
     }

@@ -3,7 +3,7 @@ package sabot.modbus;
 import org.osgi.annotation.versioning.ProviderType;
 
 /**
- * One RS-485 bus and its four boards. One master, one line: every transaction on the bus is serialised, and the
+ * One RS-485 bus and its five boards. One master, one line: every transaction on the bus is serialised, and the
  * clients may be used from any thread. Closing the bus closes the port; the clients then fail.
  */
 @ProviderType
@@ -21,7 +21,10 @@ public interface ModbusBus extends AutoCloseable {
     /** @return the ceiling-landmark board's client */
     LandmarkClient landmark();
 
-    /** @return the counters of the four boards now */
+    /** @return the power board's client (the battery) */
+    PowerClient power();
+
+    /** @return the counters of the five boards now */
     BusStatistics statistics();
 
     /** @return the settings the bus was opened with */

@@ -462,4 +462,46 @@ class ModbusMasterTest {
         assertEquals(16, BusTiming.writeBytes(2));
         assertEquals(Math.round(32 * 11 * 1e9 / 115200) + 1_750_000, t.writeTime(2).toNanos());
     }
+
+    /**
+     * The power board reads what the simulator's battery is: a robot started at 37 % of 2.5 Ah, then its charge set to
+     * 5 % through the control channel; the readings follow within a period or two, and the capacity is the option's.
+     */
+    @ParameterizedTest
+    @EnumSource(Via.class)
+    void thePowerBoardReadsTheSimulatorsBattery(Via via) throws Exception {
+        try (SimProcess sim = SimProcess.start(dir, "--battery-soc", "0.37", "--battery-capacity", "2.5");
+                ModbusBus bus = ModbusBuses.open(settings(sim, via))) {
+            PowerClient power = bus.power();
+            assertEquals(new PowerConfig(2.5, Duration.ofMillis(Math.round(mapDefault("power", "config", "period")
+                    * 1000))), power.readConfig());
+            PowerReading r = awaitPower(power, x -> true);
+            String truth = sim.command("battery 1");
+            double soc = Double.parseDouble(truth.replaceAll(".* soc=([0-9.]+) .*", "$1"));
+            double volts = Double.parseDouble(truth.replaceAll(".* voltage=([0-9.]+) .*", "$1"));
+            assertEquals(soc, r.stateOfCharge(), 2e-4, truth);
+            assertEquals(volts, r.voltage(), 0.05, truth);
+            assertTrue(r.current() > 0.3 && r.current() < 1.0, "the base load: " + r);
+            assertFalse(r.docked() || r.charging() || r.full(), r.toString());
+            assertTrue(sim.command("battery 1 soc 0.05").startsWith("ok"));
+            PowerReading low = awaitPower(power, x -> x.stateOfCharge() < 0.06);
+            assertEquals(0.05, low.stateOfCharge(), 2e-4);
+            assertTrue(low.voltage() < r.voltage() - 2.0, "an empty pack's voltage: " + low + " after " + r);
+            assertEquals(0, bus.statistics().power().timeouts());
+        }
+    }
+
+    private static PowerReading awaitPower(PowerClient power, java.util.function.Predicate<PowerReading> c)
+            throws IOException {
+        long deadline = System.nanoTime() + 3_000_000_000L;
+        PowerReading first = power.readLatest();
+        PowerReading r = first;
+        while (r.sequence() == first.sequence() || !c.test(r)) {
+            if (System.nanoTime() > deadline) {
+                throw new AssertionError("no such power reading within 3 s; last " + r);
+            }
+            r = power.readLatest();
+        }
+        return r;
+    }
 }

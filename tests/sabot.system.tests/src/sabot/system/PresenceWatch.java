@@ -59,10 +59,19 @@ final class PresenceWatch {
 
     /** Waits for a presence of the robot matching {@code p} (one already received counts). */
     Presence await(Predicate<Presence> p, String what) throws InterruptedException {
+        return awaitAfter(null, p, what);
+    }
+
+    /**
+     * Waits for a presence of the robot matching {@code p} received after {@code earlier} (null: any received), e.g.
+     * Free again after Away.
+     */
+    Presence awaitAfter(Presence earlier, Predicate<Presence> p, String what) throws InterruptedException {
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
         synchronized (seen) {
             while (true) {
-                for (Presence presence : seen) {
+                int from = earlier == null ? 0 : seen.indexOf(earlier) + 1;
+                for (Presence presence : seen.subList(from, seen.size())) {
                     if (p.test(presence)) {
                         return presence;
                     }

@@ -30,7 +30,10 @@ public final class Ucum {
             Map.entry("%", Map.of("%", 1.0, "1", 100.0)),
             Map.entry("1", Map.of("1", 1.0)),
             Map.entry("By", Map.of("By", 1.0)),
-            Map.entry("Hz", Map.of("Hz", 1.0, "/s", 1.0, "/min", 1.0 / 60.0)));
+            Map.entry("Hz", Map.of("Hz", 1.0, "/s", 1.0, "/min", 1.0 / 60.0)),
+            Map.entry("V", Map.of("V", 1.0, "mV", 0.001)),
+            Map.entry("A", Map.of("A", 1.0, "mA", 0.001)),
+            Map.entry("A.h", Map.of("A.h", 1.0, "mA.h", 0.001)));
 
     private Ucum() {
     }

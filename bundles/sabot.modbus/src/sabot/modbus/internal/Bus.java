@@ -26,6 +26,7 @@ import sabot.modbus.BusTiming;
 import sabot.modbus.InsClient;
 import sabot.modbus.LandmarkClient;
 import sabot.modbus.ModbusBus;
+import sabot.modbus.PowerClient;
 import sabot.modbus.SactClient;
 import sabot.modbus.SonarClient;
 
@@ -95,6 +96,7 @@ public final class Bus implements ModbusBus {
     private final InsDriver ins;
     private final SonarDriver sonar;
     private final LandmarkDriver landmark;
+    private final PowerDriver power;
     private volatile boolean closed;
 
     private Bus(BusSettings settings, ModbusMap map, Line line) {
@@ -106,6 +108,7 @@ public final class Bus implements ModbusBus {
         this.ins = new InsDriver(this, new Counters("ins"));
         this.sonar = new SonarDriver(this, new Counters("sonar"));
         this.landmark = new LandmarkDriver(this, new Counters("landmark"));
+        this.power = new PowerDriver(this, new Counters("power"));
     }
 
     /** Opens the line and reads the SACT configuration (see {@link sabot.modbus.ModbusBuses#open}). */
@@ -280,8 +283,14 @@ public final class Bus implements ModbusBus {
     }
 
     @Override
+    public PowerClient power() {
+        return power;
+    }
+
+    @Override
     public BusStatistics statistics() {
-        return new BusStatistics(sact.counters(), ins.counters(), sonar.counters(), landmark.counters());
+        return new BusStatistics(sact.counters(), ins.counters(), sonar.counters(), landmark.counters(),
+                power.counters());
     }
 
     @Override

@@ -13,6 +13,7 @@ import java.util.Locale;
 import java.util.Map;
 import java.util.regex.Pattern;
 
+import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 
 /**
@@ -28,8 +29,9 @@ import sabot.model.geometry.Pose2D;
  * <p>The YAML reader understands the flat {@code key: value} subset these files use ({@code #} comments, quoted
  * strings, a {@code [x, y, yaw]} list for the origin) and nothing more, so the model stays free of dependencies.
  *
- * <p>Sabot extends the YAML with one key, {@value #LANDMARKS_KEY}: the file listing the map's ceiling landmarks
- * ({@link #readLandmarks}). {@code map_server} reads only the keys it knows, so such a map still loads there.
+ * <p>Sabot extends the YAML with two keys, {@value #LANDMARKS_KEY}: the file listing the map's ceiling landmarks
+ * ({@link #readLandmarks}), and {@value #DOCKS_KEY}: the charging docks ({@link #readDocks}). {@code map_server}
+ * reads only the keys it knows, so such a map still loads there.
  */
 public final class MapServerFormat {
 
@@ -39,6 +41,12 @@ public final class MapServerFormat {
 
     /** The YAML key naming the landmarks file, relative to the YAML file's folder unless absolute. */
     public static final String LANDMARKS_KEY = "sabot_landmarks";
+
+    /** The YAML key listing the charging docks: a flow sequence of points, {@code [[x, y], ...]}, metres, map frame. */
+    public static final String DOCKS_KEY = "sabot_docks";
+    /** At most this many docks, as the simulator reads them (onboard-bridge/sim/world.h, WORLD_MAX_DOCKS). */
+    public static final int MAX_DOCKS = 16;
+    private static final Pattern DOCK = Pattern.compile("\\[\\s*([^,\\[\\]]+?)\\s*,\\s*([^,\\[\\]]+?)\\s*\\]");
 
     /** A decimal number as the landmarks file writes it (no hex, no {@code NaN}, no {@code 1d}: as the C reader). */
     private static final Pattern DECIMAL = Pattern.compile("[+-]?(\\d+\\.?\\d*|\\.\\d+)([eE][+-]?\\d+)?");
@@ -225,6 +233,66 @@ public final class MapServerFormat {
      * @throws MapFormatException naming the file (and line) at fault: the YAML unreadable or the key empty, the
      *                            landmarks file missing or malformed
      */
+    /**
+     * The charging docks of a map: its YAML's {@value #DOCKS_KEY}, e.g. {@code sabot_docks: [[1.0, 1.0], [11.0, 1.0]]}
+     * (the simulator charges a robot whose centre is within 0.15 m of one).
+     *
+     * @param yamlFile the map's YAML description
+     * @return the docks' points in the map frame, m, in the YAML's order; empty when the YAML has no such key
+     * @throws MapFormatException naming the file and what is wrong: not a list of [x, y] pairs of finite numbers, or
+     *                            more than {@value #MAX_DOCKS}
+     */
+    public static List<Point2D> readDocks(Path yamlFile) throws IOException {
+        String value = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(DOCKS_KEY);
+        if (value == null) {
+            return List.of();
+        }
+        String v = value.strip();
+        MapFormatException bad = new MapFormatException(yamlFile, "key '" + DOCKS_KEY + "' is '" + value
+                + "', expected [[x, y], ...] (numbers, metres)");
+        if (!v.startsWith("[") || !v.endsWith("]")) {
+            throw bad;
+        }
+        String inner = v.substring(1, v.length() - 1).strip();
+        List<Point2D> docks = new ArrayList<>();
+        java.util.regex.Matcher m = DOCK.matcher(inner);
+        int at = 0;
+        while (at < inner.length()) {
+            if (!m.find(at) || m.start() != at) {
+                throw bad;
+            }
+            docks.add(new Point2D(dockNumber(m.group(1), bad), dockNumber(m.group(2), bad)));
+            at = m.end();
+            while (at < inner.length() && Character.isWhitespace(inner.charAt(at))) {
+                at++;
+            }
+            if (at < inner.length()) {
+                if (inner.charAt(at) != ',') {
+                    throw bad;
+                }
+                at++;
+                while (at < inner.length() && Character.isWhitespace(inner.charAt(at))) {
+                    at++;
+                }
+                if (at == inner.length()) {
+                    throw bad;
+                }
+            }
+        }
+        if (docks.size() > MAX_DOCKS) {
+            throw new MapFormatException(yamlFile, "key '" + DOCKS_KEY + "' lists " + docks.size()
+                    + " docks, at most " + MAX_DOCKS);
+        }
+        return List.copyOf(docks);
+    }
+
+    private static double dockNumber(String text, MapFormatException bad) throws MapFormatException {
+        if (!DECIMAL.matcher(text).matches()) {
+            throw bad;
+        }
+        return Double.parseDouble(text);
+    }
+
     public static List<MapLandmark> readLandmarks(Path yamlFile) throws IOException {
         String name = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(LANDMARKS_KEY);
         if (name == null) {

@@ -18,6 +18,7 @@ import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
+import sabot.model.robot.BatteryState;
 import sabot.pidstep.controlml.StepTest;
 import sabot.model.geometry.Twist2D;
 
@@ -99,6 +100,23 @@ public interface RobotMotion {
 
     /** Sets new limits, never above the robot's physical ones (INVALID_VALUE). Applies at the next control period. */
     void setLimits(LimitsPayload limits) throws CommandRefused;
+
+    /**
+     * @return the battery as the power board last measured it (about once a second; {@link BatteryState#measured()}
+     *         says when)
+     * @throws CommandRefused DEVICE_FAULT when the power board's last read failed (the message says why: silent, or a
+     *                        reading no battery gives) or it has not been read yet
+     */
+    BatteryState battery() throws CommandRefused;
+
+    /**
+     * @return whether the robot stands on its dock charging after a low battery, until it is charged again (presence
+     *         Away "charging"); listeners hear of a change as a {@link MotionListener#missionChanged} with the mission
+     *         as it is
+     */
+    default boolean charging() {
+        return false;
+    }
 
     /** @return the motor gains read back from the motor board; DEVICE_FAULT when the board does not answer */
     PidGains gains() throws CommandRefused;

@@ -33,6 +33,7 @@ import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.BatteryState;
 
 /** One realistic value per resource, for round trips. */
 final class Samples {
@@ -55,6 +56,7 @@ final class Samples {
                     0 })),
             Map.entry(Resources.OBSTACLES, new Obstacles(T, List.of(new Obstacle(1, 1, 0.2), new Obstacle(-2, 0.5,
                     0.35)))),
+            Map.entry(Resources.BATTERY, new BatteryState(T, 0.25, 25.125, -4.5, 10, true, true, false)),
             Map.entry(Resources.PID, new PidGains(List.of(new MotorGains(0, 1.2, 0.05, 0.01), new MotorGains(1, 1.1,
                     0.04, 0.0)))),
             Map.entry(Resources.LIMITS, new LimitsPayload(0.5, 2.0, 0.5, 3.0)),

@@ -25,6 +25,7 @@ import org.junit.jupiter.api.Test;
 import sabot.modbus.BoardException;
 import sabot.modbus.BusSettings;
 import sabot.modbus.Motor;
+import sabot.modbus.PowerReading;
 import sabot.modbus.SactClient;
 
 /**
@@ -151,9 +152,49 @@ class FuzzedAnswersTest {
      * An RTU-over-TCP slave that answers every request (0x14 reads with random registers, 0x15 writes with their echo)
      * after applying the mutation the test set for it.
      */
+    /**
+     * The power board's answers with every register random (well-formed frames, right CRC): each read is a reading
+     * within the register map's bounds or a {@link BoardException} of kind IMPLAUSIBLE naming the record, never
+     * another exception and never an out-of-range value taken.
+     */
+    @Test
+    void randomPowerRegistersAreEitherWithinTheMapOrRefusedAsImplausible() throws Exception {
+        Random random = new Random(20261201);
+        try (FuzzingSlave slave = new FuzzingSlave(random)) {
+            BusSettings settings = BusSettings.tcp("127.0.0.1", slave.port()).withResponseTimeout(Duration.ofMillis(
+                    200)).withRetries(1);
+            Bus bus = Bus.open(settings);
+            slave.smallValues = true; // after the SACT's configuration, read at the open
+            try {
+                int taken = 0;
+                int implausible = 0;
+                for (int i = 0; i < 200; i++) {
+                    try {
+                        PowerReading r = bus.power().readLatest();
+                        assertTrue(r.stateOfCharge() >= 0 && r.stateOfCharge() <= 1, r.toString());
+                        taken++;
+                    } catch (BoardException e) {
+                        assertEquals(BoardException.Kind.IMPLAUSIBLE, e.kind(), e.getMessage());
+                        assertTrue(e.getMessage().matches("power: (state_of_charge \\d+ is outside the register map's "
+                                + "bounds \\[0, 10000\\]|status 0x[0-9a-f]{4} sets bits the register map does not "
+                                + "name \\(0x[0-9a-f]{4}\\))"), e.getMessage());
+                        implausible++;
+                    }
+                }
+                System.out.printf("[fuzz] power board: %d random readings taken, %d refused as implausible%n", taken,
+                        implausible);
+                assertTrue(taken > 0 && implausible > 0, taken + " taken, " + implausible + " refused");
+            } finally {
+                bus.close();
+            }
+        }
+    }
+
     private static final class FuzzingSlave implements AutoCloseable {
 
         final AtomicReference<Mutation> next = new AtomicReference<>(Mutation.NONE);
+        /** Registers read are 0–7 half the time, else any 16 bits; otherwise always any 16 bits. */
+        volatile boolean smallValues;
         private final ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress());
         private final Random random;
         private final Thread thread;
@@ -225,8 +266,15 @@ class FuzzedAnswersTest {
                     int count = ((request[3 + 7 * k + 5] & 0xff) << 8) | (request[3 + 7 * k + 6] & 0xff);
                     data.write(1 + 2 * count);
                     data.write(6);
-                    for (int r = 0; r < 2 * count; r++) {
-                        data.write(random.nextInt(256));
+                    for (int r = 0; r < count; r++) {
+                        // small values half the time when asked: enough flags and fractions fall inside a map's bounds
+                        if (smallValues && random.nextBoolean()) {
+                            data.write(0);
+                            data.write(random.nextInt(8));
+                        } else {
+                            data.write(random.nextInt(256));
+                            data.write(random.nextInt(256));
+                        }
                     }
                 }
                 a.write(0x14);

@@ -2,10 +2,12 @@ package sabot.motion.sim;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.time.Instant;
 import java.util.Optional;
 
 import sabot.control.WheelSpeeds;
 import sabot.controlml.payload.PidGains;
+import sabot.model.robot.BatteryState;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
 import sabot.onboard.motion.loop.RobotBoards;
@@ -68,6 +70,16 @@ final class SimulatedBoards implements RobotBoards {
 
     @Override
     public boolean landmarkBoardFaulted() {
+        return true;
+    }
+
+    @Override
+    public BatteryState readBattery(Instant now) throws IOException {
+        throw new IOException("no power board");
+    }
+
+    @Override
+    public boolean powerBoardFaulted() {
         return true;
     }
 

@@ -12,10 +12,12 @@ import java.util.Optional;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
+import sabot.model.robot.BatteryState;
 import sabot.modbus.Board;
 import sabot.modbus.BoardException;
 import sabot.modbus.InsMotion;
 import sabot.modbus.LandmarkSighting;
+import sabot.modbus.PowerReading;
 import sabot.modbus.ModbusBus;
 import sabot.modbus.Motor;
 import sabot.modbus.SactGains;
@@ -44,6 +46,8 @@ final class ModbusBoards implements RobotBoards {
     private static final Duration STEP_GRACE = Duration.ofSeconds(1);
 
     private final ModbusBus bus;
+    /** The battery's design capacity, Ah, read from the power board once; 0 until then. Loop thread only. */
+    private double designCapacity;
     /** Where each sonar sensor sits on the robot, learnt from its echoes; loop thread only. */
     private final Map<Integer, Point2D> sonarOrigins = new HashMap<>();
 
@@ -112,6 +116,27 @@ final class ModbusBoards implements RobotBoards {
     @Override
     public boolean landmarkBoardFaulted() {
         return bus.landmark().faulted();
+    }
+
+    @Override
+    public BatteryState readBattery(Instant now) throws IOException {
+        double capacity = designCapacity;
+        if (capacity == 0) {
+            capacity = bus.power().readConfig().designCapacity();
+            designCapacity = capacity;
+        }
+        PowerReading r = bus.power().readLatest();
+        try {
+            return new BatteryState(now, r.stateOfCharge(), r.voltage(), r.current(), capacity, r.docked(),
+                    r.charging(), r.full());
+        } catch (IllegalArgumentException e) {
+            throw new BoardException("power", BoardException.Kind.IMPLAUSIBLE, 0, e.getMessage());
+        }
+    }
+
+    @Override
+    public boolean powerBoardFaulted() {
+        return bus.power().faulted();
     }
 
     @Override
@@ -272,6 +297,7 @@ final class ModbusBoards implements RobotBoards {
     @Override
     public double optionalReadWireTime() {
         return Math.max(Math.max(bus.ins().readMotionWireTime().toNanos(), bus.sonar().readSensorWireTime().toNanos()),
-                bus.landmark().readLatestWireTime().toNanos()) * 1e-9;
+                Math.max(bus.landmark().readLatestWireTime().toNanos(), bus.power().readLatestWireTime().toNanos()))
+                * 1e-9;
     }
 }

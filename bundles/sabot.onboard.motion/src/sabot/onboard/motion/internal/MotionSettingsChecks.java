@@ -10,11 +10,13 @@ import java.util.Map;
 import org.osgi.service.component.annotations.Component;
 
 import sabot.model.map.MapServerFormat;
+import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.task.TaskSettingsCheck;
 
 /**
  * What Metatype cannot say about the motion tasks' settings, checked before anything starts: the bus's serial device
- * must exist (or a TCP gateway be named), and the planner's map (with the landmarks it names) must load.
+ * must exist (or a TCP gateway be named), the planner's map (with the landmarks and docks it names) must load, and the
+ * battery's low threshold must lie below its charged one.
  */
 final class MotionSettingsChecks {
 
@@ -58,9 +60,40 @@ final class MotionSettingsChecks {
             try {
                 MapServerFormat.load(file);
                 MapServerFormat.readLandmarks(file);
+                MapServerFormat.readDocks(file);
                 return List.of();
             } catch (IOException | RuntimeException e) {
                 return List.of(new Problem("map", "map " + file + " does not load: " + e.getMessage()));
+            }
+        }
+    }
+
+    /** {@code motion}: {@code batteryLow} below {@code batteryCharged}, or a charged robot would be low at once. */
+    @Component(service = TaskSettingsCheck.class, property = TaskSettingsCheck.TASK + "=motion")
+    public static final class Motion implements TaskSettingsCheck {
+        @Override
+        public List<Problem> check(Map<String, Object> settings) {
+            double low = number(settings.get("batteryLow"), LoopDefaults.BATTERY_LOW);
+            double charged = number(settings.get("batteryCharged"), LoopDefaults.BATTERY_CHARGED);
+            if (low < charged || Double.isNaN(low) || Double.isNaN(charged)) {
+                return List.of();
+            }
+            return List.of(new Problem("batteryLow", "motion.batteryLow (" + low + ") must be below "
+                    + "motion.batteryCharged (" + charged + "): a robot charged to " + charged + " would be low at once"));
+        }
+
+        /** A setting as Config Admin holds it (a number, or the file's text), or its default; NaN when not a number. */
+        private static double number(Object value, double otherwise) {
+            if (value == null) {
+                return otherwise;
+            }
+            if (value instanceof Number n) {
+                return n.doubleValue();
+            }
+            try {
+                return Double.parseDouble(value.toString().strip());
+            } catch (NumberFormatException e) {
+                return Double.NaN; // Metatype reports a malformed number; this check then holds its tongue
             }
         }
     }

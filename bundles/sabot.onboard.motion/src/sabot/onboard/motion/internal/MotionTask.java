@@ -53,8 +53,10 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
+import sabot.model.robot.BatteryState;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
+import sabot.onboard.motion.loop.BatteryGuard;
 import sabot.onboard.motion.loop.ControlLoop;
 import sabot.onboard.motion.loop.GuardSettings;
 import sabot.onboard.motion.loop.LoopClock;
@@ -138,6 +140,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 + "the robot (0: never reverse).", min = "0", max = "1")
         double reverseSpeed() default LoopDefaults.REVERSE_SPEED;
 
+        @AttributeDefinition(name = "Battery low", description = "State of charge (0-1) below which the robot aborts "
+                + "its mission and drives to the nearest of the map's docks (sabot_docks); below Battery charged.",
+                min = "0", max = "1")
+        double batteryLow() default LoopDefaults.BATTERY_LOW;
+
+        @AttributeDefinition(name = "Battery charged", description = "State of charge (0-1) at which a robot "
+                + "charging on its dock after a low battery is free again.", min = "0", max = "1")
+        double batteryCharged() default LoopDefaults.BATTERY_CHARGED;
+
         @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
                 + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
                 + "at the ordinary policy.", min = "0", max = "99")
@@ -187,6 +198,11 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private ExecutorService plannerThread;
     private ExecutorService notifier;
     private ControlLoop loop;
+    /** The low-battery rules; used on the notifier thread only. */
+    private BatteryGuard batteryGuard;
+    private volatile boolean charging;
+    /** The stamp of the last battery reading handed to the guard; the loop's thread only. */
+    private Instant lastBatteryReading;
     private MotorTuning tuning;
     /** What other threads read: the loop's state at the end of its last period or command. */
     private volatile ControlLoop.Snapshot snapshot;
@@ -223,6 +239,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         boards.acknowledgeFaults();
         boards.brake(false);
         boards.writeWheelSpeeds(0, 0);
+        batteryGuard = new BatteryGuard(c.batteryLow(), c.batteryCharged(), plannerTask.docks());
         notifier = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-motion-events"));
         plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
         loop = new ControlLoop(host, clock, boards, robot, localizerTask.newLocalizer(plannerTask.landmarks()),
@@ -365,6 +382,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         try {
             applyCommands();
             snapshot = loop.tick(start, scheduled);
+            Optional<BatteryState> b = snapshot.battery();
+            if (b.isPresent() && !b.get().measured().equals(lastBatteryReading)) {
+                lastBatteryReading = b.get().measured();
+                BatteryState reading = b.get();
+                notifier.execute(() -> batteryReading(reading));
+            }
         } catch (RuntimeException e) {
             // A bug must not stop the loop's thread (scheduleAtFixedRate would end silently): brake and say why.
             LOG.error("control loop error, braking", e);
@@ -381,6 +404,46 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         for (MotionListener l : listeners) {
             notifier.execute(() -> l.missionChanged(status));
         }
+    }
+
+    /**
+     * A new battery reading, on the notifier thread: the guard's decision carried out (abort the mission, a mission to
+     * the dock), and listeners told when the robot starts or stops charging (its presence follows).
+     */
+    private void batteryReading(BatteryState b) {
+        ControlLoop.Snapshot s = snapshot;
+        BatteryGuard.Decision d = batteryGuard.update(b, s.pose().pose(), s.mission());
+        if (!d.note().isEmpty()) {
+            LOG.info("{}", d.note());
+        }
+        if (d.goToDock().isPresent()) {
+            Point2D dock = d.goToDock().get();
+            try {
+                MissionState now = s.mission().state();
+                if (now == MissionState.RUNNING || now == MissionState.PAUSED) {
+                    command(new MissionStatus(MissionState.ABORTED, false, 0, "battery low"));
+                }
+                startMission(List.of(new MissionTarget(new Goal(new Pose2D(dock.x(), dock.y(), 0),
+                        BatteryGuard.DOCK_TOLERANCE, 2 * Math.PI), MissionTarget.Action.DOCK, 0,
+                        MissionTarget.State.PENDING)), false);
+            } catch (CommandRefused e) {
+                LOG.warn("battery low, but the dock at ({}, {}) cannot be reached: {}", fmt(dock.x()), fmt(dock.y()),
+                        e.getMessage());
+            }
+        }
+        boolean nowCharging = batteryGuard.charging();
+        if (nowCharging != charging) {
+            charging = nowCharging;
+            MissionStatus m = snapshot.mission();
+            for (MotionListener l : listeners) {
+                l.missionChanged(m); // already on the notifier thread, in order with the mission's changes
+            }
+        }
+    }
+
+    @Override
+    public boolean charging() {
+        return charging;
     }
 
     /** Queues a command for the loop's next period. */
@@ -424,6 +487,16 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     @Override
     public PoseEstimate pose() {
         return snapshot.pose();
+    }
+
+    @Override
+    public BatteryState battery() throws CommandRefused {
+        ControlLoop.Snapshot s = snapshot;
+        if (!s.batteryFault().isEmpty()) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, s.batteryFault());
+        }
+        return s.battery().orElseThrow(() -> new CommandRefused(ControlMlCondition.DEVICE_FAULT,
+                "the power board has not been read yet"));
     }
 
     @Override

@@ -13,6 +13,7 @@ import org.osgi.service.metatype.annotations.Designate;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 import org.osgi.service.metatype.annotations.Option;
 
+import sabot.model.geometry.Point2D;
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
 import sabot.onboard.motion.loop.LoopDefaults;
@@ -65,12 +66,14 @@ public final class PlannerTask implements OnboardTask {
     private NavigationPlanner planner;
     private Config config;
     private List<MapLandmark> landmarks;
+    private List<Point2D> docks;
 
     @Activate
     void activate(Config c) throws IOException {
         this.config = c;
         MapServerFormat.LoadedMap loaded = MapServerFormat.load(Path.of(c.map()));
         landmarks = MapServerFormat.readLandmarks(Path.of(c.map()));
+        docks = MapServerFormat.readDocks(Path.of(c.map()));
         planner = new NavigationPlanner(loaded.grid(), c.algorithm(), c.threads(), c.robotRadius(),
                 c.inflationRadius());
     }
@@ -88,6 +91,11 @@ public final class PlannerTask implements OnboardTask {
     /** @return the ceiling landmarks the map names (its {@code sabot_landmarks} file), possibly none */
     List<MapLandmark> landmarks() {
         return landmarks;
+    }
+
+    /** @return the charging docks the map lists (its {@code sabot_docks}), possibly none */
+    List<Point2D> docks() {
+        return docks;
     }
 
     /** @return the configured settings */

@@ -33,6 +33,7 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
+import sabot.model.robot.BatteryState;
 import sabot.model.robot.RobotDescription;
 import sabot.planner.PlanResult;
 
@@ -85,9 +86,15 @@ public final class ControlLoop {
     public record Plan(Trajectory trajectory, double length, String refusal) {
     }
 
-    /** What other threads read: the loop's state at the end of a period or a command. Immutable. */
+    /**
+     * What other threads read: the loop's state at the end of a period or a command. Immutable.
+     *
+     * @param battery      the power board's last good reading, empty before the first
+     * @param batteryFault why the power board's last read failed, for a person; empty when it succeeded
+     */
     public record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
-            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing, Mode mode) {
+            TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing, Mode mode,
+            Optional<BatteryState> battery, String batteryFault) {
     }
 
     private final LoopHost host;
@@ -171,7 +178,7 @@ public final class ControlLoop {
         this.timing = new LoopTiming(settings.periodNanos());
         this.echoes = new EchoMemory(planner);
         this.guard = new LoopGuard(planner, echoes);
-        this.sensors = new SensorRounds(boards, localizer, echoes, this::now);
+        this.sensors = new SensorRounds(boards, localizer, echoes, this::now, clock::now);
         this.pose = settings.localizer().start();
         limitsChanged(limits);
     }
@@ -1001,7 +1008,8 @@ public final class ControlLoop {
         boolean moving = mode == Mode.TELEOP || mode == Mode.ALIGN || mode == Mode.FOLLOW || mode == Mode.SETTLE
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
         return new Snapshot(p, v, withGuardStatus(missions.status()), Optional.ofNullable(goal), trajectoryPayload,
-                new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode);
+                new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode, sensors.battery(),
+                sensors.batteryFault());
     }
 
     /**

@@ -37,6 +37,14 @@ public final class LoopDefaults {
     public static final double GUARD_REACTION_TIME = 0.06;
     /** {@code motion.reverseSpeed}, m/s: the top speed backwards, where no sensor looks. */
     public static final double REVERSE_SPEED = 0.1;
+    /**
+     * {@code motion.batteryLow}, 0–1: below this state of charge the robot aborts its mission and goes to its dock. A
+     * fifth of the charge: the lab is crossed in a minute at a fraction of a per cent, and a lithium-ion pack kept
+     * above 20 % ages more slowly.
+     */
+    public static final double BATTERY_LOW = 0.2;
+    /** {@code motion.batteryCharged}, 0–1: a robot charging after a low battery is free again at this charge. */
+    public static final double BATTERY_CHARGED = 0.9;
 
     // teleop task
     /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */

@@ -2,9 +2,11 @@ package sabot.onboard.motion.loop;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.time.Instant;
 import java.util.Optional;
 
 import sabot.controlml.payload.PidGains;
+import sabot.model.robot.BatteryState;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
 
@@ -47,6 +49,17 @@ public interface RobotBoards {
 
     /** @return whether the landmark board (optional: not every robot has one) has stopped answering */
     boolean landmarkBoardFaulted();
+
+    /**
+     * @param now the loop's wall time, the reading's stamp
+     * @return the power board's latest measurement of the battery with its design capacity, one transaction (two the
+     *         first time: the capacity is read once)
+     * @throws IOException the board did not answer, or answered a reading no battery gives (named in the message)
+     */
+    BatteryState readBattery(Instant now) throws IOException;
+
+    /** @return whether the power board (optional: a robot on a bench supply has none) has stopped answering */
+    boolean powerBoardFaulted();
 
     /** @return the number of sonar sensors */
     int sonarSensors();
@@ -109,6 +122,6 @@ public interface RobotBoards {
     /** @return computed wire time of {@link #writeWheelSpeeds}, seconds */
     double wheelWriteWireTime();
 
-    /** @return computed wire time of the longest of the loop's optional reads (IMU, one sonar sensor, landmark), s */
+    /** @return computed wire time of the longest of the loop's optional reads (IMU, one sonar sensor, landmark, power), s */
     double optionalReadWireTime();
 }

@@ -1,16 +1,19 @@
 package sabot.onboard.motion.loop;
 
 import java.io.IOException;
+import java.time.Instant;
 import java.util.HashSet;
 import java.util.Optional;
 import java.util.Set;
 import java.util.function.DoubleSupplier;
+import java.util.function.Supplier;
 
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import sabot.localization.MeasurementResult;
 import sabot.model.geometry.Pose2D;
+import sabot.model.robot.BatteryState;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
 
@@ -22,8 +25,9 @@ import sabot.modbus.WheelCounts;
  * drives: the collision guard needs the sonar then most.
  * <p>
  * In a spare slot: every other one goes to the gyro; one in {@link #LANDMARK_SLOTS} to the landmark board (it measures
- * at 10 Hz), the others to the sonar sensors in turn. Each reading is stamped when its answer arrived. Used by the
- * loop's thread only.
+ * at 10 Hz), one in {@link #BATTERY_SLOTS} to the power board (a battery changes over minutes: about once a second),
+ * the others to the sonar sensors in turn. Each reading is stamped when its answer arrived. Used by the loop's thread
+ * only, but for {@link #battery()} and {@link #batteryFault()}, which any thread may read.
  */
 final class SensorRounds {
 
@@ -33,6 +37,15 @@ final class SensorRounds {
     static final int LANDMARK_SLOTS = 8;
     /** Seconds between two reads of a landmark board that has stopped answering. */
     static final double LANDMARK_RETRY = 2.0;
+    /**
+     * One spare slot in this many goes to the power board (about 1 Hz at 50 Hz), the slot {@link #BATTERY_SLOT} of
+     * them: a multiple of {@link #LANDMARK_SLOTS} and an odd slot other than the landmark's, so neither takes the
+     * other's turn.
+     */
+    static final int BATTERY_SLOTS = 3 * LANDMARK_SLOTS;
+    static final int BATTERY_SLOT = 3;
+    /** Seconds between two reads of a power board that has stopped answering. */
+    static final double BATTERY_RETRY = 5.0;
 
     private final RobotBoards boards;
     private final Localizer localizer;
@@ -46,12 +59,33 @@ final class SensorRounds {
     private int lastLandmarkSequence = -1;
     private double lastLandmarkTry = Double.NEGATIVE_INFINITY;
     private final Set<Integer> unknownLandmarks = new HashSet<>();
+    /** The loop's wall clock: a battery reading's stamp. */
+    private final Supplier<Instant> wall;
+    private double lastBatteryTry = Double.NEGATIVE_INFINITY;
+    /** The last good battery reading (null before the first), and why the last read failed ("" when it did not). */
+    private volatile BatteryState battery;
+    private volatile String batteryFault = "";
 
-    SensorRounds(RobotBoards boards, Localizer localizer, EchoMemory echoes, DoubleSupplier now) {
+    SensorRounds(RobotBoards boards, Localizer localizer, EchoMemory echoes, DoubleSupplier now,
+            Supplier<Instant> wall) {
         this.boards = boards;
         this.localizer = localizer;
         this.echoes = echoes;
         this.now = now;
+        this.wall = wall;
+    }
+
+    /** @return the last good battery reading, empty before the first */
+    Optional<BatteryState> battery() {
+        return Optional.ofNullable(battery);
+    }
+
+    /**
+     * @return why the power board's last read failed, for a person (e.g. "power: state_of_charge 12000 is outside the
+     *         register map's bounds [0, 10000]"); empty when it succeeded
+     */
+    String batteryFault() {
+        return batteryFault;
     }
 
     /**
@@ -86,6 +120,8 @@ final class SensorRounds {
         int slot = spareSlot++;
         if (slot % LANDMARK_SLOTS == 1 && landmarkReadDue(t)) {
             readLandmark();
+        } else if (slot % BATTERY_SLOTS == BATTERY_SLOT && batteryReadDue(t)) {
+            readBattery();
         } else if (slot % 2 == 0 || sonars == 0) {
             RobotBoards.ImuSample s = boards.readImu();
             localizer.inertial(now.getAsDouble(), s.yawRate(), s.forwardAcceleration());
@@ -108,6 +144,33 @@ final class SensorRounds {
         }
         lastLandmarkTry = t;
         return true;
+    }
+
+    /** A power board that stopped answering is asked again only every {@link #BATTERY_RETRY} s. */
+    private boolean batteryReadDue(double t) {
+        if (boards.powerBoardFaulted() && t - lastBatteryTry < BATTERY_RETRY) {
+            return false;
+        }
+        lastBatteryTry = t;
+        return true;
+    }
+
+    /** A failed read keeps the last good reading (its stamp says how old) and says why in the fault. */
+    private void readBattery() {
+        try {
+            BatteryState b = boards.readBattery(wall.get());
+            battery = b;
+            if (!batteryFault.isEmpty()) {
+                LOG.info("power board answers again: {}", b.summary());
+            }
+            batteryFault = "";
+        } catch (IOException e) {
+            String why = e.getMessage() == null ? e.getClass().getSimpleName() : e.getMessage();
+            if (!why.equals(batteryFault)) {
+                LOG.warn("battery reading refused: {}", why);
+            }
+            batteryFault = why;
+        }
     }
 
     private void readLandmark() throws IOException {

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertNotEquals;
 import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import java.io.IOException;
 import java.util.List;
 
 import org.junit.jupiter.api.Test;
@@ -16,6 +17,7 @@ import sabot.controlml.payload.TrajectoryPoint;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.BatteryState;
 import sabot.onboard.motion.loop.ControlLoop.Mode;
 import sabot.onboard.motion.loop.FakeBoards.WheelWrite;
 import sabot.onboard.motion.loop.LoopHost.PlanRequest;
@@ -266,5 +268,61 @@ class ControlLoopTest {
         assertNull(walled.loop.stepTestBlocked(2, 0.004), "an unknown motor is the board's to refuse");
         rig.run(0.1);
         assertNull(rig.loop.stepTestBlocked(0, 0.004), "in the open");
+    }
+
+    /** The power board is read about once a second, in spare slots the other boards do not need. */
+    @Test
+    void theBatteryIsReadAboutOnceASecondAndStampedWithTheLoopsClock() {
+        rig.run(10.0);
+        ControlLoop.Snapshot s = rig.tick();
+        // 500 periods, 250 spare slots, one in 24 to the power board
+        assertEquals(250 / SensorRounds.BATTERY_SLOTS, rig.boards.batteryReads, 1);
+        BatteryState b = s.battery().orElseThrow();
+        assertEquals(0.8, b.stateOfCharge(), 0.0);
+        assertTrue(!b.measured().isAfter(rig.clock.now()) && !b.measured().isBefore(rig.clock.now().minusSeconds(2)),
+                b.measured() + " at " + rig.clock.now());
+        assertEquals("", s.batteryFault());
+        rig.boards.batteryCharge = 0.3;
+        rig.run(2.0);
+        assertEquals(0.3, rig.tick().battery().orElseThrow().stateOfCharge(), 0.0);
+    }
+
+    /**
+     * A power board that fails (silent, or a reading no battery gives) is a fault the snapshot names, the last good
+     * reading kept with its stamp; the loop drives on, asks again only every few seconds, and clears the fault once a
+     * reading is good.
+     */
+    @Test
+    void aFailingPowerBoardIsAFaultWithItsReasonAndTheLoopDrivesOn() {
+        rig.run(2.0);
+        BatteryState good = rig.tick().battery().orElseThrow();
+        rig.boards.batteryFailure = new IOException("power: state_of_charge 12000 is outside the register map's "
+                + "bounds [0, 10000]");
+        rig.joystick(0.3, 0);
+        ControlLoop.Snapshot s = rig.tick();
+        for (int i = 0; i < 100 && s.batteryFault().isEmpty(); i++) { // the next battery slot, within 2 s
+            rig.joystick(0.3, 0);
+            s = rig.tick();
+        }
+        assertEquals("power: state_of_charge 12000 is outside the register map's bounds [0, 10000]", s.batteryFault());
+        assertEquals(good, s.battery().orElseThrow(), "the last good reading is kept");
+        s = rig.run(0.3);
+        assertTrue(rig.boards.lastWrite().left() * R > 0.1, "driving on: " + rig.boards.lastWrite());
+        int reads = rig.boards.batteryReads;
+        rig.run(SensorRounds.BATTERY_RETRY - 0.5);
+        assertEquals(reads, rig.boards.batteryReads, "a faulted board is not asked at every turn");
+        rig.run(1.5);
+        assertEquals(reads + 1, rig.boards.batteryReads, "asked again after the retry time");
+        rig.boards.batteryFailure = null;
+        s = rig.run(SensorRounds.BATTERY_RETRY + 1.0);
+        assertEquals("", s.batteryFault());
+        assertTrue(s.battery().orElseThrow().measured().isAfter(good.measured()));
+    }
+
+    @Test
+    void beforeTheFirstReadingThereIsNoBattery() {
+        ControlLoop.Snapshot s = rig.tick();
+        assertTrue(s.battery().isEmpty());
+        assertEquals("", s.batteryFault());
     }
 }

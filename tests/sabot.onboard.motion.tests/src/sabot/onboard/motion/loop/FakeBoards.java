@@ -2,12 +2,14 @@ package sabot.onboard.motion.loop;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Optional;
 
 import sabot.controlml.payload.PidGains;
 import sabot.model.geometry.Point2D;
+import sabot.model.robot.BatteryState;
 import sabot.model.robot.RobotDescription;
 import sabot.modbus.LandmarkSighting;
 import sabot.modbus.WheelCounts;
@@ -95,6 +97,28 @@ final class FakeBoards implements RobotBoards {
     @Override
     public boolean landmarkBoardFaulted() {
         return false;
+    }
+
+    /** The power board's next answer: a state of charge, or a failure (a test sets it). */
+    double batteryCharge = 0.8;
+    IOException batteryFailure;
+    int batteryReads;
+    /** Like the bus's fault time: a board is faulted once a read of it failed, until one succeeds. */
+    private boolean batteryReadFailed;
+
+    @Override
+    public BatteryState readBattery(Instant now) throws IOException {
+        batteryReads++;
+        batteryReadFailed = batteryFailure != null;
+        if (batteryFailure != null) {
+            throw batteryFailure;
+        }
+        return new BatteryState(now, batteryCharge, 25.0, 0.6, 10.0, false, false, false);
+    }
+
+    @Override
+    public boolean powerBoardFaulted() {
+        return batteryReadFailed;
     }
 
     @Override

@@ -40,6 +40,7 @@ import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
+import sabot.model.robot.BatteryState;
 import sabot.onboard.controlml.internal.session.ControlMlSettings;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
@@ -70,7 +71,7 @@ public final class ControlMlEndpoint {
 
     /** The resources this endpoint serves (the remote FS task serves {@code cm.fs.*}). */
     static final List<Resource<?, ?>> SERVED = List.of(Resources.POSITION, Resources.VELOCITY, Resources.GOAL,
-            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.PID, Resources.LIMITS,
+            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.BATTERY, Resources.PID, Resources.LIMITS,
             Resources.MISSION, Resources.TASKS);
 
     /** The {@code state} values a {@code cm.mission} set may ask for, besides a maintenance switch. */
@@ -107,6 +108,7 @@ public final class ControlMlEndpoint {
         checkRate("velocityRate", config.velocityRate());
         checkRate("missionRate", config.missionRate());
         checkRate("obstaclesRate", config.obstaclesRate());
+        checkRate("batteryRate", config.batteryRate());
         checkRate("baseRate", config.baseRate());
         if (!(config.leaseMax() >= 1 && config.leaseMax() <= TelemetryRates.MAX_LEASE_S)) {
             throw new IllegalArgumentException("controlml.leaseMax must be 1 to " + TelemetryRates.MAX_LEASE_S
@@ -134,13 +136,15 @@ public final class ControlMlEndpoint {
             publish(Resources.VELOCITY, motion::velocity, config.velocityRate());
             publish(Resources.MISSION, motion::mission, config.missionRate());
             publish(Resources.OBSTACLES, motion::obstacles, config.obstaclesRate());
+            // no reading yet, or the power board failing: a skipped tick (a get says why)
+            publish(Resources.BATTERY, this::batteryOrNull, config.batteryRate());
         }
         motion.addListener(presence);
         showCurrentMission(); // the listener reports changes only
         LOG.info("ControlML endpoint serving {} resources for {}; telemetry while leased (at most {} s): position {} "
-                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz; else {} Hz", SERVED.size(), session.jid(), config
-                        .leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(), config
-                                .obstaclesRate(), config.baseRate());
+                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz, battery {} Hz; else {} Hz", SERVED.size(), session
+                        .jid(), config.leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(),
+                config.obstaclesRate(), config.batteryRate(), config.baseRate());
     }
 
     /** Stops telemetry and presence updates and unregisters the handlers. */
@@ -186,6 +190,7 @@ public final class ControlMlEndpoint {
         m.onGet(Resources.MAP, (request, none) -> Outcome.success(motion.map()));
         m.onSet(Resources.MAP, (request, map) -> apply(() -> motion.replaceMap(map)));
         m.onGet(Resources.OBSTACLES, (request, none) -> Outcome.success(motion.obstacles()));
+        m.onGet(Resources.BATTERY, (request, none) -> read(motion::battery));
         m.onGet(Resources.PID, (request, none) -> read(motion::gains));
         m.onSet(Resources.PID, (request, gains) -> read(() -> motion.setGains(gains)));
         m.onGet(Resources.LIMITS, (request, none) -> Outcome.success(motion.limits()));
@@ -227,6 +232,14 @@ public final class ControlMlEndpoint {
 
     private static <T> Outcome<T> refusal(CommandRefused refused) {
         return Outcome.failure(ControlMlError.of(refused.condition(), refused.getMessage()));
+    }
+
+    private BatteryState batteryOrNull() {
+        try {
+            return motion.battery();
+        } catch (CommandRefused refused) {
+            return null;
+        }
     }
 
     /** Without a goal there is nothing true to answer with: a pose would look like a target the robot does not have. */
@@ -343,9 +356,15 @@ public final class ControlMlEndpoint {
 
     // ---------------------------------------------------------------------------------------------- presence
 
-    /** Free when idle, done or aborted; busy running or paused; away in maintenance or after a failure. */
-    static PresenceLevel presenceOf(MissionStatus mission) {
-        if (mission.maintenance()) {
+    /** The presence's text while the robot charges on its dock after a low battery (docs/CONTROLML.md section 7). */
+    static final String CHARGING = "charging";
+
+    /**
+     * Free when idle, done or aborted; busy running or paused; away in maintenance, after a failure, or while charging
+     * on the dock after a low battery.
+     */
+    static PresenceLevel presenceOf(MissionStatus mission, boolean charging) {
+        if (mission.maintenance() || charging) {
             return PresenceLevel.AWAY;
         }
         return switch (mission.state()) {
@@ -355,8 +374,11 @@ public final class ControlMlEndpoint {
         };
     }
 
-    /** The presence's status text: the mission's detail, else what the level stands for. */
-    static String reasonOf(MissionStatus mission) {
+    /** The presence's status text: "charging" on the dock after a low battery, the mission's detail, else the level's. */
+    static String reasonOf(MissionStatus mission, boolean charging) {
+        if (charging && !mission.maintenance()) {
+            return CHARGING;
+        }
         if (!mission.detail().isBlank()) {
             return mission.detail();
         }
@@ -373,8 +395,9 @@ public final class ControlMlEndpoint {
      * {@link #showCurrentMission}.
      */
     private synchronized void missionChanged(MissionStatus mission) {
-        PresenceLevel level = presenceOf(mission);
-        String reason = reasonOf(mission);
+        boolean charging = motion.charging();
+        PresenceLevel level = presenceOf(mission, charging);
+        String reason = reasonOf(mission, charging);
         if (level == shownLevel && reason.equals(shownReason)) {
             return;
         }

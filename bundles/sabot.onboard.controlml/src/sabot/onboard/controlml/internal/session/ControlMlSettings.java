@@ -180,6 +180,11 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
                 + "while leased; 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
         double obstaclesRate() default 2;
 
+        @AttributeDefinition(name = "Battery telemetry rate", description = "Hz at which cm.battery is published "
+                + "while leased (the power board is read about once a second); 0: not published.", min = "0",
+                max = "" + MAX_RATE_HZ)
+        double batteryRate() default 1;
+
         @AttributeDefinition(name = "Telemetry base rate", description = "Hz at which each telemetry resource is "
                 + "published while nobody leases it (never above that resource's rate): a robot nobody watches "
                 + "still shows where it is and what it does. 0: only while leased (a watcher's explicit "

@@ -99,6 +99,7 @@ class ControlMlEndpointOnProsodyTest {
     private static final double VELOCITY_HZ = 10;
     private static final double MISSION_HZ = 5;
     private static final double OBSTACLES_HZ = 4;
+    private static final double BATTERY_HZ = 3;
     /** The rate of each telemetry resource nobody leases (controlml.baseRate). */
     private static final double BASE_HZ = 2;
     private static final String MARKER = "sabot.test.endpoint";
@@ -165,7 +166,7 @@ class ControlMlEndpointOnProsodyTest {
         workbench = ControlMlManager.getInstanceFor(wbConnection);
         // telemetry listeners before login: +notify goes into the entity caps
         for (Resource<?, ?> r : List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
-                Resources.OBSTACLES)) {
+                Resources.OBSTACLES, Resources.BATTERY)) {
             BlockingQueue<Long> times = new LinkedBlockingQueue<>();
             arrivals.put(r.name(), times);
             workbench.telemetry().addListener(r, (device, value) -> times.add(System.nanoTime()));
@@ -196,6 +197,7 @@ class ControlMlEndpointOnProsodyTest {
         settings.put("velocityRate", VELOCITY_HZ);
         settings.put("missionRate", MISSION_HZ);
         settings.put("obstaclesRate", OBSTACLES_HZ);
+        settings.put("batteryRate", BATTERY_HZ);
         settings.put("baseRate", BASE_HZ);
         settings.put("leaseMax", 5.0);
         configuration.update(settings);
@@ -287,6 +289,11 @@ class ControlMlEndpointOnProsodyTest {
 
         assertEquals(small, robot.map());
         assertEquals(small, workbench.get(robotJid, Resources.MAP).orElseThrow());
+    }
+
+    @Test
+    void batteryGetAnswersThePowerBoardsReading() {
+        assertEquals(RecordedRobot.BATTERY, workbench.get(robotJid, Resources.BATTERY).orElseThrow());
     }
 
     @Test
@@ -432,6 +439,10 @@ class ControlMlEndpointOnProsodyTest {
                         true),
                 refusal("gains read with the motor board silent", r -> r.boardAnswering(false), (w, r) -> w.get(r,
                         Resources.PID), Condition.service_unavailable, ControlMlCondition.DEVICE_FAULT, false),
+                refusal("battery with the power board failing", r -> r.batteryFault(
+                        "power: state_of_charge 12000 is outside the register map's bounds [0, 10000]"), (w, r) -> w
+                                .get(r, Resources.BATTERY), Condition.service_unavailable,
+                        ControlMlCondition.DEVICE_FAULT, false),
                 refusal("gains of a motor the robot lacks", idle, (w, r) -> w.set(r, Resources.PID, new PidGains(List
                         .of(new MotorGains(0, 1, 0, 0), new MotorGains(3, 1, 0, 0)))), Condition.not_acceptable,
                         ControlMlCondition.INVALID_VALUE, true),
@@ -517,20 +528,22 @@ class ControlMlEndpointOnProsodyTest {
         follow();
         assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", BASE_HZ), new StreamRate(
                 "cm.velocity", BASE_HZ), new StreamRate("cm.mission", BASE_HZ), new StreamRate("cm.obstacles",
-                        BASE_HZ))), workbench.get(robotJid, Resources.TELEMETRY).orElseThrow(), "nobody leases");
+                        BASE_HZ), new StreamRate("cm.battery", BASE_HZ))), workbench.get(robotJid,
+                                Resources.TELEMETRY).orElseThrow(), "nobody leases");
         assertRates(Map.of("cm.position", BASE_HZ, "cm.mission", BASE_HZ));
 
         List<StreamRate> asked = new ArrayList<>();
-        for (String r : List.of("cm.position", "cm.velocity", "cm.mission", "cm.obstacles")) {
+        for (String r : List.of("cm.position", "cm.velocity", "cm.mission", "cm.obstacles", "cm.battery")) {
             asked.add(new StreamRate(r, TelemetryRates.MAX_RATE_HZ));
         }
         TelemetryRates granted = workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(60, asked))
                 .orElseThrow();
         assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", POSITION_HZ), new StreamRate(
                 "cm.velocity", VELOCITY_HZ), new StreamRate("cm.mission", MISSION_HZ), new StreamRate("cm.obstacles",
-                        OBSTACLES_HZ))), granted, "the configured rates, for at most controlml.leaseMax");
+                        OBSTACLES_HZ), new StreamRate("cm.battery", BATTERY_HZ))), granted,
+                "the configured rates, for at most controlml.leaseMax");
         assertRates(Map.of("cm.position", POSITION_HZ, "cm.velocity", VELOCITY_HZ, "cm.mission", MISSION_HZ,
-                "cm.obstacles", OBSTACLES_HZ));
+                "cm.obstacles", OBSTACLES_HZ, "cm.battery", BATTERY_HZ));
 
         assertTrue(workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(0, List.of())).isSuccess());
         assertEquals(BASE_HZ, workbench.get(robotJid, Resources.TELEMETRY).orElseThrow().stream("cm.position")
@@ -734,7 +747,7 @@ class ControlMlEndpointOnProsodyTest {
         Subscriptions.mutual(wbConnection, robotConnection, Duration.ofSeconds(TIMEOUT_S));
         EntityBareJid device = robotJid.asEntityBareJidIfPossible();
         for (Resource<?, ?> r : List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
-                Resources.OBSTACLES)) {
+                Resources.OBSTACLES, Resources.BATTERY)) {
             long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
             while (true) {
                 Outcome<Void> followed = workbench.telemetry().follow(device, r);

@@ -28,6 +28,7 @@ import sabot.controlml.payload.TrajectoryPoint;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.BatteryState;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;
@@ -176,6 +177,24 @@ final class RecordedRobot implements RobotMotion {
     public synchronized PidGains gains() throws CommandRefused {
         requireBoard();
         return gains;
+    }
+
+    /** The power board's reading: 42 % of 10 Ah at 25.3 V, 0.61 A away from a dock. */
+    static final BatteryState BATTERY = new BatteryState(T0, 0.42, 25.3, 0.61, 10.0, false, false, false);
+    private String batteryFault = "";
+
+    /** Makes the power board's reads fail with that text (empty: they succeed again). */
+    synchronized void batteryFault(String why) {
+        batteryFault = why;
+    }
+
+    @Override
+    public synchronized BatteryState battery() throws CommandRefused {
+        telemetryReads++;
+        if (!batteryFault.isEmpty()) {
+            throw new CommandRefused(ControlMlCondition.DEVICE_FAULT, batteryFault);
+        }
+        return BATTERY;
     }
 
     // ---------------------------------------------------------------------------------------------- commands

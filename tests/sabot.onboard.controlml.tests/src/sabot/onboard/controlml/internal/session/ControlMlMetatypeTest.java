@@ -36,7 +36,7 @@ class ControlMlMetatypeTest {
         assertEquals(new TreeSet<>(Set.of("server", "port", "caFile", "jid", "passwordFile", "resource", "reconnectMin",
                 "reconnectMax", "observerGroups", "operatorGroups", "maintainerGroups", "openPolicy",
                 "staleCommandAfter", "liveness", "positionRate", "velocityRate", "missionRate", "obstaclesRate",
-                "baseRate", "leaseMax")),
+                "batteryRate", "baseRate", "leaseMax")),
                 new TreeSet<>(d.keySet()));
         // deny by default: the lab's group of each role (the server grants them), no open policy
         assertEquals(AccessRules.OBSERVERS_GROUP, d.get("observerGroups"));
