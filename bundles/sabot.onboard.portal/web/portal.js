@@ -25,6 +25,10 @@
       text('velocity', fixed(s.velocity.linear, 3) + ' m/s, ' + fixed(s.velocity.angular, 3) + ' rad/s');
       text('mission', s.mission.state + (s.mission.maintenance ? ' (maintenance)' : '') + ', ' +
         Math.round(s.mission.progress) + ' %' + (s.mission.detail ? ' — ' + s.mission.detail : ''));
+      var b = s.battery;
+      text('battery', !b ? 'not measured' : b.fault ? 'fault: ' + b.fault :
+        fixed(b.stateOfCharge * 100, 0) + ' %, ' + fixed(b.voltage, 2) + ' V, ' + fixed(b.current, 2) + ' A' +
+        (b.charging ? ', charging' : b.full ? ', full' : b.docked ? ', docked' : ''));
       if (robot) {
         robot.setAttribute('transform', 'translate(' + s.pose.x + ' ' + (-s.pose.y) + ') rotate(' + (-deg(s.pose.theta)) + ')');
         robot.setAttribute('visibility', 'visible');
@@ -47,6 +51,7 @@
     } else {
       text('pose', 'no motion task');
       text('mission', 'no motion task');
+      text('battery', 'no motion task');
     }
     text('updated', s.time);
     var rows = document.getElementById('task-rows');

@@ -57,6 +57,7 @@ class PortalTest extends RigTest {
     static final int REQUEST_TIMEOUT_S = 2;
     static final Pattern CSRF = Pattern.compile("name=\"csrf\" value=\"([A-Za-z0-9_-]+)\"");
     static final Pattern POSE_X = Pattern.compile("\"pose\":\\{\"x\":(-?[0-9.]+)");
+    static final Pattern BATTERY_SOC = Pattern.compile("\"battery\":\\{\"stateOfCharge\":([0-9.E-]+)");
 
     /**
      * @return the portal's extra configuration lines: HTTPS on 127.0.0.1 with the lab CA's certificate of this computer
@@ -249,6 +250,18 @@ class PortalTest extends RigTest {
                 assertTrue(status.contains(part), part + " in " + status);
             }
             assertTrue(m.get("/map.svg").body().startsWith("<svg"));
+
+            // the battery as the power board measures it (about once a second), as the simulator has it
+            Matcher soc = BATTERY_SOC.matcher("");
+            long batteryBy = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
+            while (!(soc = BATTERY_SOC.matcher(m.get("/api/status").body())).find() && System.nanoTime() < batteryBy) {
+                TimeUnit.MILLISECONDS.sleep(POLL_MS); // as the page's script polls
+            }
+            assertTrue(soc.find(0), "no battery in " + m.get("/api/status").body());
+            Matcher truth = Pattern.compile("soc=([0-9.]+)").matcher(rig.sim.command("battery 1"));
+            assertTrue(truth.find(), "the simulator's battery truth");
+            assertEquals(Double.parseDouble(truth.group(1)), Double.parseDouble(soc.group(1)), 0.01,
+                    "the page's state of charge against the simulator's");
 
             // clients that send slowly hold no thread: more of them than Jetty's threads, bodies and headers
             // unfinished, and the page still answers at once; each slow body is answered (408) after its time

@@ -71,7 +71,7 @@ final class PortalPages {
                 + "height=\"160\"></section>");
         sb.append("<section id=\"motion\"><h2>Mission and pose</h2><dl>");
         sb.append(row("Mission", "mission")).append(row("Goal", "goal")).append(row("Pose", "pose")).append(row(
-                "Velocity", "velocity")).append(row("Updated", "updated"));
+                "Velocity", "velocity")).append(row("Battery", "battery")).append(row("Updated", "updated"));
         sb.append("</dl><div class=\"map\">").append(mapSvg == null ? "<p>no map (the motion task does not run)</p>"
                 : mapSvg).append("</div></section>");
         sb.append("<section id=\"tasks\"><h2>Tasks</h2><table><thead><tr><th>task</th><th>state</th></tr></thead>"

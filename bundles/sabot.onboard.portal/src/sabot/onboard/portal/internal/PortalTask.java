@@ -61,6 +61,8 @@ import sabot.controlml.payload.GridMap;
 import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.onboard.config.OnboardSettings;
+import sabot.model.robot.BatteryState;
+import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.RobotMotion;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.task.OnboardTask;
@@ -432,6 +434,7 @@ public final class PortalTask implements OnboardTask, PortalRobot {
                 path.add(List.of(points.get(i).x(), points.get(i).y()));
             }
             s.put("path", path);
+            s.put("battery", battery(m));
         }
         List<Object> states = new ArrayList<>();
         java.util.stream.Stream.concat(tasks.stream(), java.util.stream.Stream.of(this)).sorted(java.util.Comparator.comparing(OnboardTask::name)).forEach(t -> {
@@ -446,6 +449,24 @@ public final class PortalTask implements OnboardTask, PortalRobot {
         s.put("tasks", states);
         s.put("log", log == null ? List.of() : log.lines());
         return s;
+    }
+
+    /** @return the battery as the power board last measured it, or its fault ({@code fault}: the reason) */
+    private static Map<String, Object> battery(RobotMotion m) {
+        Map<String, Object> b = new LinkedHashMap<>();
+        try {
+            BatteryState s = m.battery();
+            b.put("stateOfCharge", s.stateOfCharge());
+            b.put("voltage", s.voltage());
+            b.put("current", s.current());
+            b.put("docked", s.docked());
+            b.put("charging", s.charging());
+            b.put("full", s.full());
+            b.put("measured", s.measured().toString());
+        } catch (CommandRefused e) {
+            b.put("fault", e.getMessage());
+        }
+        return b;
     }
 
     @Override
