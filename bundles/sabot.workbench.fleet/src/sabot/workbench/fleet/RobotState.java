@@ -12,6 +12,7 @@ import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.TrajectoryPayload;
 import sabot.model.geometry.Point2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.BatteryState;
 
 /**
  * One robot as the workbench knows it: an immutable snapshot. Everything is in the map frame, SI units (metres,
@@ -36,10 +37,12 @@ import sabot.model.geometry.Twist2D;
  * @param lastTelemetry when the workbench last received telemetry from it (workbench clock), or null
  * @param poseLag       how late its last pose arrived compared with its fastest ({@link PoseLag}), or null before its
  *                      first pose since it last went offline or came online
+ * @param battery       the last battery reading ({@code cm.battery}: charge, voltage, current, docked, charging, full),
+ *                      or null
  */
 public record RobotState(String jid, String name, Availability availability, String reason, PoseEstimate pose,
         Twist2D velocity, MissionStatus mission, TrajectoryPayload path, Obstacles obstacles, Goal goal,
-        List<Point2D> trail, Instant lastTelemetry, PoseLag poseLag) {
+        List<Point2D> trail, Instant lastTelemetry, PoseLag poseLag, BatteryState battery) {
 
     /**
      * Telemetry received longer ago than this, or a last pose that arrived this much later than the robot's fastest,
@@ -63,7 +66,7 @@ public record RobotState(String jid, String name, Availability availability, Str
     /** @return a robot known by name only: offline, nothing received */
     public static RobotState unknown(String jid, String name) {
         return new RobotState(jid, name, Availability.OFFLINE, "", null, null, null, null, null, null, List.of(),
-                null, null);
+                null, null, null);
     }
 
     /**
@@ -94,7 +97,7 @@ public record RobotState(String jid, String name, Availability availability, Str
     /** @return this state with another name */
     public RobotState withName(String n) {
         return new RobotState(jid, n, availability, reason, pose, velocity, mission, path, obstacles, goal, trail,
-                lastTelemetry, poseLag);
+                lastTelemetry, poseLag, battery);
     }
 
     /**
@@ -106,7 +109,7 @@ public record RobotState(String jid, String name, Availability availability, Str
         boolean crossing = (a == Availability.OFFLINE) != (availability == Availability.OFFLINE);
         PoseLag lag = crossing ? null : poseLag;
         return new RobotState(jid, name, a, r, pose, velocity, mission, path, obstacles, goal, trail, lastTelemetry,
-                lag);
+                lag, battery);
     }
 
     /**
@@ -118,31 +121,37 @@ public record RobotState(String jid, String name, Availability availability, Str
     public RobotState withPose(PoseEstimate p, Instant at, long atNanos) {
         PoseLag lag = poseLag == null ? PoseLag.first(p.time(), atNanos) : poseLag.next(p.time(), atNanos);
         return new RobotState(jid, name, availability, reason, p, velocity, mission, path, obstacles, goal, extend(
-                trail, p), at, lag);
+                trail, p), at, lag, battery);
     }
 
     /** @return this state with a new twist received at {@code at} */
     public RobotState withVelocity(Twist2D v, Instant at) {
         return new RobotState(jid, name, availability, reason, pose, v, mission, path, obstacles, goal, trail, at,
-                poseLag);
+                poseLag, battery);
     }
 
     /** @return this state with a new mission status received at {@code at} */
     public RobotState withMission(MissionStatus m, Instant at) {
         return new RobotState(jid, name, availability, reason, pose, velocity, m, path, obstacles, goal, trail, at,
-                poseLag);
+                poseLag, battery);
     }
 
     /** @return this state with new obstacles received at {@code at} */
     public RobotState withObstacles(Obstacles o, Instant at) {
         return new RobotState(jid, name, availability, reason, pose, velocity, mission, path, o, goal, trail, at,
-                poseLag);
+                poseLag, battery);
     }
 
     /** @return this state with another planned path and goal (either may be null) */
     public RobotState withPlan(TrajectoryPayload t, Goal g) {
         return new RobotState(jid, name, availability, reason, pose, velocity, mission, t, obstacles, g, trail,
-                lastTelemetry, poseLag);
+                lastTelemetry, poseLag, battery);
+    }
+
+    /** @return this state with a new battery reading received at {@code at} */
+    public RobotState withBattery(BatteryState b, Instant at) {
+        return new RobotState(jid, name, availability, reason, pose, velocity, mission, path, obstacles, goal, trail,
+                at, poseLag, b);
     }
 
     private static List<Point2D> extend(List<Point2D> trail, PoseEstimate p) {

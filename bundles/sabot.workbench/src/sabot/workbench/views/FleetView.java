@@ -42,6 +42,7 @@ import org.eclipse.ui.contexts.IContextService;
 import org.eclipse.ui.part.ViewPart;
 
 import sabot.controlml.payload.MissionStatus;
+import sabot.model.robot.BatteryState;
 import sabot.workbench.fleet.FleetBinding;
 import sabot.workbench.fleet.FleetState;
 import sabot.workbench.fleet.QueuedCommand;
@@ -72,7 +73,7 @@ public final class FleetView extends ViewPart {
 
     /** Column titles, in order. */
     public static final List<String> COLUMNS = List.of("Robot", "Presence", "Pose (x, y, θ)", "Mission",
-            "Telemetry");
+            "Telemetry", "Battery");
     private static final int[] WIDTHS = { 220, 220, 220, 330, 140 };
     /** How often the ages are refreshed without news (ms): stale robots turn grey without an event. */
     static final int AGE_REFRESH_MS = 500;
@@ -137,7 +138,20 @@ public final class FleetView extends ViewPart {
             mission = "queued until online: " + String.join("; ", waiting) + (r.mission() == null ? "" : " | "
                     + mission);
         }
-        return List.of(r.name() + " <" + r.jid() + ">", presence(r), pose(r), mission, age(r, now));
+        return List.of(r.name() + " <" + r.jid() + ">", presence(r), pose(r), mission, age(r, now), battery(r
+                .battery()));
+    }
+
+    /**
+     * @return a battery for its column: {@code 87 % · 25.31 V}, with {@code · charging}, {@code · full} or
+     *         {@code · docked}; {@code –} before the first reading
+     */
+    static String battery(BatteryState b) {
+        if (b == null) {
+            return "–";
+        }
+        return String.format(Locale.ROOT, "%.0f %% · %.2f V%s", b.stateOfCharge() * 100, b.voltage(), b.charging()
+                ? " · charging" : b.full() ? " · full" : b.docked() ? " · docked" : "");
     }
 
     private static String presence(RobotState r) {
@@ -358,6 +372,7 @@ public final class FleetView extends ViewPart {
             case 2 -> r -> r.pose() == null ? Double.NEGATIVE_INFINITY : r.pose().pose().x();
             case 3 -> r -> r.mission() == null ? -1.0 : r.mission().progress();
             case 4 -> r -> r.lastTelemetry() == null ? Instant.MIN : r.lastTelemetry();
+            case 5 -> r -> r.battery() == null ? -1.0 : r.battery().stateOfCharge();
             default -> RobotState::name;
         };
         @SuppressWarnings({ "unchecked", "rawtypes" })

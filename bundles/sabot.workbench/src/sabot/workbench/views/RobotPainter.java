@@ -134,7 +134,7 @@ final class RobotPainter implements AutoCloseable {
             gc.setAntialias(SWT.OFF);
             gc.setLineWidth(1);
             // late: poses keep coming but behind (RobotState.isLate); stale: none lately, or offline
-            String label = r.name() + (r.isLate() ? " (late)" : stale ? " (stale)" : "");
+            String label = r.name() + battery(r) + (r.isLate() ? " (late)" : stale ? " (stale)" : "");
             drawLabel(gc, r.jid(), label, cx + rad + 3, cy - rad - 14);
         } finally {
             body.dispose();
@@ -143,6 +143,15 @@ final class RobotPainter implements AutoCloseable {
             trail.dispose();
             obstacle.dispose();
         }
+    }
+
+    /** @return the robot's battery for its label on the map: {@code  87 %}, {@code  87 % charging}, or nothing */
+    static String battery(RobotState r) {
+        if (r.battery() == null) {
+            return "";
+        }
+        return String.format(java.util.Locale.ROOT, " %.0f %%%s", r.battery().stateOfCharge() * 100, r.battery()
+                .charging() ? " charging" : "");
     }
 
     /**

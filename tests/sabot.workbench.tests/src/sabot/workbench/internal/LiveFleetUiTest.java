@@ -179,6 +179,16 @@ class LiveFleetUiTest {
                 .pose().y())), row.toString());
         assertEquals(1, fleetView().table().getItemCount());
 
+        // the battery (cm.battery, about once a second) in its column, as the simulator has it
+        waitFor(() -> robotRow().battery() != null, 10, () -> "no battery reading: " + robotRow());
+        java.util.regex.Matcher soc = java.util.regex.Pattern.compile("soc=([0-9.]+)").matcher(sim.command(
+                "battery 1"));
+        assertTrue(soc.find(), "the simulator's battery truth");
+        RobotState withBattery = robotRow();
+        assertEquals(Double.parseDouble(soc.group(1)), withBattery.battery().stateOfCharge(), 0.01, "state of charge");
+        assertTrue(FleetView.texts(withBattery, Instant.now()).get(5).matches("[0-9]+ % · [0-9.]+ V.*"), FleetView
+                .texts(withBattery, Instant.now()).toString());
+
         // on the map: the footprint's fill is drawn at the robot's true position
         workspace.centreOn(ROBOT_JID);
         flush();

@@ -32,7 +32,7 @@ final class FleetTelemetry {
 
     /** The telemetry every followed robot is subscribed to. */
     static final List<Resource<?, ?>> TELEMETRY = List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
-            Resources.OBSTACLES);
+            Resources.OBSTACLES, Resources.BATTERY);
     /** Most attempts to follow a robot whose nodes do not exist yet (it publishes within a second of coming online). */
     static final int FOLLOW_ATTEMPTS = 10;
 
@@ -76,6 +76,10 @@ final class FleetTelemetry {
         m.telemetry().addListener(Resources.OBSTACLES, (device, o) -> {
             traffic.telemetry(device.toString());
             registry.update(device.toString(), r -> r.withObstacles(o, clock.instant()));
+        });
+        m.telemetry().addListener(Resources.BATTERY, (device, b) -> {
+            traffic.telemetry(device.toString());
+            registry.update(device.toString(), r -> r.withBattery(b, clock.instant()));
         });
         m.telemetry().addListener(Resources.MISSION, (device, mission) -> {
             String jid = device.toString();
