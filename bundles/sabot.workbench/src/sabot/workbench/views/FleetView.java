@@ -74,7 +74,7 @@ public final class FleetView extends ViewPart {
     /** Column titles, in order. */
     public static final List<String> COLUMNS = List.of("Robot", "Presence", "Pose (x, y, θ)", "Mission",
             "Telemetry", "Battery");
-    private static final int[] WIDTHS = { 220, 220, 220, 330, 140 };
+    private static final int[] WIDTHS = { 200, 200, 180, 310, 100, 190 };
     /** How often the ages are refreshed without news (ms): stale robots turn grey without an event. */
     static final int AGE_REFRESH_MS = 500;
     /**
