@@ -25,6 +25,9 @@
       text('velocity', fixed(s.velocity.linear, 3) + ' m/s, ' + fixed(s.velocity.angular, 3) + ' rad/s');
       text('mission', s.mission.state + (s.mission.maintenance ? ' (maintenance)' : '') + ', ' +
         Math.round(s.mission.progress) + ' %' + (s.mission.detail ? ' — ' + s.mission.detail : ''));
+      text('targets', !s.mission.targets.length ? 'one goal' : s.mission.targets.map(function (t, i) {
+        return (i + 1) + ' ' + t.action + ' (' + fixed(t.x, 2) + ', ' + fixed(t.y, 2) + ') ' + t.state;
+      }).join(' · '));
       var b = s.battery;
       text('battery', !b ? 'not measured' : b.fault ? 'fault: ' + b.fault :
         fixed(b.stateOfCharge * 100, 0) + ' %, ' + fixed(b.voltage, 2) + ' V, ' + fixed(b.current, 2) + ' A' +
@@ -51,6 +54,7 @@
     } else {
       text('pose', 'no motion task');
       text('mission', 'no motion task');
+      text('targets', 'no motion task');
       text('battery', 'no motion task');
     }
     text('updated', s.time);

@@ -350,8 +350,20 @@ class PortalTest extends RigTest {
             // the product is alive and still drives: it takes the next goal and moves (a new goal replaces the
             // mission under way; on a machine so loaded that the loop braked for lack of odometry, it ends that fault)
             assertEquals(200, m.get("/api/status").statusCode());
-            var next = rig.operator.set(rig.robot, Resources.GOAL, new Goal(new Pose2D(8.5, 1.0, 0), 0.15, 0.3));
-            assertTrue(next.isSuccess(), "goal refused after the bad input: " + next.errorOrNull());
+            // (a mission of two targets: the page lists them with their states)
+            var next = rig.operator.set(rig.robot, Resources.MISSION, MissionTest.start(List.of(MissionTest.target(
+                    8.5, 1.0, 0, sabot.controlml.payload.MissionTarget.Action.PASS, 0), MissionTest.target(7.0, 1.0,
+                            Math.PI, sabot.controlml.payload.MissionTarget.Action.STOP, 0))));
+            assertTrue(next.isSuccess(), "mission refused after the bad input: " + next.errorOrNull());
+            String listed = "\"targets\":[{\"x\":8.5000,\"y\":1.0000,\"action\":\"pass\",\"state\":\"active\"},"
+                    + "{\"x\":7.0000,\"y\":1.0000,\"action\":\"stop\",\"state\":\"pending\"}]";
+            String targets = m.get("/api/status").body();
+            for (long by = System.nanoTime() + TimeUnit.SECONDS.toNanos(5); !targets.contains(listed) && System
+                    .nanoTime() < by;) {
+                TimeUnit.MILLISECONDS.sleep(POLL_MS); // as the page's script polls
+                targets = m.get("/api/status").body();
+            }
+            assertTrue(targets.contains(listed), targets);
             try {
                 awaitTruth(rig.sim, t -> t.distanceTo(driving.x(), driving.y()) > 0.2, 20, "still driving");
             } catch (AssertionError stopped) {

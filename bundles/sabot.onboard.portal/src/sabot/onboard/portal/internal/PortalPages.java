@@ -70,7 +70,7 @@ final class PortalPages {
         sb.append("</dl><img id=\"qr\" src=\"/qr.png\" alt=\"QR inventory (the robot's vCard photo)\" width=\"160\" "
                 + "height=\"160\"></section>");
         sb.append("<section id=\"motion\"><h2>Mission and pose</h2><dl>");
-        sb.append(row("Mission", "mission")).append(row("Goal", "goal")).append(row("Pose", "pose")).append(row(
+        sb.append(row("Mission", "mission")).append(row("Targets", "targets")).append(row("Goal", "goal")).append(row("Pose", "pose")).append(row(
                 "Velocity", "velocity")).append(row("Battery", "battery")).append(row("Updated", "updated"));
         sb.append("</dl><div class=\"map\">").append(mapSvg == null ? "<p>no map (the motion task does not run)</p>"
                 : mapSvg).append("</div></section>");

@@ -422,9 +422,22 @@ public final class PortalTask implements OnboardTask, PortalRobot {
             var twist = m.velocity().twist();
             s.put("velocity", Map.of("linear", twist.linear(), "angular", twist.angular()));
             MissionStatus mission = m.mission();
-            s.put("mission", Map.of("state", mission.state().name().toLowerCase(java.util.Locale.ROOT), "maintenance",
-                    mission.maintenance(), "progress", mission.progress(), "detail", mission.detail() == null ? ""
-                            : mission.detail()));
+            Map<String, Object> missionState = new LinkedHashMap<>();
+            missionState.put("state", mission.state().name().toLowerCase(java.util.Locale.ROOT));
+            missionState.put("maintenance", mission.maintenance());
+            missionState.put("progress", mission.progress());
+            missionState.put("detail", mission.detail() == null ? "" : mission.detail());
+            List<Object> targets = new ArrayList<>(); // a mission of several targets: each with its state
+            for (var target : mission.targets()) {
+                Map<String, Object> one = new LinkedHashMap<>();
+                one.put("x", target.goal().pose().x());
+                one.put("y", target.goal().pose().y());
+                one.put("action", target.action().code());
+                one.put("state", target.state().code());
+                targets.add(one);
+            }
+            missionState.put("targets", targets);
+            s.put("mission", missionState);
             s.put("goal", m.goal().map(g -> (Object) Map.of("x", g.pose().x(), "y", g.pose().y(), "theta", g.pose()
                     .theta())).orElse(null));
             List<Object> path = new ArrayList<>();
