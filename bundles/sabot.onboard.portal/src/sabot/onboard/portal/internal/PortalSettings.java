@@ -6,14 +6,13 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.Paths;
 import java.time.Duration;
-import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 
 import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
-import sabot.onboard.task.InvalidSettings;
+import sabot.onboard.task.SettingsParser;
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskProperties;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
@@ -100,23 +99,19 @@ public record PortalSettings(InetAddress bind, int port, String address, PemIden
     /**
      * @param properties the task's configuration
      * @return the settings
-     * @throws InvalidSettings listing every problem
+     * @throws sabot.onboard.task.InvalidSettings listing every problem
      */
     public static PortalSettings of(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        PortalSettings settings = parse(properties, problems);
-        if (settings == null) {
-            throw new InvalidSettings(TASK, problems);
-        }
-        return settings;
+        return PARSER.of(TASK, properties);
     }
 
     /** @return the problems of a configuration; empty when {@link #of} would succeed */
     public static List<Problem> problems(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        parse(properties, problems);
-        return problems;
+        return PARSER.problems(properties);
     }
+
+    /** The one parse behind {@link #of} and {@link #problems}. */
+    private static final SettingsParser<PortalSettings> PARSER = PortalSettings::parse;
 
     /** @return the page's address, e.g. {@code https://robot-1.lab:8443/} */
     public String url() {

@@ -3,7 +3,6 @@ package sabot.onboard.remotefs.internal;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.Paths;
-import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 
@@ -11,7 +10,7 @@ import org.osgi.service.metatype.annotations.AttributeDefinition;
 import org.osgi.service.metatype.annotations.ObjectClassDefinition;
 
 import sabot.controlml.payload.FileChunk;
-import sabot.onboard.task.InvalidSettings;
+import sabot.onboard.task.SettingsParser;
 import sabot.onboard.task.TaskProperties;
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
@@ -64,23 +63,19 @@ public record RemoteFsSettings(Path root, RemoteFsLimits limits) {
     /**
      * @param properties the task's configuration
      * @return the settings
-     * @throws InvalidSettings listing every problem
+     * @throws sabot.onboard.task.InvalidSettings listing every problem
      */
     public static RemoteFsSettings of(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        RemoteFsSettings settings = parse(properties, problems);
-        if (settings == null) {
-            throw new InvalidSettings(TASK, problems);
-        }
-        return settings;
+        return PARSER.of(TASK, properties);
     }
 
     /** @return the problems of a configuration; empty when {@link #of} would succeed */
     public static List<Problem> problems(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        parse(properties, problems);
-        return problems;
+        return PARSER.problems(properties);
     }
+
+    /** The one parse behind {@link #of} and {@link #problems}. */
+    private static final SettingsParser<RemoteFsSettings> PARSER = RemoteFsSettings::parse;
 
     private static RemoteFsSettings parse(Map<String, ?> properties, List<Problem> problems) {
         TaskProperties p = new TaskProperties(properties);

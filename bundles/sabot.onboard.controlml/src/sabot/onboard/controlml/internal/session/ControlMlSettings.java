@@ -23,7 +23,7 @@ import sabot.controlml.payload.TelemetryRates;
 import sabot.fleet.AccessRules;
 import sabot.fleet.LinkWatch;
 import sabot.fleet.ServerTrust;
-import sabot.onboard.task.InvalidSettings;
+import sabot.onboard.task.SettingsParser;
 import sabot.onboard.task.TaskProperties;
 import sabot.onboard.task.OnboardTask;
 import sabot.onboard.task.TaskSettingsCheck.Problem;
@@ -200,23 +200,19 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
 
     /**
      * @param properties the task's configuration
-     * @throws InvalidSettings listing every problem
+     * @throws sabot.onboard.task.InvalidSettings listing every problem
      */
     public static ControlMlSettings of(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        ControlMlSettings s = parse(properties, problems);
-        if (s == null) {
-            throw new InvalidSettings(TASK, problems);
-        }
-        return s;
+        return PARSER.of(TASK, properties);
     }
 
     /** @return the problems of a configuration, in key order of the Metatype; empty when {@link #of} succeeds */
     public static List<Problem> problems(Map<String, ?> properties) {
-        List<Problem> problems = new ArrayList<>();
-        parse(properties, problems);
-        return problems;
+        return PARSER.problems(properties);
     }
+
+    /** The one parse behind {@link #of} and {@link #problems}. */
+    private static final SettingsParser<ControlMlSettings> PARSER = ControlMlSettings::parse;
 
     @Override
     public String toString() { // never the password
