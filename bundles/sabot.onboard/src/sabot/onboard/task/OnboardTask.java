@@ -36,11 +36,11 @@ public interface OnboardTask {
      * Property marking a configuration that a task writes for another service (e.g. the {@code portal} task's
      * configuration of the HTTP service): its value is the task's name. The task deletes it when it stops; at start
      * the onboard application also deletes those of the tasks not enabled, as a process that was killed leaves them
-     * in Config Admin.
+     * in Config Admin. The same property as a {@link TaskSettingsCheck}'s ({@link TaskSettingsCheck#TASK}).
      *
      * @since 0.3
      */
-    String TASK_PROPERTY = "sabot.task";
+    String TASK_PROPERTY = TaskSettingsCheck.TASK;
 
     /** @return the task's name as written in the configuration file, e.g. {@code heartbeat}; never null */
     String name();
