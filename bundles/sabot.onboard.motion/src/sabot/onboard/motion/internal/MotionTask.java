@@ -54,6 +54,7 @@ import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
 import sabot.model.robot.BatteryState;
+import sabot.model.robot.PeerRobot;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
 import sabot.onboard.motion.loop.BatteryGuard;
@@ -69,6 +70,7 @@ import sabot.onboard.task.NamedThreads;
 import sabot.onboard.robot.CommandRefused;
 import sabot.onboard.robot.MotionListener;
 import sabot.onboard.robot.RobotMotion;
+import sabot.onboard.session.FleetPeers;
 import sabot.onboard.session.RobotSession;
 import sabot.onboard.session.SessionListener;
 import sabot.onboard.task.OnboardTask;
@@ -149,6 +151,11 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 + "charging on its dock after a low battery is free again.", min = "0", max = "1")
         double batteryCharged() default LoopDefaults.BATTERY_CHARGED;
 
+        @AttributeDefinition(name = "Peer memory", description = "Seconds another robot not heard from stays an "
+                + "obstacle of the planner and the collision guard (the peers task follows the fleet's robots; "
+                + "docs/USER-GUIDE.md, Other robots); after it, only the sonar sees it.", min = "1", max = "3600")
+        double peerMemory() default LoopDefaults.PEER_MEMORY;
+
         @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
                 + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
                 + "at the ordinary policy.", min = "0", max = "99")
@@ -207,6 +214,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     /** What other threads read: the loop's state at the end of its last period or command. */
     private volatile ControlLoop.Snapshot snapshot;
     private volatile RobotSession session;
+    /** The other robots (the peers task), or null while it does not run. */
+    private volatile FleetPeers fleetPeers;
     private final LoopClock clock = LoopClock.SYSTEM;
     private final LoopHost host = new LoopHost() {
         @Override
@@ -244,6 +253,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
         loop = new ControlLoop(host, clock, boards, robot, localizerTask.newLocalizer(plannerTask.landmarks()),
                 plannerTask.planner(), trackerTask, settings(), limits);
+        loop.peersFrom(this::peers, c.peerMemory());
         snapshot = loop.snapshot();
         loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
                 Thread.MAX_PRIORITY));
@@ -330,6 +340,23 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         notifier.shutdown();
         LOG.info("motion task stopped, robot braked; control loop {}; joystick twist to wheel set-point {}; {}",
                 loop.timing().summary(), loop.teleopLatency().describe(), loop.landmarkSummary());
+    }
+
+    @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)
+    void bindPeers(FleetPeers p) {
+        fleetPeers = p;
+    }
+
+    void unbindPeers(FleetPeers p) {
+        if (fleetPeers == p) {
+            fleetPeers = null;
+        }
+    }
+
+    /** @return the robots the peers task follows; none while it does not run */
+    private List<PeerRobot> peers() {
+        FleetPeers p = fleetPeers;
+        return p == null ? List.of() : p.peers();
     }
 
     @Reference(cardinality = ReferenceCardinality.OPTIONAL, policy = ReferencePolicy.DYNAMIC)

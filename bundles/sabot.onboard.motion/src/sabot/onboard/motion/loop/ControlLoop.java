@@ -6,6 +6,7 @@ import java.time.Instant;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
+import java.util.function.Supplier;
 
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -34,15 +35,21 @@ import sabot.model.geometry.Twist2D;
 import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 import sabot.model.robot.BatteryState;
+import sabot.model.robot.PeerRobot;
 import sabot.model.robot.RobotDescription;
 import sabot.planner.PlanResult;
+import sabot.planner.costmap.MovingObstacle;
 
 /**
  * The robot's control loop: its state and one period of it ({@link #tick}), in plain Java. Whoever runs it (the
  * {@code motion} task on the robot, a test, the motion simulation) gives it a {@link LoopHost} (plan requests, mission
  * events, queued commands), a {@link LoopClock}, the {@link RobotBoards}, the estimator, the planner and the control
  * laws, and one {@link LoopSettings} snapshot per configuration change. Every method runs on the loop's thread, except
- * {@link #planPath}, which only reads immutable inputs and the planner (serialised by itself).
+ * {@link #planPath}, which only reads immutable inputs and the planner (serialised by itself), and
+ * {@link #peersFrom}.
+ * <p>
+ * The other robots ({@link #peersFrom}: the peers task's snapshot) are obstacles like the sonar's echoes: planned
+ * around with their predicted sweep, checked against the path ahead, and counted by the collision guard.
  * <p>
  * One deadman: while a joystick drives, the robot brakes when no twist has been received for
  * {@link LoopSettings#deadman()} seconds (judged on the twist's receive time, as ros2_control's
@@ -107,6 +114,8 @@ public final class ControlLoop {
     private final long t0;
     private final LoopTiming timing;
     private final EchoMemory echoes;
+    /** The other robots, as the peers task hears them. */
+    private final PeerField peers = new PeerField();
     private final SensorRounds sensors;
     private final LoopGuard guard;
 
@@ -177,7 +186,7 @@ public final class ControlLoop {
         this.settings = settings;
         this.timing = new LoopTiming(settings.periodNanos());
         this.echoes = new EchoMemory(planner);
-        this.guard = new LoopGuard(planner, echoes);
+        this.guard = new LoopGuard(planner, echoes, peers);
         this.sensors = new SensorRounds(boards, localizer, echoes, this::now, clock::now);
         this.pose = settings.localizer().start();
         limitsChanged(limits);
@@ -200,6 +209,17 @@ public final class ControlLoop {
     public void settingsChanged(LoopSettings s) {
         this.settings = s;
         guard.configure(s, limits);
+    }
+
+    /**
+     * Where the loop hears of the other robots (the peers task's snapshot, read once a period and at each plan) and
+     * how long it remembers one not heard from ({@code motion.peerMemory}); thread-safe.
+     *
+     * @param source the robots followed; {@code List::of} for none
+     * @param memory s, positive
+     */
+    public void peersFrom(Supplier<List<PeerRobot>> source, double memory) {
+        peers.from(source, memory);
     }
 
     /** @return what the collision guard last did to a command, e.g. {@code stopped: obstacle 0.31 m ahead}; "" */
@@ -249,6 +269,7 @@ public final class ControlLoop {
             // write, not at the start of the next period
             host.applyPendingCommands();
         }
+        peers.refresh(clock.now(), settings.robotRadius());
         // every command passes the collision guard, whatever produced it
         Twist2D command = guard.limit(pose, command(t));
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
@@ -420,6 +441,14 @@ public final class ControlLoop {
             replan(t);
             return Twist2D.ZERO;
         }
+        PeerField.Disc robot = peers.blocking(trajectory, tau, settings.blockedLookahead(), settings.robotRadius()
+                + settings.blockedClearance());
+        if (robot != null) {
+            LOG.info("robot {} on the path ahead: stopping to replan", robot.jid());
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+            return Twist2D.ZERO;
+        }
         if (!progressChecker.isMakingProgress(t, pose)) {
             LOG.info("no progress for {} s: replanning", settings.progressTime());
             progressChecker.reset();
@@ -535,8 +564,10 @@ public final class ControlLoop {
         List<List<Point2D>> segments = new java.util.ArrayList<>();
         List<Point2D> ends = new java.util.ArrayList<>();
         Point2D start = from.position();
+        LoopSettings s = settings;
+        List<MovingObstacle> robots = PeerField.obstacles(peers.discs(clock.now(), s.robotRadius()));
         for (Goal g : concat(via, goal)) {
-            PlanResult result = planner.plan(start, g.pose().position(), obstacles);
+            PlanResult result = planner.plan(start, g.pose().position(), obstacles, robots);
             if (result instanceof PlanResult.Unreachable u) {
                 return new Plan(null, 0, "unreachable goal: " + u.detail());
             }
@@ -544,7 +575,6 @@ public final class ControlLoop {
             ends.add(g.pose().position());
             start = g.pose().position();
         }
-        LoopSettings s = settings;
         return TrajectoryFitter.fit(segments, from.position(), ends, limits.withHeadroom(s.speedHeadroom(),
                 s.accelerationHeadroom()));
     }

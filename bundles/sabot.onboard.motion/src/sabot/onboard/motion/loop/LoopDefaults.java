@@ -45,6 +45,12 @@ public final class LoopDefaults {
     public static final double BATTERY_LOW = 0.2;
     /** {@code motion.batteryCharged}, 0–1: a robot charging after a low battery is free again at this charge. */
     public static final double BATTERY_CHARGED = 0.9;
+    /**
+     * {@code motion.peerMemory}, s: another robot not heard from for this long stops being an obstacle of the planner
+     * and the collision guard (its body is left to the sonar). Long enough to outlast a reconnection of either robot's
+     * session (a few seconds), short enough that a robot switched off and carried away does not block a door for good.
+     */
+    public static final double PEER_MEMORY = 30;
 
     // teleop task
     /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */

@@ -15,7 +15,8 @@ import sabot.model.geometry.Twist2D;
 /**
  * The loop's collision guard: every twist the loop is about to hand to the velocity smoother — the tracker's, the
  * stabilizer's, the turn in place's, the joystick's — passes {@link CollisionGuard} against what the robot knows of
- * its surroundings, the static map's occupied cells and the sonar echoes in memory. It remembers its last verdict for
+ * its surroundings, the static map's occupied cells, the sonar echoes in memory and the other robots' footprints
+ * ({@link PeerField}). It remembers its last verdict for
  * the robot's status and logs each change of it once. Used by the loop's thread only.
  */
 final class LoopGuard {
@@ -24,14 +25,16 @@ final class LoopGuard {
 
     private final NavigationPlanner planner;
     private final EchoMemory echoes;
+    private final PeerField peers;
     private final CollisionGuard.ObstacleField field = this::clearance;
     private CollisionGuard guard;
     private CollisionGuard.Decision last = new CollisionGuard.Decision(Twist2D.ZERO, CollisionGuard.Action.FREE,
             Double.POSITIVE_INFINITY);
 
-    LoopGuard(NavigationPlanner planner, EchoMemory echoes) {
+    LoopGuard(NavigationPlanner planner, EchoMemory echoes, PeerField peers) {
         this.planner = planner;
         this.echoes = echoes;
+        this.peers = peers;
     }
 
     /** Takes new settings or limits: the footprint, margin, reaction time, deceleration and speeds. */
@@ -97,8 +100,8 @@ final class LoopGuard {
         last = new CollisionGuard.Decision(Twist2D.ZERO, CollisionGuard.Action.FREE, Double.POSITIVE_INFINITY);
     }
 
-    /** Distance from (x, y) to the nearest echo or occupied cell of the static map, m. */
+    /** Distance from (x, y) to the nearest echo, other robot's disc or occupied cell of the static map, m. */
     private double clearance(double x, double y, double limit) {
-        return planner.clearance(x, y, echoes.nearest(x, y, limit));
+        return planner.clearance(x, y, peers.nearest(x, y, echoes.nearest(x, y, limit)));
     }
 }

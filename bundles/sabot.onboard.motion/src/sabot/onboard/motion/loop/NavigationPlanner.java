@@ -14,6 +14,7 @@ import sabot.planner.Planner;
 import sabot.planner.Planners;
 import sabot.planner.costmap.CostmapLayers;
 import sabot.planner.costmap.InflationParameters;
+import sabot.planner.costmap.MovingObstacle;
 import sabot.planner.costmap.MovingObstacleModel;
 
 /**
@@ -61,15 +62,59 @@ public final class NavigationPlanner implements AutoCloseable {
      * @param obstacles sonar points in the map frame, m
      * @return a path or the reason there is none
      */
-    public synchronized PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles) {
+    public PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles) {
+        return plan(start, goal, obstacles, List.of());
+    }
+
+    /**
+     * Plans around the sonar's points and the other robots: each robot's disc is an obstacle (inflated by this
+     * robot's radius like a wall), and the space its velocity sweeps in the next seconds costs what
+     * {@link MovingObstacleModel#defaults()} gives, so that the path prefers to pass behind a robot rather than across
+     * its way.
+     *
+     * @param obstacles sonar points in the map frame, m
+     * @param robots    the other robots: centre, map-frame velocity, radius
+     * @return a path or the reason there is none
+     */
+    public synchronized PlanResult plan(Point2D start, Point2D goal, Collection<Point2D> obstacles,
+            List<MovingObstacle> robots) {
         OccupancyGrid grid = map;
-        OccupancyGrid withObstacles = OccupancyGrid.of(grid.geometry(), grid.toArray());
+        GridGeometry g = grid.geometry();
+        OccupancyGrid withObstacles = OccupancyGrid.of(g, grid.toArray());
         for (Point2D p : obstacles) {
-            grid.geometry().cellAt(p).ifPresent(c -> withObstacles.set(c.column(), c.row(), OccupancyGrid.OCCUPIED));
+            g.cellAt(p).ifPresent(c -> withObstacles.set(c.column(), c.row(), OccupancyGrid.OCCUPIED));
+        }
+        for (MovingObstacle robot : robots) {
+            markDisc(withObstacles, robot.position(), robot.radius());
         }
         clearFootprint(withObstacles, start);
         CostmapLayers layers = CostmapLayers.fromOccupancy(withObstacles, inflation, MovingObstacleModel.defaults());
+        if (!robots.isEmpty()) {
+            layers.setMovingObstacles(robots, 0, 0);
+        }
         return planner.plan(layers.costmap(), start, List.of(goal));
+    }
+
+    /** Marks every cell whose centre lies within {@code radius} of {@code centre} as occupied. */
+    private static void markDisc(OccupancyGrid grid, Point2D centre, double radius) {
+        GridGeometry g = grid.geometry();
+        Optional<Cell> middle = g.cellAt(centre);
+        if (middle.isEmpty()) {
+            return;
+        }
+        int reach = (int) Math.ceil(radius / g.resolution()) + 1;
+        for (int dr = -reach; dr <= reach; dr++) {
+            for (int dc = -reach; dc <= reach; dc++) {
+                int c = middle.get().column() + dc;
+                int r = middle.get().row() + dr;
+                if (g.contains(c, r)) {
+                    Point2D p = g.cellCentre(c, r);
+                    if (Math.hypot(p.x() - centre.x(), p.y() - centre.y()) <= radius) {
+                        grid.set(c, r, OccupancyGrid.OCCUPIED);
+                    }
+                }
+            }
+        }
     }
 
     /**

@@ -1,0 +1,151 @@
+package sabot.onboard.motion.loop;
+
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Objects;
+import java.util.function.Supplier;
+
+import sabot.model.geometry.Point2D;
+import sabot.model.path.Trajectory;
+import sabot.model.path.TrajectorySample;
+import sabot.model.robot.PeerRobot;
+import sabot.planner.costmap.MovingObstacle;
+
+/**
+ * The other robots as obstacles (docs/USER-GUIDE.md, "Other robots"): each one the peers task follows is a disc of the
+ * fleet's footprint (the robots of a fleet are of one kind: this robot's radius) at the position its telemetry last
+ * gave, carried forward along its velocity for the time since, at most {@link #MAX_PREDICTION}; a robot that went
+ * offline stands where it was last heard. A robot not heard for {@code memory} seconds is forgotten (the sonar still
+ * sees its body). The planner takes the discs as obstacles and their predicted sweep as the moving-obstacle layer
+ * ({@link NavigationPlanner}); the collision guard and the check of the path ahead take the discs.
+ * <p>
+ * The source and the memory are replaced from the motion task's threads; {@link #refresh} and the queries run on the
+ * loop's thread, {@link #obstacles} on the planner's too.
+ */
+final class PeerField {
+
+    /**
+     * The longest a pose is carried forward along the peer's velocity, s: ten of its telemetry periods at the peers
+     * task's 5 Hz lease. Beyond it the robot is taken to stand where the prediction ended, not to drive on.
+     */
+    static final double MAX_PREDICTION = 2.0;
+    /** Step along the trajectory ahead at which it is checked against the discs, s. */
+    private static final double BLOCKED_CHECK_STEP = 0.1;
+
+    /** A peer as an obstacle now: its predicted centre, its map-frame velocity (0 when offline), its radius. */
+    record Disc(String jid, double x, double y, double vx, double vy, double radius) {
+        MovingObstacle moving() {
+            return new MovingObstacle(new Point2D(x, y), vx, vy, radius);
+        }
+    }
+
+    private volatile Supplier<List<PeerRobot>> source = List::of;
+    private volatile double memory = LoopDefaults.PEER_MEMORY;
+    /** Loop thread only: the discs at the last {@link #refresh}. */
+    private List<Disc> discs = List.of();
+
+    /**
+     * @param source the robots followed (the peers task's snapshot); never null
+     * @param memory s a robot not heard from stays an obstacle, positive
+     */
+    void from(Supplier<List<PeerRobot>> source, double memory) {
+        if (!(memory > 0)) {
+            throw new IllegalArgumentException("peer memory must be > 0 s, got " + memory);
+        }
+        this.source = Objects.requireNonNull(source);
+        this.memory = memory;
+    }
+
+    /** Loop thread: takes the peers as they are at {@code now}. @return the discs */
+    List<Disc> refresh(Instant now, double radius) {
+        discs = discs(now, radius);
+        return discs;
+    }
+
+    /** @return the discs of the last {@link #refresh} */
+    List<Disc> current() {
+        return discs;
+    }
+
+    /** Any thread: the peers' discs at {@code now}. */
+    List<Disc> discs(Instant now, double radius) {
+        List<PeerRobot> peers;
+        try {
+            peers = source.get();
+        } catch (RuntimeException e) {
+            return List.of(); // a failing source must not stop the loop; the sonar still sees
+        }
+        if (peers.isEmpty()) {
+            return List.of();
+        }
+        double keep = memory;
+        List<Disc> out = new ArrayList<>(peers.size());
+        for (PeerRobot p : peers) {
+            double age = Math.max(0, Duration.between(p.heard(), now).toNanos() * 1e-9);
+            if (age > keep) {
+                continue;
+            }
+            double vx = p.online() ? p.vx() : 0;
+            double vy = p.online() ? p.vy() : 0;
+            double ahead = Math.min(age, MAX_PREDICTION);
+            double x = p.pose().x() + vx * ahead;
+            double y = p.pose().y() + vy * ahead;
+            if (age >= MAX_PREDICTION) {
+                vx = 0; // carried to where the prediction ends, and taken to stand there
+                vy = 0;
+            }
+            if (Double.isFinite(x) && Double.isFinite(y)) {
+                out.add(new Disc(p.jid(), x, y, vx, vy, radius));
+            }
+        }
+        return out;
+    }
+
+    /** @return the discs as the planner's moving obstacles */
+    static List<MovingObstacle> obstacles(List<Disc> discs) {
+        return discs.stream().map(Disc::moving).toList();
+    }
+
+    /**
+     * @return the distance from (x, y) to the nearest disc's edge (0 inside one) of the last refresh, m, or
+     *         {@code limit} when none is nearer
+     */
+    double nearest(double x, double y, double limit) {
+        return nearest(discs, x, y, limit);
+    }
+
+    static double nearest(List<Disc> discs, double x, double y, double limit) {
+        double best = limit;
+        for (Disc d : discs) {
+            double gap = Math.max(0, Math.hypot(d.x() - x, d.y() - y) - d.radius());
+            if (gap < best) {
+                best = gap;
+            }
+        }
+        return best;
+    }
+
+    /**
+     * @param from      trajectory time from which to look, s
+     * @param lookahead s of driving checked
+     * @param clearance m a disc's edge must keep from the robot's centre on the path
+     * @return the robot whose disc lies on the path ahead (as of the last refresh), or null
+     */
+    Disc blocking(Trajectory trajectory, double from, double lookahead, double clearance) {
+        if (discs.isEmpty()) {
+            return null;
+        }
+        double end = Math.min(trajectory.duration(), from + lookahead);
+        for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
+            TrajectorySample r = trajectory.sample(s);
+            for (Disc d : discs) {
+                if (Math.hypot(d.x() - r.x(), d.y() - r.y()) - d.radius() < clearance) {
+                    return d;
+                }
+            }
+        }
+        return null;
+    }
+}

@@ -1,0 +1,157 @@
+package sabot.onboard.motion.loop;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.atomic.AtomicReference;
+
+import org.junit.jupiter.api.Test;
+
+import sabot.controlml.payload.MissionState;
+import sabot.controlml.payload.TrajectoryPoint;
+import sabot.model.geometry.Point2D;
+import sabot.model.geometry.Pose2D;
+import sabot.model.geometry.Twist2D;
+import sabot.model.robot.PeerRobot;
+import sabot.onboard.motion.loop.ControlLoop.Mode;
+
+/**
+ * The other robots in the control loop (docs/USER-GUIDE.md, "Other robots"): the peers task's robots are planned around,
+ * stop the robot when one comes onto its path, and stop the joystick short of them; a robot not heard from is
+ * forgotten after the peer memory. On {@link LoopRig}: the real loop, fake boards, a fake clock.
+ */
+class PeerLoopTest {
+
+    /** Centre to centre, two footprints touch at this distance. */
+    private static final double TOUCH = 2 * LoopRig.ROBOT_RADIUS;
+
+    private final LoopRig rig = new LoopRig();
+    private final AtomicReference<List<PeerRobot>> peers = new AtomicReference<>(List.of());
+
+    PeerLoopTest() {
+        rig.loop.peersFrom(peers::get, 5);
+    }
+
+    private PeerRobot standing(String name, double x, double y) {
+        return new PeerRobot(name + "@sabot.local", new Pose2D(x, y, 0), Twist2D.ZERO, rig.clock.now(), true);
+    }
+
+    /** A robot standing in the way from the start: the plan goes round it, and the robot never touches it. */
+    @Test
+    void aRobotStandingOnTheWayIsPlannedAround() {
+        Point2D other = new Point2D(5, 5);
+        peers.set(List.of(standing("sabot-02", other.x(), other.y())));
+        rig.run(0.1);
+        rig.navigateTo(8, 5, 0);
+        ControlLoop.Snapshot s = rig.tick();
+        for (TrajectoryPoint p : s.trajectory().points()) {
+            assertTrue(Math.hypot(p.x() - other.x(), p.y() - other.y()) >= TOUCH, "the plan keeps clear: " + p);
+        }
+        double closest = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < 40 * 50 && s.mission().state() == MissionState.RUNNING; i++) {
+            s = rig.tick();
+            rig.answerPlanRequests();
+            peers.set(List.of(standing("sabot-02", other.x(), other.y()))); // heard again, at 5 Hz or so
+            Pose2D p = s.pose().pose();
+            closest = Math.min(closest, Math.hypot(p.x() - other.x(), p.y() - other.y()));
+        }
+        assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
+        assertTrue(closest >= TOUCH, "came within " + closest + " m of the other robot's centre");
+    }
+
+    /** A robot that drives onto the path ahead stops the robot, which replans round it (with the robot as obstacle). */
+    @Test
+    void aRobotComingOntoThePathStopsTheRobotWhichReplansAroundIt() {
+        rig.run(0.1);
+        rig.navigateTo(8, 5, 0);
+        ControlLoop.Snapshot s = rig.run(2.0);
+        assertEquals(Mode.FOLLOW, s.mode());
+        List<TrajectoryPoint> before = s.trajectory().points();
+        Pose2D here = s.pose().pose();
+        Point2D other = new Point2D(here.x() + 1.2, here.y());
+        peers.set(List.of(standing("sabot-02", other.x(), other.y())));
+        s = rig.tick();
+        assertEquals(Mode.BLOCKED, s.mode());
+        assertEquals(1, rig.planRequests.size());
+        rig.answerPlanRequests();
+        s = rig.tick();
+        assertNotEquals(Mode.BLOCKED, s.mode());
+        List<TrajectoryPoint> after = s.trajectory().points();
+        assertNotEquals(before, after);
+        for (TrajectoryPoint p : after) {
+            assertTrue(Math.hypot(p.x() - other.x(), p.y() - other.y()) >= TOUCH, "the new plan keeps clear: " + p);
+        }
+    }
+
+    /** The joystick straight at a standing robot: the collision guard stops short of its footprint. */
+    @Test
+    void theJoystickStopsShortOfAnotherRobot() {
+        Point2D other = new Point2D(3.5, 5.0);
+        rig.run(0.1);
+        ControlLoop.Snapshot s = null;
+        for (double t = 0; t < 6; t += 0.1) {
+            peers.set(List.of(standing("sabot-02", other.x(), other.y())));
+            rig.joystick(0.4, 0);
+            s = rig.run(0.1);
+        }
+        double gap = other.x() - s.pose().pose().x() - TOUCH;
+        assertTrue(gap >= 0 && gap <= LoopDefaults.GUARD_MARGIN + 0.05, "gap between the footprints " + gap + " m");
+        assertEquals(0, rig.boards.lastWrite().left(), 1e-9);
+        assertTrue(rig.loop.guardStatus().startsWith("stopped: obstacle"), rig.loop.guardStatus());
+    }
+
+    /** Not heard from for longer than the peer memory, a robot is no obstacle any more: the joystick drives on. */
+    @Test
+    void aRobotNotHeardFromForThePeerMemoryIsForgotten() {
+        peers.set(List.of(standing("sabot-02", 3.5, 5.0))); // heard once, now; the memory is 5 s
+        rig.run(0.1);
+        ControlLoop.Snapshot s = rig.drive(0.4, 0, 4);
+        assertEquals(0, rig.boards.lastWrite().left(), 1e-9, "stopped by the robot heard 4 s ago");
+        rig.run(1.5);
+        s = rig.drive(0.4, 0, 3);
+        assertTrue(s.pose().pose().x() > 3.5, "drove on through where it was: " + s.pose().pose());
+    }
+
+    /**
+     * A robot heard driving is carried along its velocity for the time since (at most {@link PeerField#MAX_PREDICTION});
+     * one offline stands where it was last heard.
+     */
+    @Test
+    void aDrivingRobotIsPredictedAndAnOfflineOneStands() {
+        PeerField field = new PeerField();
+        Instant heard = Instant.parse("2026-11-30T12:00:00Z");
+        List<PeerRobot> list = new ArrayList<>();
+        list.add(new PeerRobot("a@sabot.local", new Pose2D(1, 1, Math.PI / 2), new Twist2D(0.5, 0), heard, true));
+        list.add(new PeerRobot("b@sabot.local", new Pose2D(4, 1, 0), new Twist2D(0.5, 0), heard, false));
+        field.from(() -> list, 30);
+        List<PeerField.Disc> discs = field.discs(heard.plusMillis(400), 0.25);
+        assertEquals(2, discs.size());
+        assertEquals(1.0, discs.get(0).x(), 1e-9);
+        assertEquals(1.2, discs.get(0).y(), 1e-9, "0.4 s at 0.5 m/s along +y");
+        assertEquals(0.5, discs.get(0).vy(), 1e-9);
+        assertEquals(4.0, discs.get(1).x(), 1e-9, "offline: where it was");
+        assertEquals(0.0, discs.get(1).vx(), 1e-9);
+        PeerField.Disc late = field.discs(heard.plusSeconds(10), 0.25).get(0);
+        assertEquals(1 + 0.5 * PeerField.MAX_PREDICTION, late.y(), 1e-9, "carried forward at most MAX_PREDICTION");
+        assertEquals(0.0, late.vy(), 1e-9, "and taken to stand there");
+        assertEquals(List.of(), field.discs(heard.plusSeconds(31), 0.25), "forgotten after the memory");
+    }
+
+    /** A source that throws gives no robots (the sonar still sees): the loop runs on. */
+    @Test
+    void aFailingSourceLeavesTheLoopRunning() {
+        rig.loop.peersFrom(() -> {
+            throw new IllegalStateException("peers task stopping");
+        }, 5);
+        rig.run(0.1);
+        rig.navigateTo(4, 5, 0);
+        ControlLoop.Snapshot s = rig.run(0.5);
+        assertNotNull(s.trajectory());
+        assertEquals(MissionState.RUNNING, s.mission().state());
+    }
+}
