@@ -99,17 +99,40 @@ public final class OnboardProcess implements AutoCloseable {
     /** As {@link #start(Path, Robot, String, String)}, with the robot's XMPP server(s) given ({@code servers}). */
     public static OnboardProcess start(Path dir, Robot robot, String password, String extra, String servers)
             throws IOException {
+        return start(writeConfiguration(dir, robot, password, extra, servers));
+    }
+
+    /**
+     * As {@link #start(Path, Robot, String, String)}, the framework's configuration area in {@code dir/osgi} instead
+     * of the product's {@code configuration/} (as {@code ./sabot demo} runs each robot): Config Admin persists the
+     * tasks' configurations there, so that several robots started from the one product folder at once do not read
+     * each other's.
+     */
+    public static OnboardProcess startWithOwnArea(Path dir, Robot robot, String password, String extra)
+            throws IOException {
+        return start(writeConfiguration(dir, robot, password, extra, "127.0.0.1"), dir.resolve("osgi"));
+    }
+
+    private static Path writeConfiguration(Path dir, Robot robot, String password, String extra, String servers)
+            throws IOException {
         Path passwordFile = dir.resolve("xmpp-password");
         Files.writeString(passwordFile, password + "\n");
         Files.setPosixFilePermissions(passwordFile, PosixFilePermissions.fromString("rw-------"));
         Path fsRoot = Files.createDirectories(dir.resolve("fs"));
         Path config = dir.resolve("onboard.conf");
         Files.writeString(config, configuration(robot, passwordFile, fsRoot, extra, servers));
-        return start(config);
+        return config;
     }
 
     /** Starts the product with a configuration file as it is. */
     public static OnboardProcess start(Path config) throws IOException {
+        return start(config, null);
+    }
+
+    /**
+     * @param osgiArea the framework's configuration area ({@code -configuration}), or null for the product's own
+     */
+    private static OnboardProcess start(Path config, Path osgiArea) throws IOException {
         Path product = product();
         List<String> cmd = new ArrayList<>();
         cmd.add(Paths.get(System.getProperty("java.home"), "bin", "java").toString());
@@ -120,6 +143,10 @@ public final class OnboardProcess implements AutoCloseable {
         cmd.add("-consoleLog");
         cmd.add("-config");
         cmd.add(config.toString());
+        if (osgiArea != null) {
+            cmd.add("-configuration");
+            cmd.add(osgiArea.toString());
+        }
         // the console goes to a file beside the configuration (kept for a failed test) and is tailed from there
         Path log = config.resolveSibling("onboard.log");
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(product.toFile()).redirectErrorStream(true)

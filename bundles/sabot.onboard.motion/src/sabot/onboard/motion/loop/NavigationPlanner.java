@@ -68,7 +68,7 @@ public final class NavigationPlanner implements AutoCloseable {
 
     /**
      * Plans around the sonar's points and the other robots: each robot's disc is an obstacle (inflated by this
-     * robot's radius like a wall), and the space its velocity sweeps in the next seconds costs what
+     * robot's radius like a wall) unless it covers the start or the goal, and the space its velocity sweeps in the next seconds costs what
      * {@link MovingObstacleModel#defaults()} gives, so that the path prefers to pass behind a robot rather than across
      * its way.
      *
@@ -85,7 +85,9 @@ public final class NavigationPlanner implements AutoCloseable {
             g.cellAt(p).ifPresent(c -> withObstacles.set(c.column(), c.row(), OccupancyGrid.OCCUPIED));
         }
         for (MovingObstacle robot : robots) {
-            markDisc(withObstacles, robot.position(), robot.radius());
+            if (!near(robot, start) && !near(robot, goal)) {
+                markDisc(withObstacles, robot.position(), robot.radius());
+            }
         }
         clearFootprint(withObstacles, start);
         CostmapLayers layers = CostmapLayers.fromOccupancy(withObstacles, inflation, MovingObstacleModel.defaults());
@@ -93,6 +95,16 @@ public final class NavigationPlanner implements AutoCloseable {
             layers.setMovingObstacles(robots, 0, 0);
         }
         return planner.plan(layers.costmap(), start, List.of(goal));
+    }
+
+    /**
+     * @return whether this robot's footprint at {@code p} would touch {@code robot}: a robot standing on the goal (it
+     *         will move on: the path ahead's check stops this robot short of it until it does, or the mission fails
+     *         after the blocked timeout) or next to the start is priced by its sweep only, not made a wall the planner
+     *         cannot leave or reach
+     */
+    private boolean near(MovingObstacle robot, Point2D p) {
+        return Math.hypot(robot.position().x() - p.x(), robot.position().y() - p.y()) <= robot.radius() + robotRadius;
     }
 
     /** Marks every cell whose centre lies within {@code radius} of {@code centre} as occupied. */

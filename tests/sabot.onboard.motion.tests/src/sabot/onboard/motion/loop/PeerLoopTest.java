@@ -88,6 +88,37 @@ class PeerLoopTest {
         }
     }
 
+    /**
+     * A robot standing on the goal is not a wall that makes the goal unreachable: the robot sets off, stops short of
+     * it, and arrives once it has moved away.
+     */
+    @Test
+    void aRobotStandingOnTheGoalIsWaitedForAndNotRefused() {
+        Point2D other = new Point2D(6, 5);
+        peers.set(List.of(standing("sabot-02", other.x(), other.y())));
+        rig.run(0.1);
+        rig.navigateTo(other.x(), other.y(), 0);
+        ControlLoop.Snapshot s = rig.tick();
+        assertEquals(MissionState.RUNNING, s.mission().state(), s.mission().detail());
+        double closest = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < 8 * 50; i++) {
+            peers.set(List.of(standing("sabot-02", other.x(), other.y())));
+            s = rig.tick();
+            rig.answerPlanRequests();
+            Pose2D p = s.pose().pose();
+            closest = Math.min(closest, Math.hypot(p.x() - other.x(), p.y() - other.y()));
+        }
+        assertEquals(MissionState.RUNNING, s.mission().state(), s.mission().detail());
+        assertTrue(closest >= TOUCH, "came within " + closest + " m of the robot on the goal");
+        assertTrue(s.pose().pose().x() > 3, "set off towards it: " + s.pose().pose());
+        peers.set(List.of()); // it drove away
+        for (int i = 0; i < 30 * 50 && s.mission().state() == MissionState.RUNNING; i++) {
+            s = rig.tick();
+            rig.answerPlanRequests();
+        }
+        assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
+    }
+
     /** The joystick straight at a standing robot: the collision guard stops short of its footprint. */
     @Test
     void theJoystickStopsShortOfAnotherRobot() {
