@@ -29,8 +29,9 @@ import sabot.model.geometry.Pose2D;
  * <p>The YAML reader understands the flat {@code key: value} subset these files use ({@code #} comments, quoted
  * strings, a {@code [x, y, yaw]} list for the origin) and nothing more, so the model stays free of dependencies.
  *
- * <p>Sabot extends the YAML with two keys, {@value #LANDMARKS_KEY}: the file listing the map's ceiling landmarks
- * ({@link #readLandmarks}), and {@value #DOCKS_KEY}: the charging docks ({@link #readDocks}). {@code map_server}
+ * <p>Sabot extends the YAML with three keys, {@value #LANDMARKS_KEY}: the file listing the map's ceiling landmarks
+ * ({@link #readLandmarks}), {@value #DOCKS_KEY}: the charging docks ({@link #readDocks}), and {@value #PASSAGES_KEY}:
+ * the narrow passages robots pass one at a time ({@link #readPassages}). {@code map_server}
  * reads only the keys it knows, so such a map still loads there.
  */
 public final class MapServerFormat {
@@ -46,7 +47,12 @@ public final class MapServerFormat {
     public static final String DOCKS_KEY = "sabot_docks";
     /** At most this many docks, as the simulator reads them (onboard-bridge/sim/world.h, WORLD_MAX_DOCKS). */
     public static final int MAX_DOCKS = 16;
-    private static final Pattern DOCK = Pattern.compile("\\[\\s*([^,\\[\\]]+?)\\s*,\\s*([^,\\[\\]]+?)\\s*\\]");
+    /** Key of the map's narrow passages ({@link #readPassages}). */
+    public static final String PASSAGES_KEY = "sabot_passages";
+    /** At most this many passages. */
+    public static final int MAX_PASSAGES = 64;
+    /** One inner list of a list of lists: the text between its brackets. */
+    private static final Pattern TUPLE = Pattern.compile("\\[([^\\[\\]]*)\\]");
 
     /** A decimal number as the landmarks file writes it (no hex, no {@code NaN}, no {@code 1d}: as the C reader). */
     private static final Pattern DECIMAL = Pattern.compile("[+-]?(\\d+\\.?\\d*|\\.\\d+)([eE][+-]?\\d+)?");
@@ -243,25 +249,78 @@ public final class MapServerFormat {
      *                            more than {@value #MAX_DOCKS}
      */
     public static List<Point2D> readDocks(Path yamlFile) throws IOException {
-        String value = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(DOCKS_KEY);
+        List<double[]> tuples = readTuples(yamlFile, DOCKS_KEY, 2, "[[x, y], ...] (numbers, metres)");
+        if (tuples.size() > MAX_DOCKS) {
+            throw new MapFormatException(yamlFile, "key '" + DOCKS_KEY + "' lists " + tuples.size()
+                    + " docks, at most " + MAX_DOCKS);
+        }
+        return tuples.stream().map(t -> new Point2D(t[0], t[1])).toList();
+    }
+
+    /**
+     * The narrow passages of a map, where robots pass one at a time (docs/PASSAGES.md): its YAML's
+     * {@value #PASSAGES_KEY}, e.g. {@code sabot_passages: [[4.2, 1.7, 4.4, 2.7]]}, each the rectangle
+     * {@code [minX, minY, maxX, maxY]} of the narrow part (a door's opening, a corridor), metres in the map frame.
+     *
+     * @param yamlFile the map's YAML description
+     * @return the passages, numbered from 1 in the YAML's order; empty when the YAML has no such key
+     * @throws MapFormatException naming the file and what is wrong: not a list of four finite numbers each, a
+     *                            rectangle whose maximum is not above its minimum, or more than {@value #MAX_PASSAGES}
+     */
+    public static List<Passage> readPassages(Path yamlFile) throws IOException {
+        List<double[]> tuples = readTuples(yamlFile, PASSAGES_KEY, 4,
+                "[[minX, minY, maxX, maxY], ...] (numbers, metres)");
+        if (tuples.size() > MAX_PASSAGES) {
+            throw new MapFormatException(yamlFile, "key '" + PASSAGES_KEY + "' lists " + tuples.size()
+                    + " passages, at most " + MAX_PASSAGES);
+        }
+        List<Passage> out = new ArrayList<>();
+        for (double[] t : tuples) {
+            if (!(t[2] > t[0]) || !(t[3] > t[1])) {
+                throw new MapFormatException(yamlFile, "key '" + PASSAGES_KEY + "': passage " + (out.size() + 1)
+                        + " [" + t[0] + ", " + t[1] + ", " + t[2] + ", " + t[3] + "] is not a rectangle: maxX must "
+                        + "be above minX and maxY above minY");
+            }
+            out.add(new Passage(out.size() + 1, t[0], t[1], t[2], t[3]));
+        }
+        return List.copyOf(out);
+    }
+
+    /**
+     * Reads a key whose value is a list of lists of {@code arity} numbers, {@code [[a, b], [c, d]]}.
+     *
+     * @return the lists in order; empty when the key is absent
+     * @throws MapFormatException "key 'K' is 'V', expected EXPECTED" when the value is anything else
+     */
+    private static List<double[]> readTuples(Path yamlFile, String key, int arity, String expected)
+            throws IOException {
+        String value = parseFlatYaml(yamlFile, readText(yamlFile, "map file")).get(key);
         if (value == null) {
             return List.of();
         }
         String v = value.strip();
-        MapFormatException bad = new MapFormatException(yamlFile, "key '" + DOCKS_KEY + "' is '" + value
-                + "', expected [[x, y], ...] (numbers, metres)");
+        MapFormatException bad = new MapFormatException(yamlFile, "key '" + key + "' is '" + value + "', expected "
+                + expected);
         if (!v.startsWith("[") || !v.endsWith("]")) {
             throw bad;
         }
         String inner = v.substring(1, v.length() - 1).strip();
-        List<Point2D> docks = new ArrayList<>();
-        java.util.regex.Matcher m = DOCK.matcher(inner);
+        List<double[]> tuples = new ArrayList<>();
+        java.util.regex.Matcher m = TUPLE.matcher(inner);
         int at = 0;
         while (at < inner.length()) {
             if (!m.find(at) || m.start() != at) {
                 throw bad;
             }
-            docks.add(new Point2D(dockNumber(m.group(1), bad), dockNumber(m.group(2), bad)));
+            String[] parts = m.group(1).split(",", -1);
+            if (parts.length != arity) {
+                throw bad;
+            }
+            double[] t = new double[arity];
+            for (int i = 0; i < arity; i++) {
+                t[i] = tupleNumber(parts[i].strip(), bad);
+            }
+            tuples.add(t);
             at = m.end();
             while (at < inner.length() && Character.isWhitespace(inner.charAt(at))) {
                 at++;
@@ -279,14 +338,10 @@ public final class MapServerFormat {
                 }
             }
         }
-        if (docks.size() > MAX_DOCKS) {
-            throw new MapFormatException(yamlFile, "key '" + DOCKS_KEY + "' lists " + docks.size()
-                    + " docks, at most " + MAX_DOCKS);
-        }
-        return List.copyOf(docks);
+        return tuples;
     }
 
-    private static double dockNumber(String text, MapFormatException bad) throws MapFormatException {
+    private static double tupleNumber(String text, MapFormatException bad) throws MapFormatException {
         if (!DECIMAL.matcher(text).matches()) {
             throw bad;
         }

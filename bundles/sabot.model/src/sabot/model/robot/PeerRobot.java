@@ -15,14 +15,26 @@ import sabot.model.geometry.Twist2D;
  * @param velocity the twist it is executing (body frame: linear m/s along its heading, angular rad/s); never null
  * @param heard    when the pose arrived, on this robot's clock; never null
  * @param online   false once the other robot went offline (its last pose is kept: its body is still there)
+ * @param passage  its claim on a narrow passage ({@code cm.passage}) as last heard, or null for none
  */
-public record PeerRobot(String jid, Pose2D pose, Twist2D velocity, Instant heard, boolean online) {
+public record PeerRobot(String jid, Pose2D pose, Twist2D velocity, Instant heard, boolean online,
+        PassageClaim passage) {
 
     public PeerRobot {
         Objects.requireNonNull(jid, "jid");
         Objects.requireNonNull(pose, "pose");
         Objects.requireNonNull(velocity, "velocity");
         Objects.requireNonNull(heard, "heard");
+    }
+
+    /** A robot with no claim on a passage. */
+    public PeerRobot(String jid, Pose2D pose, Twist2D velocity, Instant heard, boolean online) {
+        this(jid, pose, velocity, heard, online, null);
+    }
+
+    /** @return the same robot with that claim (null: none) */
+    public PeerRobot withPassage(PassageClaim claim) {
+        return new PeerRobot(jid, pose, velocity, heard, online, claim);
     }
 
     /** @return its velocity along the map's x axis, m/s */

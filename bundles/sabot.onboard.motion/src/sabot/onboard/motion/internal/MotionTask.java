@@ -65,6 +65,7 @@ import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.LoopHost;
 import sabot.onboard.motion.loop.LoopSettings;
 import sabot.onboard.motion.loop.NavigationPlanner;
+import sabot.onboard.motion.loop.PeerSettings;
 import sabot.onboard.motion.loop.RobotBoards;
 import sabot.onboard.task.NamedThreads;
 import sabot.onboard.robot.CommandRefused;
@@ -155,6 +156,15 @@ public final class MotionTask implements OnboardTask, RobotMotion {
                 + "obstacle of the planner and the collision guard (the peers task follows the fleet's robots; "
                 + "docs/USER-GUIDE.md, Other robots); after it, only the sonar sees it.", min = "1", max = "3600")
         double peerMemory() default LoopDefaults.PEER_MEMORY;
+
+        @AttributeDefinition(name = "Passage approach", description = "Metres of the path ahead within which a "
+                + "narrow passage of the map (sabot_passages) is asked for; the robot that yields stops about this "
+                + "far short of it (docs/PASSAGES.md).", min = "0.3", max = "10")
+        double passageApproach() default LoopDefaults.PASSAGE_APPROACH;
+
+        @AttributeDefinition(name = "Passage timeout", description = "Seconds a robot waits for its turn at a narrow "
+                + "passage before its mission fails.", min = "1", max = "3600")
+        double passageTimeout() default LoopDefaults.PASSAGE_TIMEOUT;
 
         @AttributeDefinition(name = "Real-time priority", description = "SCHED_FIFO priority of the control loop's "
                 + "thread (0: the ordinary policy); needs CAP_SYS_NICE, otherwise the log says why and the loop runs "
@@ -253,7 +263,9 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
         loop = new ControlLoop(host, clock, boards, robot, localizerTask.newLocalizer(plannerTask.landmarks()),
                 plannerTask.planner(), trackerTask, settings(), limits);
-        loop.peersFrom(this::peers, c.peerMemory());
+        loop.peersFrom(this::peers, this::selfJid, new PeerSettings(c.peerMemory(), c.passageApproach(),
+                c.passageTimeout()));
+        loop.passages(plannerTask.passages());
         snapshot = loop.snapshot();
         loopThread = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon("sabot-control-loop",
                 Thread.MAX_PRIORITY));
@@ -351,6 +363,12 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         if (fleetPeers == p) {
             fleetPeers = null;
         }
+    }
+
+    /** @return the robot's bare JID, as the other robots know it; "" without a session */
+    private String selfJid() {
+        RobotSession s = session;
+        return s == null ? "" : s.jid();
     }
 
     /** @return the robots the peers task follows; none while it does not run */

@@ -16,6 +16,7 @@ import org.osgi.service.metatype.annotations.Option;
 import sabot.model.geometry.Point2D;
 import sabot.model.map.MapLandmark;
 import sabot.model.map.MapServerFormat;
+import sabot.model.map.Passage;
 import sabot.onboard.motion.loop.LoopDefaults;
 import sabot.onboard.motion.loop.NavigationPlanner;
 import sabot.onboard.task.OnboardTask;
@@ -67,6 +68,7 @@ public final class PlannerTask implements OnboardTask {
     private Config config;
     private List<MapLandmark> landmarks;
     private List<Point2D> docks;
+    private List<Passage> passages;
 
     @Activate
     void activate(Config c) throws IOException {
@@ -74,6 +76,7 @@ public final class PlannerTask implements OnboardTask {
         MapServerFormat.LoadedMap loaded = MapServerFormat.load(Path.of(c.map()));
         landmarks = MapServerFormat.readLandmarks(Path.of(c.map()));
         docks = MapServerFormat.readDocks(Path.of(c.map()));
+        passages = MapServerFormat.readPassages(Path.of(c.map()));
         planner = new NavigationPlanner(loaded.grid(), c.algorithm(), c.threads(), c.robotRadius(),
                 c.inflationRadius());
     }
@@ -91,6 +94,11 @@ public final class PlannerTask implements OnboardTask {
     /** @return the ceiling landmarks the map names (its {@code sabot_landmarks} file), possibly none */
     List<MapLandmark> landmarks() {
         return landmarks;
+    }
+
+    /** @return the narrow passages the map lists (its {@code sabot_passages}), possibly none */
+    List<Passage> passages() {
+        return passages;
     }
 
     /** @return the charging docks the map lists (its {@code sabot_docks}), possibly none */

@@ -35,6 +35,8 @@ import sabot.model.geometry.Twist2D;
 import sabot.model.path.Trajectory;
 import sabot.model.path.TrajectorySample;
 import sabot.model.robot.BatteryState;
+import sabot.model.map.Passage;
+import sabot.model.robot.PassageClaim;
 import sabot.model.robot.PeerRobot;
 import sabot.model.robot.RobotDescription;
 import sabot.planner.PlanResult;
@@ -86,7 +88,9 @@ public final class ControlLoop {
     public enum Mode {
         IDLE, TELEOP, ALIGN, FOLLOW, SETTLE, BLOCKED, PAUSED, FAULT,
         /** stands on a mission's target: its wait, or the next leg's plan */
-        WAIT
+        WAIT,
+        /** stands short of a narrow passage of the map until its turn ({@link PassageRule}) */
+        YIELD
     }
 
     /** A planned path turned into a trajectory, or why not ({@code refusal}, for the operator). */
@@ -98,10 +102,11 @@ public final class ControlLoop {
      *
      * @param battery      the power board's last good reading, empty before the first
      * @param batteryFault why the power board's last read failed, for a person; empty when it succeeded
+     * @param passage      this robot's claim on a narrow passage ({@code cm.passage}), empty for none
      */
     public record Snapshot(PoseEstimate pose, VelocityCommand velocity, MissionStatus mission, Optional<Goal> goal,
             TrajectoryPayload trajectory, Obstacles obstacles, boolean moving, LoopTiming.Summary timing, Mode mode,
-            Optional<BatteryState> battery, String batteryFault) {
+            Optional<BatteryState> battery, String batteryFault, Optional<PassageClaim> passage) {
     }
 
     private final LoopHost host;
@@ -116,6 +121,13 @@ public final class ControlLoop {
     private final EchoMemory echoes;
     /** The other robots, as the peers task hears them. */
     private final PeerField peers = new PeerField();
+    /** This robot's claims on the map's narrow passages. */
+    private final PassageRule passages = new PassageRule();
+    private volatile Supplier<String> self = () -> "";
+    private volatile PeerSettings peerSettings = LoopDefaults.peers();
+    /** Trajectory time at which the robot began to yield (the path ahead is judged from there). */
+    private double yieldTau;
+    private String yieldReason = "";
     private final SensorRounds sensors;
     private final LoopGuard guard;
 
@@ -212,14 +224,23 @@ public final class ControlLoop {
     }
 
     /**
-     * Where the loop hears of the other robots (the peers task's snapshot, read once a period and at each plan) and
-     * how long it remembers one not heard from ({@code motion.peerMemory}); thread-safe.
+     * Where the loop hears of the other robots (the peers task's snapshot, read once a period and at each plan), who
+     * this robot is to them, and how it treats them; thread-safe.
      *
-     * @param source the robots followed; {@code List::of} for none
-     * @param memory s, positive
+     * @param source   the robots followed; {@code List::of} for none
+     * @param self     this robot's bare JID (two requests for a passage at one instant: the smaller JID goes
+     *                 first); "" while unknown
+     * @param settings memory, passage approach and timeout
      */
-    public void peersFrom(Supplier<List<PeerRobot>> source, double memory) {
-        peers.from(source, memory);
+    public void peersFrom(Supplier<List<PeerRobot>> source, Supplier<String> self, PeerSettings settings) {
+        peers.from(source, settings.memory());
+        this.self = self;
+        this.peerSettings = settings;
+    }
+
+    /** The map's narrow passages, where robots pass one at a time (loop thread; a new map gives up the claim). */
+    public void passages(List<Passage> list) {
+        passages.passages(list);
     }
 
     /** @return what the collision guard last did to a command, e.g. {@code stopped: obstacle 0.31 m ahead}; "" */
@@ -272,6 +293,9 @@ public final class ControlLoop {
         peers.refresh(clock.now(), settings.robotRadius());
         // every command passes the collision guard, whatever produced it
         Twist2D command = guard.limit(pose, command(t));
+        if (mode == Mode.SETTLE || mode == Mode.WAIT) {
+            passages.lapse(pose, settings.robotRadius()); // on a target: a claim ends once out of the passage
+        }
         Twist2D applied = wroteTwist ? smoother.lastOutput() : smoother.smooth(t, command);
         if (!applied.isFinite()) {
             applied = Twist2D.ZERO;
@@ -408,6 +432,9 @@ public final class ControlLoop {
                 }
                 return Twist2D.ZERO;
             }
+            case YIELD -> {
+                return yieldAtPassage(t);
+            }
             case BLOCKED -> {
                 if (!replanPending && t - lastReplan >= REPLAN_RETRY) {
                     replan(t);
@@ -433,6 +460,14 @@ public final class ControlLoop {
             positionSettled = false;
             stabilizer.reset();
             return settle(t);
+        }
+        PassageRule.Verdict passage = passageVerdict(tau);
+        if (passage.kind() == PassageRule.Kind.YIELD) {
+            LOG.info("yielding at {}: {}", PassageRule.describe(passage.passage()), passage.reason());
+            yieldTau = tau;
+            yieldReason = passage.reason();
+            setMode(Mode.YIELD, t);
+            return Twist2D.ZERO;
         }
         if (echoes.blocks(trajectory, tau, settings.blockedLookahead(), settings.robotRadius()
                 + settings.blockedClearance())) {
@@ -461,6 +496,38 @@ public final class ControlLoop {
         TrajectorySample ref = trajectory.sample(tau);
         ControlCommand c = tracker.update(t, pose, shift(ref, t));
         return c.twist();
+    }
+
+    /** @return the passage rule's verdict on the path ahead from trajectory time {@code tau} */
+    private PassageRule.Verdict passageVerdict(double tau) {
+        if (passages.passages().isEmpty()) {
+            return PassageRule.Verdict.NONE;
+        }
+        double radius = settings.robotRadius();
+        Passage ahead = passages.ahead(pose, trajectory, tau, peerSettings.passageApproach(), radius);
+        return passages.decide(clock.now(), self.get(), ahead, pose, radius, peers.robots(), peers.current(),
+                peers.memory());
+    }
+
+    /**
+     * Stands short of a passage until the rule gives the robot its turn, then plans again from where it stands (the
+     * trajectory's clock went on meanwhile); fails after {@code motion.passageTimeout}.
+     */
+    private Twist2D yieldAtPassage(double t) {
+        PassageRule.Verdict v = passageVerdict(yieldTau);
+        if (v.kind() == PassageRule.Kind.GO || v.kind() == PassageRule.Kind.NONE) {
+            LOG.info("{}: going on", v.passage() == null ? "no passage ahead any more" : "its turn at "
+                    + PassageRule.describe(v.passage()));
+            setMode(Mode.BLOCKED, t);
+            replan(t);
+        } else if (t - modeSince > peerSettings.passageTimeout()) { // still yielding, or asking again
+            fail(String.format(Locale.ROOT, "waited %.0f s at %s: %s", peerSettings.passageTimeout(), PassageRule
+                    .describe(v.passage()), v.reason()));
+        } else if (!v.reason().equals(yieldReason)) {
+            yieldReason = v.reason();
+            LOG.info("still yielding at {}: {}", PassageRule.describe(v.passage()), v.reason());
+        }
+        return Twist2D.ZERO;
     }
 
     /**
@@ -1024,6 +1091,9 @@ public final class ControlLoop {
         }
         mode = m;
         modeSince = t;
+        if (m == Mode.IDLE || m == Mode.PAUSED || m == Mode.FAULT || m == Mode.TELEOP) {
+            passages.release(); // no mission drives on: its claim ends (a robot standing in a passage is in it)
+        }
     }
 
     // ----------------------------------------------------------------------------------------------- snapshot
@@ -1039,7 +1109,7 @@ public final class ControlLoop {
                 || Math.abs(velocity[0]) > 0.02 || Math.abs(velocity[1]) > 0.05;
         return new Snapshot(p, v, withGuardStatus(missions.status()), Optional.ofNullable(goal), trajectoryPayload,
                 new Obstacles(now, echoes.obstacles()), moving, timing.summary(), mode, sensors.battery(),
-                sensors.batteryFault());
+                sensors.batteryFault(), Optional.ofNullable(passages.claim()));
     }
 
     /**

@@ -51,6 +51,14 @@ public final class LoopDefaults {
      * session (a few seconds), short enough that a robot switched off and carried away does not block a door for good.
      */
     public static final double PEER_MEMORY = 30;
+    /**
+     * {@code motion.passageApproach}, m: a passage of the map is asked for when the path enters it within this
+     * distance. The robot that yields stops about 1.25 m short of it (less the braking distance from the top speed,
+     * 0.25 m): room for the robot coming through to leave the passage and drive round it.
+     */
+    public static final double PASSAGE_APPROACH = 1.5;
+    /** {@code motion.passageTimeout}, s: the longest a robot waits for its turn at a passage before its mission fails. */
+    public static final double PASSAGE_TIMEOUT = 120;
 
     // teleop task
     /** {@code teleop.timeout}, s: the loop's deadman, also while the teleop task does not run. */
@@ -125,6 +133,11 @@ public final class LoopDefaults {
         return new LoopSettings(RATE, STATUS_PERIOD, OBSTACLE_MEMORY, BLOCKED_LOOKAHEAD, BLOCKED_CLEARANCE,
                 GOAL_TOLERANCE, true, DEADMAN, ROBOT_RADIUS, BLOCKED_TIMEOUT, SPEED_HEADROOM, ACCELERATION_HEADROOM,
                 PROGRESS_RADIUS, PROGRESS_TIME, SETTLE_TIMEOUT, localizer(start), guard());
+    }
+
+    /** @return the other robots' settings as shipped */
+    public static PeerSettings peers() {
+        return new PeerSettings(PEER_MEMORY, PASSAGE_APPROACH, PASSAGE_TIMEOUT);
     }
 
     /** @return the collision guard's settings as shipped */

@@ -43,6 +43,8 @@ final class PeerField {
 
     private volatile Supplier<List<PeerRobot>> source = List::of;
     private volatile double memory = LoopDefaults.PEER_MEMORY;
+    /** Loop thread only: the robots at the last {@link #refresh}. */
+    private List<PeerRobot> robots = List.of();
     /** Loop thread only: the discs at the last {@link #refresh}. */
     private List<Disc> discs = List.of();
 
@@ -60,8 +62,19 @@ final class PeerField {
 
     /** Loop thread: takes the peers as they are at {@code now}. @return the discs */
     List<Disc> refresh(Instant now, double radius) {
-        discs = discs(now, radius);
+        robots = read();
+        discs = discs(robots, now, radius);
         return discs;
+    }
+
+    /** @return the robots as of the last {@link #refresh} */
+    List<PeerRobot> robots() {
+        return robots;
+    }
+
+    /** @return s a robot not heard from still counts */
+    double memory() {
+        return memory;
     }
 
     /** @return the discs of the last {@link #refresh} */
@@ -71,12 +84,18 @@ final class PeerField {
 
     /** Any thread: the peers' discs at {@code now}. */
     List<Disc> discs(Instant now, double radius) {
-        List<PeerRobot> peers;
+        return discs(read(), now, radius);
+    }
+
+    private List<PeerRobot> read() {
         try {
-            peers = source.get();
+            return source.get();
         } catch (RuntimeException e) {
             return List.of(); // a failing source must not stop the loop; the sonar still sees
         }
+    }
+
+    private List<Disc> discs(List<PeerRobot> peers, Instant now, double radius) {
         if (peers.isEmpty()) {
             return List.of();
         }

@@ -28,9 +28,7 @@ final class LoopRig implements LoopHost {
     static final double DEADMAN = 0.5;
     static final double PROGRESS_TIME = 8;
     static final double ROBOT_RADIUS = 0.25;
-    static final LoopSettings SETTINGS = new LoopSettings(50, 0, 3, 3, 0.05, 0.1, true, DEADMAN, ROBOT_RADIUS, 10,
-            0.95, 0.8, 0.1, PROGRESS_TIME, 15, new LocalizerSettings(new Pose2D(2, 5, 0), 0.02, 0.02, false, false, 0,
-                    0.2, 0.02, 0.02, 0.5), LoopDefaults.guard());
+    static final LoopSettings SETTINGS = settingsAt(new Pose2D(2, 5, 0));
 
     final ManualClock clock = new ManualClock(1_000_000_000L);
     final FakeBoards boards = new FakeBoards(clock, ROBOT);
@@ -45,6 +43,22 @@ final class LoopRig implements LoopHost {
 
     /** @param map the static map the loop plans on and guards against (10 m × 10 m, 5 cm cells, origin at 0, 0) */
     LoopRig(OccupancyGrid map) {
+        this(map, SETTINGS);
+    }
+
+    /** As {@link #LoopRig(OccupancyGrid)}, the robot starting at {@code start}. */
+    LoopRig(OccupancyGrid map, Pose2D start) {
+        this(map, settingsAt(start));
+    }
+
+    /** @return the rig's settings, the robot starting at {@code start} */
+    static LoopSettings settingsAt(Pose2D start) {
+        return new LoopSettings(50, 0, 3, 3, 0.05, 0.1, true, DEADMAN, ROBOT_RADIUS, 10, 0.95, 0.8, 0.1, PROGRESS_TIME,
+                15, new LocalizerSettings(start, 0.02, 0.02, false, false, 0, 0.2, 0.02, 0.02, 0.5),
+                LoopDefaults.guard());
+    }
+
+    private LoopRig(OccupancyGrid map, LoopSettings settings) {
         NavigationPlanner planner = new NavigationPlanner(map, "lpn", 1, ROBOT_RADIUS, 0.55);
         LoopControllers controllers = new LoopControllers() {
             @Override
@@ -57,8 +71,8 @@ final class LoopRig implements LoopHost {
                 return Controllers.dflPointStabilization(DflGains.stabilizing(0.5), l);
             }
         };
-        Localizer localizer = new Localizer(ROBOT, SETTINGS.localizer(), List.of());
-        loop = new ControlLoop(this, clock, boards, ROBOT, localizer, planner, controllers, SETTINGS, LIMITS);
+        Localizer localizer = new Localizer(ROBOT, settings.localizer(), List.of());
+        loop = new ControlLoop(this, clock, boards, ROBOT, localizer, planner, controllers, settings, LIMITS);
     }
 
     /** @return an empty map, 10 m × 10 m with 5 cm cells */

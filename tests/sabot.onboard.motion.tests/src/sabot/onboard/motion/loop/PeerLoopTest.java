@@ -34,7 +34,7 @@ class PeerLoopTest {
     private final AtomicReference<List<PeerRobot>> peers = new AtomicReference<>(List.of());
 
     PeerLoopTest() {
-        rig.loop.peersFrom(peers::get, 5);
+        rig.loop.peersFrom(peers::get, () -> "sabot-01@sabot.local", new PeerSettings(5, 1.5, 120));
     }
 
     private PeerRobot standing(String name, double x, double y) {
@@ -178,7 +178,7 @@ class PeerLoopTest {
     void aFailingSourceLeavesTheLoopRunning() {
         rig.loop.peersFrom(() -> {
             throw new IllegalStateException("peers task stopping");
-        }, 5);
+        }, () -> "sabot-01@sabot.local", new PeerSettings(5, 1.5, 120));
         rig.run(0.1);
         rig.navigateTo(4, 5, 0);
         ControlLoop.Snapshot s = rig.run(0.5);
