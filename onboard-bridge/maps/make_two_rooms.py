@@ -17,6 +17,9 @@ FREE, OCCUPIED = 254, 0  # PGM values, as lab.pgm
 # Charging docks (the Sabot key sabot_docks), one against the far wall of each room at the rooms' middle height:
 # 0.6 m from the wall, so a robot (footprint radius 0.25 m) stands on it with room to turn.
 DOCKS = [(0.8, 2.2), (7.8, 2.2)]
+# The door as a narrow passage (the Sabot key sabot_passages, docs/PASSAGES.md): the opening in the middle wall, where
+# robots pass one at a time, [minX, minY, maxX, maxY].
+PASSAGES = [(4.2, 1.7, 4.4, 2.7)]
 
 WIDTH = WALL + ROOM + WALL + ROOM + WALL   # 8.6 m: west wall, west room, middle wall, east room, east wall
 HEIGHT = WALL + ROOM + WALL               # 4.4 m
@@ -67,7 +70,9 @@ def main():
                 "occupied_thresh: 0.65\n"
                 "free_thresh: 0.196\n"
                 "# Sabot extension (map_server ignores keys it does not know): charging docks, metres in the map frame\n"
-                f"sabot_docks: [{', '.join(f'[{x}, {y}]' for x, y in DOCKS)}]\n")
+                f"sabot_docks: [{', '.join(f'[{x}, {y}]' for x, y in DOCKS)}]\n"
+                "# Sabot extension: narrow passages, one robot at a time (docs/PASSAGES.md), [minX, minY, maxX, maxY]\n"
+                f"sabot_passages: [{', '.join('[' + ', '.join(str(v) for v in p) + ']' for p in PASSAGES)}]\n")
 
 
 if __name__ == "__main__":
