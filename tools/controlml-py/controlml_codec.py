@@ -131,6 +131,10 @@ BATTERY = (("time", "Time", None), ("stateOfCharge", "Quantity", "%"), ("voltage
            ("current", "Quantity", "A"), ("capacity", "Quantity", "A.h"), ("docked", "Boolean", None),
            ("charging", "Boolean", None), ("full", "Boolean", None))
 BATTERY_BOUND = 1000.0  # V, A and A.h: the protocol's bound on voltage, current and capacity (section 4)
+# cm.passage (section 4, docs/PASSAGES.md): a robot's claim on a narrow passage of its map; read, never set.
+PASSAGE_FIELDS = ("time", "passage", "state", "since")
+PASSAGE_STATES = ("none", "waiting", "passing")
+MAX_PASSAGES = 64
 MISSION_STATES = ("idle", "running", "paused", "done", "failed", "aborted", "queued")
 TARGET_ACTIONS = ("pass", "stop", "wait", "dock")
 TARGET_STATES = ("pending", "active", "reached", "failed")
@@ -404,6 +408,22 @@ def battery_line(b: dict) -> str:
     flags = "".join(f", {f}" for f in ("docked", "charging", "full") if b[f])
     return (f"battery {b['state_of_charge'] * 100:.1f} % {b['voltage']:.2f} V {b['current']:.2f} A of "
             f"{b['capacity']:g} Ah{flags} (at {b['time']})")
+
+
+def passage(value: dict) -> dict:
+    """Reads a decoded cm.passage record (section 4) into time and since (text), passage (0: no claim) and state
+    (none, waiting, passing). A field, type or range the spec does not allow is a PayloadError naming it."""
+    if set(value) != set(PASSAGE_FIELDS):
+        raise PayloadError(f"cm.passage fields are {list(PASSAGE_FIELDS)}, not {sorted(value)}")
+    number, state = value["passage"], value["state"]
+    if isinstance(number, bool) or not isinstance(number, int) or not 0 <= number <= MAX_PASSAGES:
+        raise PayloadError(f"cm.passage passage must be a Count 0..{MAX_PASSAGES}, not {number!r}")
+    if state not in PASSAGE_STATES:
+        raise PayloadError(f"cm.passage state must be one of {PASSAGE_STATES}, not {state!r}")
+    if (state == "none") != (number == 0):
+        raise PayloadError(f"cm.passage passage {number} with state '{state}': a claim names its passage "
+                           f"(1..{MAX_PASSAGES}) and is waiting or passing; no claim is passage 0, state none")
+    return {"time": value["time"], "passage": number, "state": state, "since": value["since"]}
 
 
 def mission_targets(value: dict) -> tuple[int, int, list[tuple[str, str]]]:

@@ -338,6 +338,38 @@ class BatteryTest(unittest.TestCase):
         with self.assertRaises(cm.PayloadError):
             cm.battery(value)
 
+
+
+def passage_record(number="1", state="waiting") -> ET.Element:
+    """A cm.passage record in the XML form, as section 4 lists its fields."""
+    def t(name, value):
+        return (f"<swe:field name='{name}'><swe:Time><swe:uom xlink:href='{cm.GREGORIAN}'/>"
+                f"<swe:value>{value}</swe:value></swe:Time></swe:field>")
+    return ET.fromstring(
+        f"<swe:DataRecord xmlns:swe='{cm.SWE_NS}' xmlns:xlink='{cm.XLINK_NS}'>" + t("time", "2026-12-01T10:00:01Z")
+        + f"<swe:field name='passage'><swe:Count><swe:value>{number}</swe:value></swe:Count></swe:field>"
+        + f"<swe:field name='state'><swe:Category><swe:value>{state}</swe:value></swe:Category></swe:field>"
+        + t("since", "2026-12-01T10:00:00Z") + "</swe:DataRecord>")
+
+
+class PassageTest(unittest.TestCase):
+    """Section 4's cm.passage as a client reads it (docs/PASSAGES.md)."""
+
+    def test_a_claim_and_no_claim_read(self):
+        self.assertEqual({"time": "2026-12-01T10:00:01Z", "passage": 1, "state": "waiting",
+                          "since": "2026-12-01T10:00:00Z"}, cm.passage(cm.decode_component(passage_record())))
+        self.assertEqual("none", cm.passage(cm.decode_component(passage_record("0", "none")))["state"])
+
+    def test_what_the_spec_refuses_is_named(self):
+        for number, state, message in (("0", "passing", "passage 0 with state 'passing'"),
+                                       ("2", "none", "passage 2 with state 'none'"),
+                                       ("65", "waiting", "passage must be a Count 0..64"),
+                                       ("1", "queued", "state must be one of")):
+            with self.assertRaises(cm.PayloadError, msg=state) as caught:
+                cm.passage(cm.decode_component(passage_record(number, state)))
+            self.assertIn(message, str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main()
 

@@ -17,6 +17,7 @@ import sabot.controlml.payload.MissionStatus;
 import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.NoQuery;
 import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PassageStatus;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
@@ -64,6 +65,12 @@ public final class Resources {
     /** {@code cm.battery} (get): the battery as the power board last measured it; telemetry too. */
     public static final Resource<BatteryState, NoQuery> BATTERY = new Resource<>("cm.battery", BatteryPayload.CODEC,
             null, true, false, "battery: state of charge, voltage, current, capacity, dock and charge flags");
+    /**
+     * {@code cm.passage} (get): the robot's claim on a narrow passage of its map (docs/PASSAGES.md); telemetry too,
+     * which the other robots follow to take turns.
+     */
+    public static final Resource<PassageStatus, NoQuery> PASSAGE = new Resource<>("cm.passage", PassageStatus.CODEC,
+            null, true, false, "claim on a narrow passage of the map: passage, state, since");
     /** {@code cm.pid} (get/set): PID gains per motor. */
     public static final Resource<PidGains, NoQuery> PID = new Resource<>("cm.pid", PidGains.CODEC, null, true, true,
             "speed-loop PID gains per motor");
@@ -104,7 +111,8 @@ public final class Resources {
     private static final Map<String, Resource<?, ?>> BY_NAME = new LinkedHashMap<>();
 
     static {
-        for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, BATTERY, PID, LIMITS, MISSION,
+        for (Resource<?, ?> r : List.of(POSITION, VELOCITY, GOAL, TRAJECTORY, MAP, OBSTACLES, BATTERY, PASSAGE, PID, LIMITS,
+                MISSION,
                 TASKS, ROLE, TELEMETRY, FS_LIST, FS_READ, FS_WRITE, FS_DELETE)) {
             BY_NAME.put(r.name(), r);
         }

@@ -19,6 +19,7 @@ import sabot.controlml.payload.TrajectoryPayload;
 import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.robot.BatteryState;
+import sabot.model.robot.PassageClaim;
 import sabot.pidstep.controlml.StepTest;
 import sabot.model.geometry.Twist2D;
 
@@ -116,6 +117,15 @@ public interface RobotMotion {
      */
     default boolean charging() {
         return false;
+    }
+
+    /**
+     * @return the robot's claim on a narrow passage of its map (docs/PASSAGES.md) as of the last control period, empty
+     *         for none ({@code cm.passage})
+     * @since 0.3
+     */
+    default Optional<PassageClaim> passage() {
+        return Optional.empty();
     }
 
     /** @return the motor gains read back from the motor board; DEVICE_FAULT when the board does not answer */

@@ -3,6 +3,7 @@ package sabot.controlml.tests;
 import java.time.Instant;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 
 import sabot.controlml.Resource;
 import sabot.controlml.Resources;
@@ -21,6 +22,7 @@ import sabot.controlml.payload.LimitsPayload;
 import sabot.controlml.payload.MotorGains;
 import sabot.controlml.payload.Obstacle;
 import sabot.controlml.payload.Obstacles;
+import sabot.controlml.payload.PassageStatus;
 import sabot.controlml.payload.PidGains;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
@@ -34,6 +36,7 @@ import sabot.controlml.payload.VelocityCommand;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
 import sabot.model.robot.BatteryState;
+import sabot.model.robot.PassageClaim;
 
 /** One realistic value per resource, for round trips. */
 final class Samples {
@@ -57,6 +60,8 @@ final class Samples {
             Map.entry(Resources.OBSTACLES, new Obstacles(T, List.of(new Obstacle(1, 1, 0.2), new Obstacle(-2, 0.5,
                     0.35)))),
             Map.entry(Resources.BATTERY, new BatteryState(T, 0.25, 25.125, -4.5, 10, true, true, false)),
+            Map.entry(Resources.PASSAGE, new PassageStatus(T, Optional.of(new PassageClaim(2,
+                    PassageClaim.State.WAITING, T.minusMillis(1500))))),
             Map.entry(Resources.PID, new PidGains(List.of(new MotorGains(0, 1.2, 0.05, 0.01), new MotorGains(1, 1.1,
                     0.04, 0.0)))),
             Map.entry(Resources.LIMITS, new LimitsPayload(0.5, 2.0, 0.5, 3.0)),

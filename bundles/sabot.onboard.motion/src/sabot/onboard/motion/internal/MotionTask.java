@@ -54,6 +54,7 @@ import sabot.model.geometry.Twist2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
 import sabot.model.robot.BatteryState;
+import sabot.model.robot.PassageClaim;
 import sabot.model.robot.PeerRobot;
 import sabot.model.robot.RobotDescription;
 import sabot.model.robot.RobotDescriptions;
@@ -532,6 +533,11 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     @Override
     public PoseEstimate pose() {
         return snapshot.pose();
+    }
+
+    @Override
+    public Optional<PassageClaim> passage() {
+        return snapshot.passage();
     }
 
     @Override

@@ -1,5 +1,6 @@
 package sabot.onboard.controlml.internal.endpoint;
 
+import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
@@ -38,6 +39,7 @@ import sabot.controlml.payload.TelemetryRates;
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.MissionStatus;
+import sabot.controlml.payload.PassageStatus;
 import sabot.controlml.payload.TaskInfo;
 import sabot.controlml.payload.TaskList;
 import sabot.model.robot.BatteryState;
@@ -71,8 +73,8 @@ public final class ControlMlEndpoint {
 
     /** The resources this endpoint serves (the remote FS task serves {@code cm.fs.*}). */
     static final List<Resource<?, ?>> SERVED = List.of(Resources.POSITION, Resources.VELOCITY, Resources.GOAL,
-            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.BATTERY, Resources.PID, Resources.LIMITS,
-            Resources.MISSION, Resources.TASKS);
+            Resources.TRAJECTORY, Resources.MAP, Resources.OBSTACLES, Resources.BATTERY, Resources.PASSAGE,
+            Resources.PID, Resources.LIMITS, Resources.MISSION, Resources.TASKS);
 
     /** The {@code state} values a {@code cm.mission} set may ask for, besides a maintenance switch. */
     static final Set<MissionState> MISSION_COMMANDS = Set.of(MissionState.PAUSED, MissionState.RUNNING,
@@ -109,6 +111,7 @@ public final class ControlMlEndpoint {
         checkRate("missionRate", config.missionRate());
         checkRate("obstaclesRate", config.obstaclesRate());
         checkRate("batteryRate", config.batteryRate());
+        checkRate("passageRate", config.passageRate());
         checkRate("baseRate", config.baseRate());
         if (!(config.leaseMax() >= 1 && config.leaseMax() <= TelemetryRates.MAX_LEASE_S)) {
             throw new IllegalArgumentException("controlml.leaseMax must be 1 to " + TelemetryRates.MAX_LEASE_S
@@ -138,13 +141,15 @@ public final class ControlMlEndpoint {
             publish(Resources.OBSTACLES, motion::obstacles, config.obstaclesRate());
             // no reading yet, or the power board failing: a skipped tick (a get says why)
             publish(Resources.BATTERY, this::batteryOrNull, config.batteryRate());
+            publish(Resources.PASSAGE, this::passage, config.passageRate());
         }
         motion.addListener(presence);
         showCurrentMission(); // the listener reports changes only
         LOG.info("ControlML endpoint serving {} resources for {}; telemetry while leased (at most {} s): position {} "
-                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz, battery {} Hz; else {} Hz", SERVED.size(), session
-                        .jid(), config.leaseMax(), config.positionRate(), config.velocityRate(), config.missionRate(),
-                config.obstaclesRate(), config.batteryRate(), config.baseRate());
+                + "Hz, velocity {} Hz, mission {} Hz, obstacles {} Hz, battery {} Hz, passage {} Hz; else {} Hz",
+                SERVED.size(), session.jid(), config.leaseMax(), config.positionRate(), config.velocityRate(), config
+                        .missionRate(), config.obstaclesRate(), config.batteryRate(), config.passageRate(), config
+                                .baseRate());
     }
 
     /** Stops telemetry and presence updates and unregisters the handlers. */
@@ -191,6 +196,7 @@ public final class ControlMlEndpoint {
         m.onSet(Resources.MAP, (request, map) -> apply(() -> motion.replaceMap(map)));
         m.onGet(Resources.OBSTACLES, (request, none) -> Outcome.success(motion.obstacles()));
         m.onGet(Resources.BATTERY, (request, none) -> read(motion::battery));
+        m.onGet(Resources.PASSAGE, (request, none) -> Outcome.success(passage()));
         m.onGet(Resources.PID, (request, none) -> read(motion::gains));
         m.onSet(Resources.PID, (request, gains) -> read(() -> motion.setGains(gains)));
         m.onGet(Resources.LIMITS, (request, none) -> Outcome.success(motion.limits()));
@@ -232,6 +238,10 @@ public final class ControlMlEndpoint {
 
     private static <T> Outcome<T> refusal(CommandRefused refused) {
         return Outcome.failure(ControlMlError.of(refused.condition(), refused.getMessage()));
+    }
+
+    private PassageStatus passage() {
+        return new PassageStatus(Instant.now(), motion.passage());
     }
 
     private BatteryState batteryOrNull() {

@@ -185,6 +185,11 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
                 max = "" + MAX_RATE_HZ)
         double batteryRate() default 1;
 
+        @AttributeDefinition(name = "Passage telemetry rate", description = "Hz at which cm.passage (the robot's "
+                + "claim on a narrow passage of its map) is published while leased: the other robots take turns by it "
+                + "(docs/PASSAGES.md); 0: not published.", min = "0", max = "" + MAX_RATE_HZ)
+        double passageRate() default 5;
+
         @AttributeDefinition(name = "Telemetry base rate", description = "Hz at which each telemetry resource is "
                 + "published while nobody leases it (never above that resource's rate): a robot nobody watches "
                 + "still shows where it is and what it does. 0: only while leased (a watcher's explicit "
