@@ -49,8 +49,8 @@ public final class OnboardProcess implements AutoCloseable {
     public static final String TASKS = "bus, localizer, planner, tracker, teleop, motion, controlml, remotefs";
 
     /**
-     * @return the configuration text for a robot, the tasks {@link #TASKS} enabled, plus {@code extra} lines (a
-     *         {@code tasks = ...} line among them replaces the default one)
+     * @return the configuration text for a robot, the tasks {@link #TASKS} enabled, on the lab map, plus {@code extra}
+     *         lines (a {@code tasks = ...} or {@code planner.map = ...} line among them replaces the default one)
      */
     public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra) {
         return configuration(r, passwordFile, fsRoot, extra, "127.0.0.1");
@@ -61,12 +61,14 @@ public final class OnboardProcess implements AutoCloseable {
      * (e.g. a cluster's nodes, {@code 127.0.0.1, 127.0.0.2})
      */
     public static String configuration(Robot r, Path passwordFile, Path fsRoot, String extra, String servers) {
-        Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+        String map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml").toString();
         String tasks = "tasks = " + TASKS;
         StringBuilder rest = new StringBuilder();
         for (String line : extra.split("\\R", -1)) {
             if (line.matches("\\s*tasks\\s*=.*")) {
                 tasks = line.strip();
+            } else if (line.matches("\\s*planner\\.map\\s*=.*")) {
+                map = line.substring(line.indexOf('=') + 1).strip();
             } else {
                 rest.append(line).append('\n');
             }

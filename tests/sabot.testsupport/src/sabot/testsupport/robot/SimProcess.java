@@ -119,11 +119,27 @@ public final class SimProcess implements AutoCloseable {
     public static SimProcess start(Path dir, String... options) throws IOException {
         List<String> all = new ArrayList<>(List.of("--tcp", "0"));
         all.addAll(List.of(options));
-        return launch(dir, all);
+        return launch(dir, all, labMap());
+    }
+
+    /**
+     * Starts the simulator on {@code map} (a ROS map_server YAML), the robots where {@code options} put them
+     * ({@code --starts}), and waits for its announcement.
+     */
+    public static SimProcess startOnMap(Path dir, Path map, String... options) throws IOException {
+        return launch(dir, List.of(options), map);
+    }
+
+    /** @return the lab map, the simulator's and the robots' unless a test says otherwise */
+    public static Path labMap() {
+        return PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
     }
 
     private static SimProcess launch(Path dir, List<String> options) throws IOException {
-        Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/lab.yaml");
+        return launch(dir, options, labMap());
+    }
+
+    private static SimProcess launch(Path dir, List<String> options, Path map) throws IOException {
         Path truth = dir.resolve("truth.csv");
         List<String> cmd = new ArrayList<>(List.of(binary().toString(), "--map", map.toString(), "--seed", "7",
                 "--link", dir.resolve("robot").toString(), "--truth", truth.toString(), "--control", "0"));
