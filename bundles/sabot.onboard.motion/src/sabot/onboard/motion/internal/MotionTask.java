@@ -216,11 +216,8 @@ public final class MotionTask implements OnboardTask, RobotMotion {
     private ExecutorService plannerThread;
     private ExecutorService notifier;
     private ControlLoop loop;
-    /** The low-battery rules; used on the notifier thread only. */
-    private BatteryGuard batteryGuard;
-    private volatile boolean charging;
-    /** The stamp of the last battery reading handed to the guard; the loop's thread only. */
-    private Instant lastBatteryReading;
+    /** The low-battery rules carried out. */
+    private DockingDuty docking;
     private MotorTuning tuning;
     /** What other threads read: the loop's state at the end of its last period or command. */
     private volatile ControlLoop.Snapshot snapshot;
@@ -259,8 +256,27 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         boards.acknowledgeFaults();
         boards.brake(false);
         boards.writeWheelSpeeds(0, 0);
-        batteryGuard = new BatteryGuard(c.batteryLow(), c.batteryCharged(), plannerTask.docks());
         notifier = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-motion-events"));
+        docking = new DockingDuty(new BatteryGuard(c.batteryLow(), c.batteryCharged(), plannerTask.docks()), notifier,
+                () -> snapshot, new DockingDuty.Task() {
+                    @Override
+                    public void abort(String reason) throws CommandRefused {
+                        command(new MissionStatus(MissionState.ABORTED, false, 0, reason));
+                    }
+
+                    @Override
+                    public void startMission(List<MissionTarget> targets) throws CommandRefused {
+                        MotionTask.this.startMission(targets, false);
+                    }
+
+                    @Override
+                    public void chargingChanged() {
+                        MissionStatus m = snapshot.mission();
+                        for (MotionListener l : listeners) {
+                            l.missionChanged(m); // on the notifier thread, in order with the mission's changes
+                        }
+                    }
+                });
         plannerThread = Executors.newSingleThreadExecutor(NamedThreads.daemon("sabot-planner"));
         loop = new ControlLoop(host, clock, boards, robot, localizerTask.newLocalizer(plannerTask.landmarks()),
                 plannerTask.planner(), trackerTask, settings(), limits);
@@ -428,12 +444,7 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         try {
             applyCommands();
             snapshot = loop.tick(start, scheduled);
-            Optional<BatteryState> b = snapshot.battery();
-            if (b.isPresent() && !b.get().measured().equals(lastBatteryReading)) {
-                lastBatteryReading = b.get().measured();
-                BatteryState reading = b.get();
-                notifier.execute(() -> batteryReading(reading));
-            }
+            docking.periodEnded(snapshot);
         } catch (RuntimeException e) {
             // A bug must not stop the loop's thread (scheduleAtFixedRate would end silently): brake and say why.
             LOG.error("control loop error, braking", e);
@@ -452,44 +463,9 @@ public final class MotionTask implements OnboardTask, RobotMotion {
         }
     }
 
-    /**
-     * A new battery reading, on the notifier thread: the guard's decision carried out (abort the mission, a mission to
-     * the dock), and listeners told when the robot starts or stops charging (its presence follows).
-     */
-    private void batteryReading(BatteryState b) {
-        ControlLoop.Snapshot s = snapshot;
-        BatteryGuard.Decision d = batteryGuard.update(b, s.pose().pose(), s.mission());
-        if (!d.note().isEmpty()) {
-            LOG.info("{}", d.note());
-        }
-        if (d.goToDock().isPresent()) {
-            Point2D dock = d.goToDock().get();
-            try {
-                MissionState now = s.mission().state();
-                if (now == MissionState.RUNNING || now == MissionState.PAUSED) {
-                    command(new MissionStatus(MissionState.ABORTED, false, 0, "battery low"));
-                }
-                startMission(List.of(new MissionTarget(new Goal(new Pose2D(dock.x(), dock.y(), 0),
-                        BatteryGuard.DOCK_TOLERANCE, 2 * Math.PI), MissionTarget.Action.DOCK, 0,
-                        MissionTarget.State.PENDING)), false);
-            } catch (CommandRefused e) {
-                LOG.warn("battery low, but the dock at ({}, {}) cannot be reached: {}", fmt(dock.x()), fmt(dock.y()),
-                        e.getMessage());
-            }
-        }
-        boolean nowCharging = batteryGuard.charging();
-        if (nowCharging != charging) {
-            charging = nowCharging;
-            MissionStatus m = snapshot.mission();
-            for (MotionListener l : listeners) {
-                l.missionChanged(m); // already on the notifier thread, in order with the mission's changes
-            }
-        }
-    }
-
     @Override
     public boolean charging() {
-        return charging;
+        return docking.charging();
     }
 
     /** Queues a command for the loop's next period. */
