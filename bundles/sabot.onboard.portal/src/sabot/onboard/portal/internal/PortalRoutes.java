@@ -10,6 +10,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
+import java.util.concurrent.atomic.AtomicBoolean;
 
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -180,7 +181,7 @@ final class PortalRoutes extends HttpServlet {
             return;
         }
         ByteArrayOutputStream body = new ByteArrayOutputStream();
-        java.util.concurrent.atomic.AtomicBoolean done = new java.util.concurrent.atomic.AtomicBoolean();
+        AtomicBoolean done = new AtomicBoolean();
         async.addListener(new AsyncListener() {
             @Override
             public void onTimeout(AsyncEvent event) {
