@@ -67,4 +67,17 @@ public interface RobotSession {
      * @since 0.2
      */
     boolean checkPassword(String account, String password) throws java.io.IOException;
+
+    /**
+     * The other occupants of the fleet lobby (roster rule 11, docs/CONTROLML.md): the XEP-0045 room that the session
+     * joins after each login when one is configured ({@code controlml.lobby}), where the devices and workbenches online
+     * meet. An occupant is only a candidate: whether it is one of the lab's robots is the server's word (its shared
+     * group in the roster, {@code sabot.fleet.AccessRules.ROBOTS_GROUP}), never its own.
+     *
+     * @return the occupants' real JIDs (full: account and resource, e.g. {@code sabot-02@sabot.local/onboard}), as the
+     *         room shows them, without this session's own; empty without a lobby, while offline, or while the lobby
+     *         could not be joined. A snapshot; never null
+     * @since 0.3
+     */
+    java.util.List<String> lobbyMembers();
 }

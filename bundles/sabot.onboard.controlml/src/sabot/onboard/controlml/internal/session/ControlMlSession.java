@@ -5,6 +5,7 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 import java.util.TreeMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutorService;
@@ -59,8 +60,9 @@ import sabot.onboard.task.OnboardTask;
  * Activation never waits for the network: the thread {@code sabot-session-connect} connects, and after a failed
  * attempt or a loss tries again after {@code reconnectMin}, doubling the delay up to {@code reconnectMax}, forever.
  * After each login it publishes the vCard identity with the QR inventory (again when the set of running tasks
- * changes), then sends the robot's presence (the last {@link #setPresence}; at first FREE "idle"). Listeners are told on the
- * thread {@code sabot-session-events}, in the order the changes happened.
+ * changes), then sends the robot's presence (the last {@link #setPresence}; at first FREE "idle") and joins the fleet
+ * lobby when one is configured ({@link SessionLobby}). Listeners are told on the thread {@code sabot-session-events},
+ * in the order the changes happened.
  * <p>
  * Settings: {@link ControlMlSettings.Config}, read by {@link ControlMlSettings}; authorization: {@link OperatorPolicy}.
  */
@@ -98,6 +100,8 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     private final ServiceTracker<OnboardTask, ServiceReference<OnboardTask>> tasks;
     private final BundleContext context;
     private final LinkWatch linkWatch;
+    /** The fleet lobby of {@code controlml.lobby}; empty when none is configured. */
+    private final Optional<SessionLobby> lobby;
 
     private final Object lock = new Object();
     /** Guarded by {@link #lock}: the state listeners were last told. */
@@ -175,6 +179,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         });
         linkWatch = new LinkWatch(connection, settings.liveness(), NamedThreads.daemon("sabot-session-liveness"),
                 this::silent);
+        lobby = settings.lobby().map(room -> new SessionLobby(connection, room));
         this.context = context;
         tasks = new ServiceTracker<>(context, OnboardTask.class, null) {
             @Override
@@ -189,10 +194,10 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             }
         };
         tasks.open();
-        LOG.info("controlml task started: {} on {}:{} (resource {}, TLS trusting {}), {}", settings.jid(),
+        LOG.info("controlml task started: {} on {}:{} (resource {}, TLS trusting {}), {}{}", settings.jid(),
                 String.join(", ", settings.servers()), settings.port(), settings.resource(), settings.trust().describe(),
                 settings.open() ? "roles: none, the policy is open" : "roles from the server's groups: " + settings
-                        .access().describe());
+                        .access().describe(), lobby.map(l -> "; fleet lobby " + l.room()).orElse(""));
         if (settings.open()) {
             LOG.warn("controlml.openPolicy = true: everyone who reaches this robot through its server is its "
                     + "maintainer (goals, gains, limits, files)");
@@ -204,6 +209,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
     void deactivate() {
         stopping = true;
         linkWatch.close();
+        lobby.ifPresent(SessionLobby::close);
         tasks.close();
         connector.shutdownNow();
         try {
@@ -319,6 +325,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         untried = sockets.size();
         publishIdentity(); // first: whoever sees the presence finds the vCard already stored
         sendPresence();
+        lobby.ifPresent(SessionLobby::loggedIn);
     }
 
     /**
@@ -422,6 +429,7 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
             if (online) {
                 online = false;
                 offlineSinceNanos = System.nanoTime();
+                lobby.ifPresent(SessionLobby::lost);
                 LOG.warn("offline: {}; reconnecting in {} s", reason, settings.reconnectMin().toMillis() / 1000.0);
                 notify(l -> l.offline(reason));
             }
@@ -579,6 +587,11 @@ public final class ControlMlSession implements OnboardTask, RobotSession {
         synchronized (lock) {
             return online;
         }
+    }
+
+    @Override
+    public List<String> lobbyMembers() {
+        return lobby.map(SessionLobby::members).orElse(List.of());
     }
 
     @Override

@@ -8,6 +8,7 @@ import java.util.ArrayList;
 import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 import java.util.Set;
 
 import org.jxmpp.jid.EntityBareJid;
@@ -50,11 +51,12 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * @param liveness          silence from the server after which it is pinged; twice it, the link is taken as lost
  * @param robotName         the robot's name (the file's {@code robot.name}), used as the vCard's nickname
  * @param trust             whom the session trusts for the server's certificate (TLS is always required)
+ * @param lobby             the fleet lobby the session joins after each login (roster rule 11), or empty for none
  */
 public record ControlMlSettings(List<String> servers, int port, EntityBareJid jid, String password, Path passwordFile,
         String resource,
         Duration reconnectMin, Duration reconnectMax, AccessRules access, boolean open, Duration staleCommandAfter,
-        Duration liveness, String robotName, ServerTrust trust) {
+        Duration liveness, String robotName, ServerTrust trust, Optional<EntityBareJid> lobby) {
 
     /** The task's name. */
     public static final String TASK = "controlml";
@@ -82,7 +84,7 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
             RESOURCE = "resource", RECONNECT_MIN = "reconnectMin", RECONNECT_MAX = "reconnectMax",
             OBSERVER_GROUPS = "observerGroups", OPERATOR_GROUPS = "operatorGroups",
             MAINTAINER_GROUPS = "maintainerGroups", OPEN_POLICY = "openPolicy", STALE_COMMAND_AFTER = "staleCommandAfter", LIVENESS = "liveness",
-            CA_FILE = "caFile";
+            CA_FILE = "caFile", LOBBY = "lobby";
 
     /**
      * The {@code controlml} task's settings: its Metatype description, generated from these annotations. The session
@@ -157,6 +159,13 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
                 + " so that a command its operator saw time out is never applied.", min = "0", max = "86400")
         double staleCommandAfter() default DEFAULT_STALE_COMMAND_AFTER_S;
 
+        @AttributeDefinition(name = "Fleet lobby", required = false, description = "Bare JID of the lab's fleet "
+                + "lobby, a multi-user chat room (XEP-0045) such as fleet@conference.sabot.local, that the session "
+                + "joins after each login so that workbenches and other robots find it online (roster rule 11, "
+                + "docs/CONTROLML.md). Empty: no lobby. A lobby that cannot be joined is logged and the session goes "
+                + "on without it.")
+        String lobby() default "";
+
         @AttributeDefinition(name = "Liveness interval", description = "Seconds without anything from the server "
                 + "after which the session pings it (XEP-0199); after twice as long the link is taken as lost (a "
                 + "silent network: nothing closed, nothing passing): the robot brakes if it moves and reconnects.",
@@ -224,7 +233,7 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         return "ControlMlSettings[servers=" + servers + ", port=" + port + ", jid=" + jid + ", resource=" + resource
                 + ", reconnect " + reconnectMin + ".." + reconnectMax + ", roles " + (open ? "open" : access.describe())
                 + ", trust "
-                + trust.describe() + "]";
+                + trust.describe() + lobby.map(l -> ", lobby " + l).orElse("") + "]";
     }
 
     private static ControlMlSettings parse(Map<String, ?> properties, List<Problem> problems) {
@@ -254,7 +263,7 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         if (!p.has(JID)) {
             problems.add(new Problem(JID, "no account given (the robot's bare JID, e.g. sabot-01@sabot.local)"));
         } else {
-            jid = bareJid(p.string(JID, ""), JID, "", problems);
+            jid = bareJid(p.string(JID, ""), JID, "sabot-01@sabot.local", problems);
         }
         String password = null;
         Path file = null;
@@ -296,6 +305,10 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         } catch (IOException e) {
             problems.add(new Problem(CA_FILE, e.getMessage()));
         }
+        Optional<EntityBareJid> lobby = Optional.empty();
+        if (p.has(LOBBY)) {
+            lobby = Optional.ofNullable(bareJid(p.string(LOBBY, ""), LOBBY, "fleet@conference.sabot.local", problems));
+        }
         String robotName = p.string(OnboardTask.ROBOT_NAME, "");
         if (robotName.isEmpty() && jid != null) {
             robotName = jid.getLocalpart().toString();
@@ -304,7 +317,7 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
             return null;
         }
         return new ControlMlSettings(List.copyOf(servers), port, jid, password, file, resource, reconnectMin, reconnectMax,
-                open ? AccessRules.none() : access, open, stale, liveness, robotName, trust);
+                open ? AccessRules.none() : access, open, stale, liveness, robotName, trust, lobby);
     }
 
     /** @return the comma-separated group names of {@code key}; a name with a control character is a problem */
@@ -322,7 +335,8 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         return names;
     }
 
-    private static EntityBareJid bareJid(String text, String key, String where, List<Problem> problems) {
+    /** @return the bare JID {@code text}, or null when it is none (a problem added, naming {@code example}) */
+    private static EntityBareJid bareJid(String text, String key, String example, List<Problem> problems) {
         try {
             Jid jid = JidCreate.from(text);
             if (jid.isEntityBareJid()) {
@@ -331,8 +345,8 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         } catch (XmppStringprepException | IllegalArgumentException e) {
             // reported below, with the expected form
         }
-        problems.add(new Problem(key, "'" + text + "'" + where
-                + " is not a bare JID (local@domain without a resource, e.g. sabot-01@sabot.local)"));
+        problems.add(new Problem(key, "'" + text + "' is not a bare JID (local@domain without a resource, e.g. "
+                + example + ")"));
         return null;
     }
 

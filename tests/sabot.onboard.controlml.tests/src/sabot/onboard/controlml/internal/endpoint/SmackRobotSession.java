@@ -129,4 +129,9 @@ final class SmackRobotSession implements RobotSession {
     public boolean checkPassword(String account, String password) {
         throw new UnsupportedOperationException("the endpoint's tests log nobody in");
     }
+
+    @Override
+    public List<String> lobbyMembers() {
+        return List.of(); // the endpoint's tests join no lobby
+    }
 }

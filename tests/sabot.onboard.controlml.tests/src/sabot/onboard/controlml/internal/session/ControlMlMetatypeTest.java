@@ -36,7 +36,7 @@ class ControlMlMetatypeTest {
         assertEquals(new TreeSet<>(Set.of("server", "port", "caFile", "jid", "passwordFile", "resource", "reconnectMin",
                 "reconnectMax", "observerGroups", "operatorGroups", "maintainerGroups", "openPolicy",
                 "staleCommandAfter", "liveness", "positionRate", "velocityRate", "missionRate", "obstaclesRate",
-                "batteryRate", "baseRate", "leaseMax")),
+                "batteryRate", "baseRate", "leaseMax", "lobby")),
                 new TreeSet<>(d.keySet()));
         // deny by default: the lab's group of each role (the server grants them), no open policy
         assertEquals(AccessRules.OBSERVERS_GROUP, d.get("observerGroups"));
@@ -53,6 +53,7 @@ class ControlMlMetatypeTest {
         assertEquals(ControlMlSettings.DEFAULT_LIVENESS_S, Double.parseDouble(d.get("liveness")));
         assertEquals(ControlMlSettings.DEFAULT_BASE_RATE_HZ, Double.parseDouble(d.get("baseRate")));
         assertEquals(ControlMlSettings.DEFAULT_LEASE_MAX_S, Double.parseDouble(d.get("leaseMax")));
+        assertEquals("", d.get("lobby"), "no fleet lobby unless one is configured");
         // the annotation needs a constant; the controlml bundle's default policy is the other copy
         assertEquals(StaleCommandPolicy.DEFAULT.maxAge(), Duration.ofMillis(Math.round(
                 ControlMlSettings.DEFAULT_STALE_COMMAND_AFTER_S * 1000)));

@@ -11,6 +11,7 @@ import java.time.Duration;
 import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 import java.util.Set;
 
 import org.junit.jupiter.api.BeforeEach;
@@ -67,6 +68,7 @@ class ControlMlSettingsTest {
             assertEquals(Set.of(AccessRules.LAB_GROUPS.get(role)), s.access().groupsOf(role), role.label());
         }
         assertEquals(Role.NONE, s.access().roleOf(JidCreate.bareFrom("alice@sabot.local"), Set.of("friends")));
+        assertEquals(Optional.empty(), s.lobby(), "no fleet lobby unless one is configured");
         assertEquals(Duration.ofSeconds(5), s.staleCommandAfter()); // below the workbench's 10 s request timeout
         assertEquals("sabot-01", s.robotName(), "without robot.name, the JID's local part");
         assertTrue(!s.toString().contains("s3cret"), "the password is never printed");
@@ -147,6 +149,20 @@ class ControlMlSettingsTest {
             assertOneProblem("jid", "'" + bad
                     + "' is not a bare JID (local@domain without a resource, e.g. sabot-01@sabot.local)");
         }
+    }
+
+    @Test
+    void theFleetLobbyIsARoomsBareJidAndAnythingElseIsRefused() throws Exception {
+        settings.put("lobby", " fleet@conference.sabot.local ");
+        assertEquals(Optional.of(JidCreate.entityBareFrom("fleet@conference.sabot.local")), ControlMlSettings.of(
+                settings).lobby());
+        for (String bad : new String[] { "fleet@conference.sabot.local/robot", "conference.sabot.local" }) {
+            settings.put("lobby", bad);
+            assertOneProblem("lobby", "'" + bad + "' is not a bare JID (local@domain without a resource, e.g. "
+                    + "fleet@conference.sabot.local)");
+        }
+        settings.put("lobby", " ");
+        assertEquals(Optional.empty(), ControlMlSettings.of(settings).lobby(), "blank: no lobby");
     }
 
     @Test
