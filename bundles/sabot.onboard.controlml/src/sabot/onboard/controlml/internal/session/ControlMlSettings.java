@@ -73,9 +73,13 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
     /** Telemetry while nobody watches: every 5 s (docs/CONTROLML.md section 6, "Leases"). */
     static final double DEFAULT_BASE_RATE_HZ = 0.2;
     static final double DEFAULT_LEASE_MAX_S = 60;
-    /** The lab's groups, the defaults of the group settings (one source: {@link AccessRules#LAB_GROUPS}). */
-    static final String LAB_OBSERVERS = AccessRules.OBSERVERS_GROUP, LAB_OPERATORS = AccessRules.OPERATORS_GROUP,
-            LAB_MAINTAINERS = AccessRules.MAINTAINERS_GROUP;
+    /**
+     * The lab's groups, the defaults of the group settings (one source: {@link AccessRules}). The lab's robots observe
+     * one another: each needs the others' positions to keep clear of them (the {@code peers} task leases them), and
+     * an observer cannot command.
+     */
+    static final String LAB_OBSERVERS = AccessRules.OBSERVERS_GROUP + "," + AccessRules.ROBOTS_GROUP,
+            LAB_OPERATORS = AccessRules.OPERATORS_GROUP, LAB_MAINTAINERS = AccessRules.MAINTAINERS_GROUP;
     /** Shortest reconnection delay, s. */
     static final double MIN_RECONNECT_S = 0.001;
 
@@ -135,7 +139,8 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
 
         @AttributeDefinition(name = "Observer groups", required = false, description = "Comma-separated shared "
                 + "groups of the lab's XMPP server whose members are observers of this robot: every get, its "
-                + "presence and telemetry (docs/SECURITY.md: roles).")
+                + "presence and telemetry (docs/SECURITY.md: roles). By default also the lab's robots, which follow "
+                + "one another's positions to keep clear of them (the peers task) and cannot command.")
         String observerGroups() default LAB_OBSERVERS;
 
         @AttributeDefinition(name = "Operator groups", required = false, description = "Comma-separated shared "
@@ -162,8 +167,8 @@ public record ControlMlSettings(List<String> servers, int port, EntityBareJid ji
         @AttributeDefinition(name = "Fleet lobby", required = false, description = "Bare JID of the lab's fleet "
                 + "lobby, a multi-user chat room (XEP-0045) such as fleet@conference.sabot.local, that the session "
                 + "joins after each login so that workbenches and other robots find it online (roster rule 11, "
-                + "docs/CONTROLML.md). Empty: no lobby. A lobby that cannot be joined is logged and the session goes "
-                + "on without it.")
+                + "docs/CONTROLML.md); its occupants are candidates of the peers task. Empty: no lobby. A lobby that "
+                + "cannot be joined is logged and the session goes on without it.")
         String lobby() default "";
 
         @AttributeDefinition(name = "Liveness interval", description = "Seconds without anything from the server "

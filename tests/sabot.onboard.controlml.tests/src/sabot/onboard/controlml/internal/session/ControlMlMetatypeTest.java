@@ -38,8 +38,9 @@ class ControlMlMetatypeTest {
                 "staleCommandAfter", "liveness", "positionRate", "velocityRate", "missionRate", "obstaclesRate",
                 "batteryRate", "baseRate", "leaseMax", "lobby")),
                 new TreeSet<>(d.keySet()));
-        // deny by default: the lab's group of each role (the server grants them), no open policy
-        assertEquals(AccessRules.OBSERVERS_GROUP, d.get("observerGroups"));
+        // deny by default: the lab's group of each role (the server grants them), no open policy; the lab's robots
+        // observe one another (they follow each other's positions, and cannot command)
+        assertEquals(AccessRules.OBSERVERS_GROUP + "," + AccessRules.ROBOTS_GROUP, d.get("observerGroups"));
         assertEquals(AccessRules.OPERATORS_GROUP, d.get("operatorGroups"));
         assertEquals(AccessRules.MAINTAINERS_GROUP, d.get("maintainerGroups"));
         assertEquals("false", d.get("openPolicy"));

@@ -62,11 +62,13 @@ class ControlMlSettingsTest {
         assertEquals("onboard", s.resource());
         assertEquals(Duration.ofSeconds(1), s.reconnectMin());
         assertEquals(Duration.ofSeconds(30), s.reconnectMax());
-        // deny by default: roles only from the lab's server groups, one per role
+        // deny by default: roles only from the lab's server groups, one per role, and the lab's robots observers
         assertEquals(false, s.open());
-        for (Role role : List.of(Role.OBSERVER, Role.OPERATOR, Role.MAINTAINER)) {
+        for (Role role : List.of(Role.OPERATOR, Role.MAINTAINER)) {
             assertEquals(Set.of(AccessRules.LAB_GROUPS.get(role)), s.access().groupsOf(role), role.label());
         }
+        assertEquals(Set.of(AccessRules.OBSERVERS_GROUP, AccessRules.ROBOTS_GROUP), s.access().groupsOf(
+                Role.OBSERVER));
         assertEquals(Role.NONE, s.access().roleOf(JidCreate.bareFrom("alice@sabot.local"), Set.of("friends")));
         assertEquals(Optional.empty(), s.lobby(), "no fleet lobby unless one is configured");
         assertEquals(Duration.ofSeconds(5), s.staleCommandAfter()); // below the workbench's 10 s request timeout
