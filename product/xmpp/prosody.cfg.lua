@@ -112,3 +112,6 @@ end
 
 -- XEP-0045 rooms: the fleet lobby where online devices are discovered (sabot.fleet, roster rule 11)
 Component ("conference." .. (ENV_SABOT_DOMAIN or "sabot.local")) "muc"
+    -- every occupant's real JID shown from the room's making on, whoever makes it (sabot.fleet.FleetLobby also asks
+    -- for it when it makes the room): the lobby's purpose is to say who is online
+    muc_room_default_public_jids = true
