@@ -1,11 +1,14 @@
 package sabot.onboard.controlml.internal.session;
 
+import java.time.Duration;
 import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Set;
-import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
+import java.util.concurrent.TimeUnit;
 
 import org.jivesoftware.smack.XMPPConnection;
 import org.jxmpp.jid.EntityBareJid;
@@ -26,22 +29,29 @@ import sabot.onboard.task.NamedThreads;
  * the session's presence or its reconnection. A loss leaves the room at once on this side (nothing is sent: Smack's
  * room would otherwise still count itself joined after a login that did not resume the stream, and refuse the next
  * join); the next login joins again, which a resumed stream, still in the room, takes as a plain re-entry. A lobby
- * that cannot be joined is logged once, with the reason, until a join succeeds; the session goes on without it.
+ * that cannot be joined is logged once, with the reason, and tried again while the session is online, after
+ * {@link #RETRY_MIN} doubling up to {@link #RETRY_MAX}; the session goes on without it meanwhile. (Devices that come
+ * online together race to make the room after a server restart: those that find it made and not yet configured are
+ * refused with {@code item-not-found} until it is.)
  */
 final class SessionLobby {
 
     /** The session's logger: these are the session's console lines. */
     private static final Logger LOG = LoggerFactory.getLogger(ControlMlSession.class);
+    /** First and longest delay before a join that failed is tried again. */
+    static final Duration RETRY_MIN = Duration.ofSeconds(1), RETRY_MAX = Duration.ofSeconds(60);
 
     private final XMPPConnection connection;
     private final EntityBareJid room;
     private final FleetLobby lobby;
-    private final ExecutorService joiner = Executors.newSingleThreadExecutor(NamedThreads.daemon(
+    private final ScheduledExecutorService joiner = Executors.newSingleThreadScheduledExecutor(NamedThreads.daemon(
             "sabot-session-lobby"));
     /** True from a successful join until the connection is lost. */
     private volatile boolean joined;
-    /** Joiner thread only: the last join failed (its warning logged), so a further failure goes to debug. */
-    private boolean failing;
+    /** Joiner thread only: joins failed since the last login or success (the first one's warning logged). */
+    private int failures;
+    /** Joiner thread only: the next attempt after a failed join, or null. */
+    private ScheduledFuture<?> retry;
     /** Joiner thread only: the lobby has been joined once (later joins, after reconnections, go to debug). */
     private boolean everJoined;
 
@@ -58,13 +68,19 @@ final class SessionLobby {
 
     /** The session logged in (a new stream or a resumed one): the room is joined on the lobby's thread. */
     void loggedIn() {
-        run(this::join);
+        run(() -> {
+            cancelRetry();
+            join();
+        });
     }
 
     /** The connection was lost: the room is left on this side (its occupants are no longer known). */
     void lost() {
         joined = false;
-        run(lobby::leave);
+        run(() -> {
+            cancelRetry();
+            lobby.leave();
+        });
     }
 
     /**
@@ -89,6 +105,7 @@ final class SessionLobby {
     }
 
     private void join() {
+        retry = null;
         if (!connection.isAuthenticated()) {
             return; // lost meanwhile: the next login joins
         }
@@ -98,23 +115,38 @@ final class SessionLobby {
             if (!connection.isAuthenticated()) {
                 return; // the loss is the session's to report
             }
-            if (!failing) {
-                LOG.warn("{}; the session goes on without the fleet lobby (tried again at the next login)", e
-                        .getMessage());
+            failures++;
+            Duration delay = ControlMlSession.backoff(failures, RETRY_MIN, RETRY_MAX);
+            if (failures == 1) {
+                LOG.warn("{}; the session goes on without the fleet lobby and tries again (in {} s, then less and less"
+                        + " often, every {} s at most)", e.getMessage(), delay.toMillis() / 1000.0, RETRY_MAX
+                                .toSeconds());
             } else {
-                LOG.debug("{}", e.getMessage());
+                LOG.debug("{} (attempt {}; again in {} s)", e.getMessage(), failures, delay.toMillis() / 1000.0);
             }
-            failing = true;
+            try {
+                retry = joiner.schedule(this::join, delay.toNanos(), TimeUnit.NANOSECONDS);
+            } catch (RejectedExecutionException stopped) {
+                // closed: the session stops
+            }
             return;
         }
         joined = true;
-        if (!everJoined || failing) {
-            LOG.info("joined the fleet lobby {}", room);
+        if (!everJoined || failures > 0) {
+            LOG.info("joined the fleet lobby {}{}", room, failures > 0 ? " after " + (failures + 1) + " attempts" : "");
         } else {
             LOG.debug("joined the fleet lobby {} again", room);
         }
         everJoined = true;
-        failing = false;
+        failures = 0;
+    }
+
+    private void cancelRetry() {
+        if (retry != null) {
+            retry.cancel(false);
+            retry = null;
+        }
+        failures = 0;
     }
 
     private void run(Runnable action) {
