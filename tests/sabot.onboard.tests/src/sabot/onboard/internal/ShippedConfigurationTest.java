@@ -67,7 +67,7 @@ class ShippedConfigurationTest {
 
     @Test
     void theRuntimeHoldsEveryTaskBundle() {
-        assertEquals(List.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "portal", "remotefs",
+        assertEquals(List.of("bus", "controlml", "heartbeat", "localizer", "motion", "peers", "planner", "portal", "remotefs",
                 "teleop", "tracker"), List.copyOf(declared.keySet()));
     }
 

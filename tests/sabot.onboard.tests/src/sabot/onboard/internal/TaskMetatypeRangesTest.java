@@ -40,7 +40,7 @@ class TaskMetatypeRangesTest {
 
     @Test
     void everyTaskHasItsGeneratedDescription() {
-        assertEquals(Set.of("bus", "controlml", "heartbeat", "localizer", "motion", "planner", "portal", "remotefs",
+        assertEquals(Set.of("bus", "controlml", "heartbeat", "localizer", "motion", "peers", "planner", "portal", "remotefs",
                 "teleop", "tracker"), catalog.keySet());
         catalog.forEach((task, settings) -> assertTrue(!settings.isEmpty(), task + " declares no setting"));
     }
@@ -60,6 +60,7 @@ class TaskMetatypeRangesTest {
                 controlml.positionRate = 100
                 remotefs.maxTransfers = 1024
                 remotefs.maxChunk = 32768
+                peers.rate = 20
                 """);
         Map<String, Hashtable<String, Object>> enabled = TaskSettings.resolve(c, catalog);
         assertEquals(3600, enabled.get("heartbeat").get("period"));
@@ -74,7 +75,9 @@ class TaskMetatypeRangesTest {
         "controlml.port = 65536          | '65536' is above the maximum 65535",
         "remotefs.maxTransfers = 1025    | '1025' is above the maximum 1024",
         "remotefs.maxChunk = 32769       | '32769' is above the maximum 32768",
-        "remotefs.maxFileSize = -1       | '-1' is below the minimum 0" })
+        "remotefs.maxFileSize = -1       | '-1' is below the minimum 0",
+        "peers.rate = 0.4                | '0.4' is below the minimum 0.5",
+        "peers.rate = 21                 | '21' is above the maximum 20" })
     void valueOutsideItsRangeOrOptionsIsRefused(String line, String problem) throws Exception {
         OnboardConfigFile c = OnboardConfigFile.parse(FILE, "tasks = heartbeat\n" + line + "\n");
         ConfigError e = assertThrows(ConfigError.class, () -> TaskSettings.resolve(c, catalog));
