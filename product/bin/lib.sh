@@ -155,9 +155,11 @@ sabot_products() {
 # $4 (X,Y,THETA in m, m, rad), with XMPP account $1 (full JID) on 127.0.0.1:$5 whose certificate is signed by the CA
 # of file $8, its password in file $6, its remote files under folder $7 (./sabot demo's robots, ./sabot bench
 # onboard's); with a port $9, its web page there (the portal task, HTTPS with the lab CA's localhost certificate). Who commands it is the server's business: the lab's groups (sabot_grant).
+# It joins the fleet lobby fleet@conference.DOMAIN (the private servers' MUC service) and follows the rig's other robots
+# there and in its roster (the peers task: their positions for its costmap and collision guard).
 sabot_onboard_conf() {
     local jid=$1 link=$2 map=$3 pose=$4 port=$5 pwfile=$6 files=$7 ca=$8 portal=${9:-}
-    local x y theta tasks="bus, localizer, planner, tracker, teleop, motion, controlml, remotefs, heartbeat"
+    local x y theta tasks="bus, localizer, planner, tracker, teleop, motion, controlml, peers, remotefs, heartbeat"
     IFS=, read -r x y theta <<<"$pose"
     [ -z "$portal" ] || tasks="$tasks, portal"
     cat <<EOF
@@ -175,6 +177,7 @@ controlml.port = $port
 controlml.caFile = $ca
 controlml.jid = $jid
 controlml.passwordFile = $pwfile
+controlml.lobby = fleet@conference.${jid#*@}
 remotefs.root = $files
 EOF
     # the robot's web page (docs/PORTAL.md) on 127.0.0.1:PORTAL over HTTPS with the lab CA's localhost certificate
