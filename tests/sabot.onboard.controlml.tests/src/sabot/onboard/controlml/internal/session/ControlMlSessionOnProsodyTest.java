@@ -73,6 +73,8 @@ class ControlMlSessionOnProsodyTest {
 
     EntityBareJid robot;
     EntityBareJid operator;
+    /** The session's fleet lobby (controlml.lobby), or null for none. */
+    EntityBareJid lobby;
     Configuration controlml;
     Configuration remotefs;
     XMPPTCPConnection operatorConnection;
@@ -128,6 +130,9 @@ class ControlMlSessionOnProsodyTest {
         props.put("reconnectMin", 0.05);
         props.put("reconnectMax", 0.4);
         props.put(OnboardTask.ROBOT_NAME, "sabot-test");
+        if (lobby != null) {
+            props.put("lobby", lobby.toString());
+        }
         controlml = service(ConfigurationAdmin.class).getConfiguration("sabot.task.controlml", "?");
         controlml.update(props);
         RobotSession session = service(RobotSession.class);
@@ -246,6 +251,57 @@ class ControlMlSessionOnProsodyTest {
             relay.resume();
             assertNextEvent("online");
             assertTrue(session.isOnline());
+        }
+    }
+
+    /**
+     * The fleet lobby ({@code controlml.lobby}, roster rule 11): the session joins it after its login, where the robot
+     * and an operator's client find each other; after a loss (a silent link) it is back there with the session, and
+     * knows nobody there while offline.
+     */
+    @Test
+    void theSessionJoinsTheFleetLobbyAndIsBackThereAfterALoss() throws Exception {
+        lobby = JidCreate.entityBareFrom("fleet-session-" + accounts + "@conference." + PrivateXmppServer.DOMAIN);
+        double liveness = 0.4;
+        try (SilentRelay relay = new SilentRelay(XMPP.port())) {
+            RobotSession session = startControlMl(relay.port(), liveness);
+            assertNextEvent("online");
+            operatorLogsIn();
+            sabot.fleet.FleetLobby operatorInLobby = joinLobby(operatorConnection);
+            String operatorJid = operatorConnection.getUser().toString();
+            String robotJid = robot + "/" + ControlMlSettings.DEFAULT_RESOURCE;
+            awaitCondition(() -> session.lobbyMembers().contains(operatorJid), "the operator among the robot's "
+                    + "lobby members");
+            awaitCondition(() -> operatorInLobby.members().stream().anyMatch(j -> j.toString().equals(robotJid)),
+                    "the robot among the operator's lobby members");
+            assertFalse(session.lobbyMembers().contains(robotJid), "the robot is no member of its own lobby");
+
+            relay.silence();
+            assertNextEvent("offline");
+            assertEquals(List.of(), session.lobbyMembers(), "nobody known in the lobby while offline");
+            relay.resume();
+            assertNextEvent("online");
+            awaitCondition(() -> session.lobbyMembers().contains(operatorJid), "the operator among the robot's "
+                    + "lobby members again");
+            awaitCondition(() -> operatorInLobby.members().stream().anyMatch(j -> j.toString().equals(robotJid)),
+                    "the robot in the lobby again");
+        }
+    }
+
+    /** The operator joins the lobby, again while it is refused (the robot may be making it at the same moment). */
+    sabot.fleet.FleetLobby joinLobby(XMPPTCPConnection c) throws Exception {
+        sabot.fleet.FleetLobby room = new sabot.fleet.FleetLobby(c, lobby);
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(WAIT_S);
+        while (true) {
+            try {
+                room.join();
+                return room;
+            } catch (sabot.fleet.FleetException e) {
+                if (System.nanoTime() - deadline > 0) {
+                    throw e;
+                }
+                java.util.concurrent.locks.LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(50));
+            }
         }
     }
 
