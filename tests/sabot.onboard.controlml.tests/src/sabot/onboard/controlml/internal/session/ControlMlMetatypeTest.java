@@ -36,7 +36,7 @@ class ControlMlMetatypeTest {
         assertEquals(new TreeSet<>(Set.of("server", "port", "caFile", "jid", "passwordFile", "resource", "reconnectMin",
                 "reconnectMax", "observerGroups", "operatorGroups", "maintainerGroups", "openPolicy",
                 "staleCommandAfter", "liveness", "positionRate", "velocityRate", "missionRate", "obstaclesRate",
-                "batteryRate", "baseRate", "leaseMax", "lobby")),
+                "batteryRate", "passageRate", "baseRate", "leaseMax", "lobby")),
                 new TreeSet<>(d.keySet()));
         // deny by default: the lab's group of each role (the server grants them), no open policy; the lab's robots
         // observe one another (they follow each other's positions, and cannot command)
