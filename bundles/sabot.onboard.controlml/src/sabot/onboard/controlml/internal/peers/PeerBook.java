@@ -11,6 +11,7 @@ import java.util.TreeMap;
 
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.PassageClaim;
 import sabot.model.robot.PeerRobot;
 
 /**
@@ -20,8 +21,9 @@ import sabot.model.robot.PeerRobot;
  * <p>
  * Telemetry of a robot not followed is dropped (an item still on its way after the robot left the group, or one the
  * server delivers for a subscription this robot never asked for). A robot appears in the snapshot once its first pose
- * has arrived, with a zero velocity until its first {@code cm.velocity}; it stays, marked offline, when it goes
- * offline, and disappears only when it is no longer followed.
+ * has arrived, with a zero velocity until its first {@code cm.velocity} and no passage claim until its first
+ * {@code cm.passage} says one; it stays, marked offline, when it goes offline, and disappears only when it is no longer
+ * followed.
  */
 final class PeerBook {
 
@@ -31,6 +33,8 @@ final class PeerBook {
         Twist2D velocity = Twist2D.ZERO;
         Instant heard;
         boolean online = true;
+        /** Its claim on a narrow passage, null for none. */
+        PassageClaim passage;
     }
 
     private final Clock clock;
@@ -110,12 +114,24 @@ final class PeerBook {
         }
     }
 
+    /** A robot's claim on a narrow passage arrived ({@code cm.passage}): null for none. */
+    synchronized void passage(String jid, PassageClaim claim) {
+        Entry e = entries.get(jid);
+        if (e == null || Objects.equals(e.passage, claim)) {
+            return;
+        }
+        e.passage = claim;
+        if (e.pose != null) {
+            publish();
+        }
+    }
+
     /** Makes the snapshot of the entries; the caller holds the lock. */
     private void publish() {
         List<PeerRobot> now = new ArrayList<>(entries.size());
         entries.forEach((jid, e) -> {
             if (e.pose != null) {
-                now.add(new PeerRobot(jid, e.pose, e.velocity, e.heard, e.online));
+                now.add(new PeerRobot(jid, e.pose, e.velocity, e.heard, e.online, e.passage));
             }
         });
         snapshot = List.copyOf(now);

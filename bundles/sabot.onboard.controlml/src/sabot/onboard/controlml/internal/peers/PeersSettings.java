@@ -16,8 +16,9 @@ import sabot.onboard.task.TaskSettingsCheck.Problem;
  * The settings of the {@code peers} task (declared by {@link Config}): how fast the other robots' telemetry is leased
  * and which of the server's shared groups says who is a robot.
  *
- * @param rateHz the rate leased of each followed robot's {@code cm.position} and {@code cm.velocity}, Hz (the robot
- *               publishes them at most at its own {@code controlml.positionRate} and {@code velocityRate})
+ * @param rateHz the rate leased of each followed robot's {@code cm.position}, {@code cm.velocity} and
+ *               {@code cm.passage}, Hz (the robot publishes them at most at its own {@code controlml.positionRate},
+ *               {@code velocityRate} and {@code passageRate})
  * @param group  the server's shared group of the lab's robots: only its members, as this robot's roster shows them,
  *               are followed
  */
@@ -44,13 +45,14 @@ public record PeersSettings(double rateHz, String group) {
      * configuration through {@link PeersSettings#of}, which checks it again for any other Config Admin client.
      */
     @ObjectClassDefinition(id = OnboardTask.PID_PREFIX + TASK, name = "Fleet peers", description = "Follows the other "
-            + "robots of the lab over the controlml session (their position and velocity telemetry) for the motion "
-            + "task's costmap and collision guard: the robots the server puts in its robots' group, online in the "
-            + "roster or in the fleet lobby (controlml.lobby).")
+            + "robots of the lab over the controlml session (their position, velocity and passage claim telemetry) "
+            + "for the motion task's costmap, collision guard and passage rule: the robots the server puts in its "
+            + "robots' group, online in the roster or in the fleet lobby (controlml.lobby).")
     public @interface Config {
-        @AttributeDefinition(name = "Telemetry rate", description = "Hz of position and velocity leased from each "
-                + "followed robot (it publishes them at most at its own controlml.positionRate and velocityRate); "
-                + "the lease is renewed before it ends.", min = "" + MIN_RATE_HZ, max = "" + MAX_RATE_HZ)
+        @AttributeDefinition(name = "Telemetry rate", description = "Hz of position, velocity and passage claim "
+                + "leased from each followed robot (it publishes them at most at its own controlml.positionRate, "
+                + "velocityRate and passageRate); the lease is renewed before it ends.", min = "" + MIN_RATE_HZ,
+                max = "" + MAX_RATE_HZ)
         double rate() default DEFAULT_RATE_HZ;
 
         @AttributeDefinition(name = "Robots' group", description = "The XMPP server's shared group of the lab's "

@@ -7,7 +7,10 @@ import org.osgi.service.component.annotations.Component;
 
 import sabot.onboard.task.TaskSettingsCheck;
 
-/** What Metatype cannot say about the {@code peers} settings: the robots' group must be named, without control characters. */
+/**
+ * What Metatype cannot say about the {@code peers} settings: the robots' group must be named, without control
+ * characters (and the rate is checked again, as for any Config Admin client).
+ */
 @Component(service = TaskSettingsCheck.class, property = TaskSettingsCheck.TASK + "=" + PeersSettings.TASK)
 public final class PeersSettingsCheck implements TaskSettingsCheck {
 

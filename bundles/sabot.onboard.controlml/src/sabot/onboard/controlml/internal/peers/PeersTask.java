@@ -58,9 +58,10 @@ import sabot.onboard.task.OnboardTask;
  * stays followed, marked offline with its last pose (its body is still there), while it is offline, and is let go when
  * it leaves the group.
  * <p>
- * <b>How.</b> For each followed robot: explicit XEP-0060 subscriptions to its {@code cm.position} and
- * {@code cm.velocity} nodes ({@link TelemetryManager#follow}; a node not published yet is asked for again, 1 s after,
- * doubling to 30 s), and a lease of both at {@link PeersSettings#rateHz} at its full JID ({@link TelemetryWatcher},
+ * <b>How.</b> For each followed robot: explicit XEP-0060 subscriptions to its {@code cm.position},
+ * {@code cm.velocity} and {@code cm.passage} nodes (its claim on a narrow passage, docs/PASSAGES.md;
+ * {@link TelemetryManager#follow}; a node not published yet is asked for again, 1 s after, doubling to 30 s), and a
+ * lease of the three at {@link PeersSettings#rateHz} at its full JID ({@link TelemetryWatcher},
  * renewed at half of what the robot grants; sent again when the robot comes back online). A robot lets this one lease
  * its telemetry because the lab's robots observe one another by default ({@code controlml.observerGroups}); an
  * observer cannot command. Each pose is stamped with this robot's clock when it arrives ({@link PeerBook}). After this
@@ -82,7 +83,7 @@ public final class PeersTask implements OnboardTask, FleetPeers {
     private static final Logger LOG = LoggerFactory.getLogger(PeersTask.class);
 
     /** The telemetry followed of each robot. */
-    static final List<Resource<?, ?>> FOLLOWED = List.of(Resources.POSITION, Resources.VELOCITY);
+    static final List<Resource<?, ?>> FOLLOWED = List.of(Resources.POSITION, Resources.VELOCITY, Resources.PASSAGE);
     /** The lease asked of each robot, s; the watcher renews it at half of what the robot grants. */
     static final double LEASE_S = 30;
     /** How often who is followed is checked without an event: the lobby's comings and goings, subscriptions retried. */
@@ -103,8 +104,8 @@ public final class PeersTask implements OnboardTask, FleetPeers {
         /** The full JID its lease was sent to; null before the first. */
         Jid leasedAt;
         boolean online;
-        /** Both telemetry nodes subscribed to. */
-        boolean subscribed;
+        /** The telemetry nodes subscribed to (each asked for until it is). */
+        final Set<Resource<?, ?>> subscribed = new HashSet<>();
         /** The lease is to be sent again (the robot, or this session, came back online: it has none). */
         boolean renewLease;
         int failures;
@@ -164,6 +165,8 @@ public final class PeersTask implements OnboardTask, FleetPeers {
         telemetry.addListener(Resources.POSITION, (device, estimate) -> book.pose(device.toString(), estimate.pose()));
         telemetry.addListener(Resources.VELOCITY, (device, command) -> book.velocity(device.toString(), command
                 .twist()));
+        telemetry.addListener(Resources.PASSAGE, (device, status) -> book.passage(device.toString(), status.claim()
+                .orElse(null)));
         this.watcher = telemetry.watcher(LEASE_S);
         loginNanos = System.nanoTime();
         roster.addRosterListener(rosterEvents);
@@ -171,7 +174,8 @@ public final class PeersTask implements OnboardTask, FleetPeers {
         worker.scheduleWithFixedDelay(this::reconcile, RECONCILE.toNanos(), RECONCILE.toNanos(),
                 TimeUnit.NANOSECONDS);
         LOG.info("peers task started: following the robots of the server's group {} (online in the roster or the "
-                + "fleet lobby), their position and velocity at {} Hz", settings.group(), settings.rateHz());
+                + "fleet lobby), their position, velocity and passage claim at {} Hz", settings.group(), settings
+                        .rateHz());
     }
 
     @Deactivate
@@ -214,7 +218,7 @@ public final class PeersTask implements OnboardTask, FleetPeers {
     @Override
     public String status() {
         return "following " + followedCount + " robot(s) of group " + settings.group() + " (" + onlineCount
-                + " online), position and velocity at " + settings.rateHz() + " Hz";
+                + " online), position, velocity and passage claim at " + settings.rateHz() + " Hz";
     }
 
     // ------------------------------------------------------------------------------------------ worker thread
@@ -223,7 +227,7 @@ public final class PeersTask implements OnboardTask, FleetPeers {
     private void sessionOnline() {
         loginNanos = System.nanoTime();
         for (Followed f : followed.values()) {
-            f.subscribed = false;
+            f.subscribed.clear();
             f.failures = 0;
             f.renewLease = true;
         }
@@ -259,7 +263,7 @@ public final class PeersTask implements OnboardTask, FleetPeers {
                 }
                 if (at != null && !f.online) {
                     // (back) online: a new session of the robot, which has no lease, and nodes perhaps new
-                    f.subscribed = false;
+                    f.subscribed.clear();
                     f.failures = 0;
                     f.renewLease = true;
                 }
@@ -327,8 +331,8 @@ public final class PeersTask implements OnboardTask, FleetPeers {
         }
         followed.put(bare, new Followed(jid));
         book.follow(bare);
-        LOG.info("following {} (in the server's group {}): position and velocity at {} Hz", bare, settings.group(),
-                settings.rateHz());
+        LOG.info("following {} (in the server's group {}): position, velocity and passage claim at {} Hz", bare,
+                settings.group(), settings.rateHz());
     }
 
     private void stopFollowing(Followed f, String why) {
@@ -342,20 +346,24 @@ public final class PeersTask implements OnboardTask, FleetPeers {
         LOG.info("no longer following {}: {}", bare, why);
     }
 
-    /** Subscribes to the robot's telemetry nodes unless done, or waiting to ask again. */
+    /** Subscribes to the robot's telemetry nodes not subscribed to yet, unless waiting to ask again. */
     private void subscribe(Followed f) {
-        if (f.subscribed || (f.failures > 0 && System.nanoTime() - f.retryAtNanos < 0)) {
+        if (f.subscribed.size() == FOLLOWED.size() || (f.failures > 0 && System.nanoTime() - f.retryAtNanos < 0)) {
             return;
         }
         List<String> missing = new ArrayList<>();
         for (Resource<?, ?> r : FOLLOWED) {
+            if (f.subscribed.contains(r)) {
+                continue;
+            }
             Outcome<Void> o = telemetry.follow(f.jid, r);
-            if (!o.isSuccess()) {
+            if (o.isSuccess()) {
+                f.subscribed.add(r);
+            } else {
                 missing.add(r.name() + " (" + o.errorOrNull() + ")");
             }
         }
         if (missing.isEmpty()) {
-            f.subscribed = true;
             f.failures = 0;
             LOG.debug("subscribed to the telemetry of {}", f.jid);
             return;

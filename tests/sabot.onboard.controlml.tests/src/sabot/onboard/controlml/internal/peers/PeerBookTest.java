@@ -15,6 +15,7 @@ import org.junit.jupiter.api.Test;
 
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.PassageClaim;
 import sabot.model.robot.PeerRobot;
 
 /** What a robot keeps of the robots it follows, on a clock the test moves by hand. */
@@ -108,6 +109,23 @@ class PeerBookTest {
         assertEquals(Twist2D.ZERO, before.get(0).velocity(), "an old snapshot does not change");
         assertEquals(TWIST, book.peers().get(0).velocity());
         assertThrows(UnsupportedOperationException.class, () -> before.add(before.get(0)));
+    }
+
+    @Test
+    void aPassageClaimIsKeptWithTheRobotUntilItSaysNone() {
+        PassageClaim claim = new PassageClaim(1, PassageClaim.State.WAITING, clock.now.minusSeconds(2));
+        book.follow(B);
+        book.passage(B, claim);
+        assertEquals(List.of(), book.peers(), "no pose, no entry");
+        book.pose(B, POSE);
+        assertEquals(claim, book.peers().get(0).passage());
+        PassageClaim passing = new PassageClaim(1, PassageClaim.State.PASSING, claim.since());
+        book.passage(B, passing);
+        assertEquals(passing, book.peers().get(0).passage());
+        book.passage(B, null);
+        assertEquals(null, book.peers().get(0).passage(), "cm.passage said none");
+        book.passage(C, claim);
+        assertEquals(List.of(B), book.peers().stream().map(PeerRobot::jid).toList(), "a robot not followed");
     }
 
     @Test

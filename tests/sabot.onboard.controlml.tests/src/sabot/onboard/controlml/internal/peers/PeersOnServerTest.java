@@ -16,6 +16,7 @@ import java.util.Hashtable;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
+import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.TimeUnit;
@@ -46,6 +47,7 @@ import sabot.controlml.Resources;
 import sabot.controlml.TelemetryLeases;
 import sabot.controlml.TelemetryManager;
 import sabot.controlml.TelemetryPublication;
+import sabot.controlml.payload.PassageStatus;
 import sabot.controlml.payload.PoseCovariance;
 import sabot.controlml.payload.PoseEstimate;
 import sabot.controlml.payload.VelocityCommand;
@@ -59,6 +61,7 @@ import sabot.identity.DeviceUrn;
 import sabot.identity.Inventory;
 import sabot.model.geometry.Pose2D;
 import sabot.model.geometry.Twist2D;
+import sabot.model.robot.PassageClaim;
 import sabot.model.robot.PeerRobot;
 import sabot.onboard.controlml.internal.session.ControlMlSettings;
 import sabot.onboard.session.FleetPeers;
@@ -80,9 +83,15 @@ abstract class PeersOnServerTest {
     /** Robot B's pose and velocity as it publishes them, then after it moved. */
     static final Pose2D B_POSE = new Pose2D(3.25, 1.5, -0.5), B_MOVED = new Pose2D(4.75, 1.5, 0.25);
     static final Twist2D B_TWIST = new Twist2D(0.25, 0.1);
+    /** Robot B's claim on a narrow passage (cm.passage), as it publishes it. */
+    static final PassageClaim B_CLAIM = new PassageClaim(1, PassageClaim.State.WAITING, Instant.parse(
+            "2026-11-30T10:15:30Z"));
     static final Pose2D IMPOSTOR_POSE = new Pose2D(1.0, 1.0, 0);
-    /** A robot's default telemetry rates (controlml.baseRate, controlml.positionRate and velocityRate), Hz. */
-    static final double BASE_HZ = 0.2, FULL_HZ = 10;
+    /**
+     * A robot's default telemetry rates, Hz: controlml.baseRate; positionRate and velocityRate; passageRate (the
+     * tests of the controlml settings check those defaults).
+     */
+    static final double BASE_HZ = 0.2, FULL_HZ = 10, PASSAGE_HZ = 5;
     private static final AtomicInteger RUNS = new AtomicInteger();
 
     protected abstract PrivateXmppServer server();
@@ -156,13 +165,14 @@ abstract class PeersOnServerTest {
 
         Instant enrolled = Instant.now();
         server().enrolRobot(robotB); // the server's word
-        PeerRobot heard = awaitPeer(p -> p.pose().equals(B_POSE) && p.velocity().equals(B_TWIST),
-                "robot B with the pose and velocity it publishes");
+        PeerRobot heard = awaitPeer(p -> p.pose().equals(B_POSE) && p.velocity().equals(B_TWIST) && B_CLAIM.equals(
+                p.passage()), "robot B with the pose, velocity and passage claim it publishes");
         assertTrue(heard.online());
         assertFalse(heard.heard().isBefore(enrolled), heard + " stamped before it was followed");
         assertFalse(heard.heard().isAfter(Instant.now()), heard + " stamped in the future");
         await(() -> b.rate(Resources.POSITION) == PeersSettings.DEFAULT_RATE_HZ && b.rate(Resources.VELOCITY)
-                == PeersSettings.DEFAULT_RATE_HZ, () -> "robot B publishing at the leased "
+                == PeersSettings.DEFAULT_RATE_HZ && b.rate(Resources.PASSAGE) == PeersSettings.DEFAULT_RATE_HZ,
+                () -> "robot B publishing at the leased "
                         + PeersSettings.DEFAULT_RATE_HZ + " Hz, not at its base rate (its rates: " + b.leases.rates()
                         + ")");
         // poses keep coming at that rate: a later one is heard within a few periods, not after the base rate's 5 s
@@ -237,8 +247,8 @@ abstract class PeersOnServerTest {
 
     /**
      * Another robot of the lab as robot A meets it on the wire: its account's session with the roles a robot's
-     * default settings give ({@link ControlMlSettings}: the lab's robots observe it), its position and velocity served
-     * with leases at a robot's default rates, in the fleet lobby.
+     * default settings give ({@link ControlMlSettings}: the lab's robots observe it), its position, velocity and
+     * passage claim served with leases at a robot's default rates, in the fleet lobby.
      */
     final class WireRobot implements AutoCloseable {
         final XMPPTCPConnection connection;
@@ -258,6 +268,8 @@ abstract class PeersOnServerTest {
             leases.offer(Resources.POSITION, () -> new PoseEstimate(Instant.now(), pose, PoseCovariance.diagonal(
                     0.01, 0.01, 0.001)), BASE_HZ, FULL_HZ);
             leases.offer(Resources.VELOCITY, () -> new VelocityCommand(Instant.now(), B_TWIST), BASE_HZ, FULL_HZ);
+            leases.offer(Resources.PASSAGE, () -> new PassageStatus(Instant.now(), Optional.of(B_CLAIM)), BASE_HZ,
+                    PASSAGE_HZ);
             joinTheLobby(connection);
         }
 
@@ -331,7 +343,7 @@ abstract class PeersOnServerTest {
         return now;
     }
 
-    private java.util.Optional<PeerRobot> peer(EntityBareJid jid) {
+    private Optional<PeerRobot> peer(EntityBareJid jid) {
         return listedNow().stream().filter(p -> p.jid().equals(jid.toString())).findFirst();
     }
 
