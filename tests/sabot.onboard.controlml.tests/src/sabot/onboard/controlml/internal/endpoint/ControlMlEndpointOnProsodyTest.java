@@ -100,6 +100,7 @@ class ControlMlEndpointOnProsodyTest {
     private static final double MISSION_HZ = 5;
     private static final double OBSTACLES_HZ = 4;
     private static final double BATTERY_HZ = 3;
+    private static final double PASSAGE_HZ = 6;
     /** The rate of each telemetry resource nobody leases (controlml.baseRate). */
     private static final double BASE_HZ = 2;
     private static final String MARKER = "sabot.test.endpoint";
@@ -166,7 +167,7 @@ class ControlMlEndpointOnProsodyTest {
         workbench = ControlMlManager.getInstanceFor(wbConnection);
         // telemetry listeners before login: +notify goes into the entity caps
         for (Resource<?, ?> r : List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
-                Resources.OBSTACLES, Resources.BATTERY)) {
+                Resources.OBSTACLES, Resources.BATTERY, Resources.PASSAGE)) {
             BlockingQueue<Long> times = new LinkedBlockingQueue<>();
             arrivals.put(r.name(), times);
             workbench.telemetry().addListener(r, (device, value) -> times.add(System.nanoTime()));
@@ -198,6 +199,7 @@ class ControlMlEndpointOnProsodyTest {
         settings.put("missionRate", MISSION_HZ);
         settings.put("obstaclesRate", OBSTACLES_HZ);
         settings.put("batteryRate", BATTERY_HZ);
+        settings.put("passageRate", PASSAGE_HZ);
         settings.put("baseRate", BASE_HZ);
         settings.put("leaseMax", 5.0);
         configuration.update(settings);
@@ -528,22 +530,25 @@ class ControlMlEndpointOnProsodyTest {
         follow();
         assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", BASE_HZ), new StreamRate(
                 "cm.velocity", BASE_HZ), new StreamRate("cm.mission", BASE_HZ), new StreamRate("cm.obstacles",
-                        BASE_HZ), new StreamRate("cm.battery", BASE_HZ))), workbench.get(robotJid,
+                        BASE_HZ), new StreamRate("cm.battery", BASE_HZ), new StreamRate("cm.passage", BASE_HZ))),
+                workbench.get(robotJid,
                                 Resources.TELEMETRY).orElseThrow(), "nobody leases");
         assertRates(Map.of("cm.position", BASE_HZ, "cm.mission", BASE_HZ));
 
         List<StreamRate> asked = new ArrayList<>();
-        for (String r : List.of("cm.position", "cm.velocity", "cm.mission", "cm.obstacles", "cm.battery")) {
+        for (String r : List.of("cm.position", "cm.velocity", "cm.mission", "cm.obstacles", "cm.battery",
+                "cm.passage")) {
             asked.add(new StreamRate(r, TelemetryRates.MAX_RATE_HZ));
         }
         TelemetryRates granted = workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(60, asked))
                 .orElseThrow();
         assertEquals(new TelemetryRates(5, List.of(new StreamRate("cm.position", POSITION_HZ), new StreamRate(
                 "cm.velocity", VELOCITY_HZ), new StreamRate("cm.mission", MISSION_HZ), new StreamRate("cm.obstacles",
-                        OBSTACLES_HZ), new StreamRate("cm.battery", BATTERY_HZ))), granted,
+                        OBSTACLES_HZ), new StreamRate("cm.battery", BATTERY_HZ), new StreamRate("cm.passage",
+                                PASSAGE_HZ))), granted,
                 "the configured rates, for at most controlml.leaseMax");
         assertRates(Map.of("cm.position", POSITION_HZ, "cm.velocity", VELOCITY_HZ, "cm.mission", MISSION_HZ,
-                "cm.obstacles", OBSTACLES_HZ, "cm.battery", BATTERY_HZ));
+                "cm.obstacles", OBSTACLES_HZ, "cm.battery", BATTERY_HZ, "cm.passage", PASSAGE_HZ));
 
         assertTrue(workbench.set(robotJid, Resources.TELEMETRY, new TelemetryRates(0, List.of())).isSuccess());
         assertEquals(BASE_HZ, workbench.get(robotJid, Resources.TELEMETRY).orElseThrow().stream("cm.position")
@@ -747,7 +752,7 @@ class ControlMlEndpointOnProsodyTest {
         Subscriptions.mutual(wbConnection, robotConnection, Duration.ofSeconds(TIMEOUT_S));
         EntityBareJid device = robotJid.asEntityBareJidIfPossible();
         for (Resource<?, ?> r : List.of(Resources.POSITION, Resources.VELOCITY, Resources.MISSION,
-                Resources.OBSTACLES, Resources.BATTERY)) {
+                Resources.OBSTACLES, Resources.BATTERY, Resources.PASSAGE)) {
             long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(TIMEOUT_S);
             while (true) {
                 Outcome<Void> followed = workbench.telemetry().follow(device, r);
