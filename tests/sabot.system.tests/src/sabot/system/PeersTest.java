@@ -19,6 +19,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 import sabot.controlml.ControlMlManager;
+import sabot.controlml.Outcome;
 import sabot.controlml.Resources;
 import sabot.controlml.Role;
 import sabot.controlml.payload.Goal;
@@ -91,8 +92,9 @@ class PeersTest extends RigTest {
 
         /** Sends robot i to {@code goal}. */
         void send(int i, Pose2D goal) throws Exception {
-            assertTrue(operator.set(jid(names[i]), Resources.GOAL, new Goal(goal, TOLERANCE, 0.3)).isSuccess(), robots
-                    .get(i).output());
+            Outcome<Goal> o = operator.set(jid(names[i]), Resources.GOAL, new Goal(goal, TOLERANCE, 0.3));
+            assertTrue(o.isSuccess(), names[i] + " refused the goal: " + o.errorOrNull() + "\n" + robots.get(i)
+                    .output());
         }
 
         /** Waits until robot i says its goal is reached, and checks it is done there on the truth, untouched. */

@@ -632,9 +632,11 @@ public final class ControlLoop {
         List<Point2D> ends = new java.util.ArrayList<>();
         Point2D start = from.position();
         LoopSettings s = settings;
-        List<MovingObstacle> robots = PeerField.obstacles(peers.discs(clock.now(), s.robotRadius()));
+        List<PeerField.Disc> discs = peers.discs(clock.now(), s.robotRadius());
+        List<MovingObstacle> robots = PeerField.obstacles(discs);
+        List<Point2D> echoes = PeerField.unexplained(obstacles, discs);
         for (Goal g : concat(via, goal)) {
-            PlanResult result = planner.plan(start, g.pose().position(), obstacles, robots);
+            PlanResult result = planner.plan(start, g.pose().position(), echoes, robots);
             if (result instanceof PlanResult.Unreachable u) {
                 return new Plan(null, 0, "unreachable goal: " + u.detail());
             }

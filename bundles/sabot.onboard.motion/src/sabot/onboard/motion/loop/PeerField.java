@@ -31,6 +31,11 @@ final class PeerField {
      * task's 5 Hz lease. Beyond it the robot is taken to stand where the prediction ended, not to drive on.
      */
     static final double MAX_PREDICTION = 2.0;
+    /**
+     * How far outside a robot's disc an echo may lie and still be that robot's body, m: the sonar's arc of cells, the
+     * pose estimates' errors and 0.2 s of the robot's motion between two of its telemetry items.
+     */
+    static final double ECHO_ALLOWANCE = 0.15;
     /** Step along the trajectory ahead at which it is checked against the discs, s. */
     private static final double BLOCKED_CHECK_STEP = 0.1;
 
@@ -117,6 +122,26 @@ final class PeerField {
             }
             if (Double.isFinite(x) && Double.isFinite(y)) {
                 out.add(new Disc(p.jid(), x, y, vx, vy, radius));
+            }
+        }
+        return out;
+    }
+
+    /**
+     * The sonar's echoes that no other robot explains: an echo within {@link #ECHO_ALLOWANCE} of a robot's disc is that
+     * robot's body, which the planner already has as the robot (and may plan to the place it is about to leave). The
+     * collision guard and the check of the path ahead keep every echo.
+     *
+     * @return the echoes not on any disc, in order
+     */
+    static List<Point2D> unexplained(List<Point2D> echoes, List<Disc> discs) {
+        if (discs.isEmpty()) {
+            return echoes;
+        }
+        List<Point2D> out = new ArrayList<>(echoes.size());
+        for (Point2D e : echoes) {
+            if (nearest(discs, e.x(), e.y(), ECHO_ALLOWANCE) >= ECHO_ALLOWANCE) {
+                out.add(e);
             }
         }
         return out;

@@ -12,6 +12,7 @@ import java.util.concurrent.atomic.AtomicReference;
 
 import org.junit.jupiter.api.Test;
 
+import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
 import sabot.controlml.payload.TrajectoryPoint;
 import sabot.model.geometry.Point2D;
@@ -117,6 +118,23 @@ class PeerLoopTest {
             rig.answerPlanRequests();
         }
         assertEquals(MissionState.DONE, s.mission().state(), s.mission().detail());
+    }
+
+    /**
+     * The sonar's echoes off another robot's body are the robot, which the planner has already: they do not make the
+     * place it is about to leave unreachable. The same echoes with no robot there do.
+     */
+    @Test
+    void echoesOfAnotherRobotsBodyDoNotMakeItsPlaceUnreachable() {
+        rig.run(0.1);
+        Pose2D here = rig.loop.snapshot().pose().pose();
+        Goal there = new Goal(new Pose2D(6, 5, 0), 0.05, 0.1);
+        List<Point2D> echoes = List.of(new Point2D(5.76, 4.95), new Point2D(5.75, 5.0), new Point2D(5.76, 5.05));
+        ControlLoop.Plan refused = rig.loop.planPath(here, new Goal(new Pose2D(5.8, 5, 0), 0.05, 0.1), echoes);
+        assertNotNull(refused.refusal(), "an echo on the goal, no robot there");
+        peers.set(List.of(standing("sabot-02", 6, 5)));
+        ControlLoop.Plan plan = rig.loop.planPath(here, there, echoes);
+        assertEquals(null, plan.refusal(), "the echoes are sabot-02's body");
     }
 
     /** The joystick straight at a standing robot: the collision guard stops short of its footprint. */
