@@ -15,7 +15,8 @@ import sabot.planner.costmap.MovingObstacle;
 
 /**
  * The other robots as obstacles (docs/USER-GUIDE.md, "Other robots"): each one the peers task follows is a disc of the
- * fleet's footprint (the robots of a fleet are of one kind: this robot's radius) at the position its telemetry last
+ * fleet's footprint (the robots of a fleet are of one kind: this robot's radius) plus {@link #MARGIN}, at the
+ * position its telemetry last
  * gave, carried forward along its velocity for the time since, at most {@link #MAX_PREDICTION}; a robot that went
  * offline stands where it was last heard. A robot not heard for {@code memory} seconds is forgotten (the sonar still
  * sees its body). The planner takes the discs as obstacles and their predicted sweep as the moving-obstacle layer
@@ -31,6 +32,12 @@ final class PeerField {
      * task's 5 Hz lease. Beyond it the robot is taken to stand where the prediction ended, not to drive on.
      */
     static final double MAX_PREDICTION = 2.0;
+    /**
+     * What a robot's disc adds to its footprint, m: how far its true place may be from where this robot puts it — both
+     * robots' pose estimates (a few centimetres each, docs/ONBOARD.md) and its motion in the up to 0.2 s between two of
+     * its telemetry items at the peers task's 5 Hz that the prediction does not follow (a turn).
+     */
+    static final double MARGIN = 0.1;
     /**
      * How far outside a robot's disc an echo may lie and still be that robot's body, m: the sonar's arc of cells, the
      * pose estimates' errors and 0.2 s of the robot's motion between two of its telemetry items.
@@ -65,7 +72,12 @@ final class PeerField {
         this.memory = memory;
     }
 
-    /** Loop thread: takes the peers as they are at {@code now}. @return the discs */
+    /**
+     * Loop thread: takes the peers as they are at {@code now}.
+     *
+     * @param radius the fleet's footprint radius, m (each disc adds {@link #MARGIN})
+     * @return the discs
+     */
     List<Disc> refresh(Instant now, double radius) {
         robots = read();
         discs = discs(robots, now, radius);
@@ -121,7 +133,7 @@ final class PeerField {
                 vy = 0;
             }
             if (Double.isFinite(x) && Double.isFinite(y)) {
-                out.add(new Disc(p.jid(), x, y, vx, vy, radius));
+                out.add(new Disc(p.jid(), x, y, vx, vy, radius + MARGIN));
             }
         }
         return out;

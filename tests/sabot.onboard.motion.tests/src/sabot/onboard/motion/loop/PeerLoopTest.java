@@ -148,8 +148,8 @@ class PeerLoopTest {
             rig.joystick(0.4, 0);
             s = rig.run(0.1);
         }
-        double gap = other.x() - s.pose().pose().x() - TOUCH;
-        assertTrue(gap >= 0 && gap <= LoopDefaults.GUARD_MARGIN + 0.05, "gap between the footprints " + gap + " m");
+        double gap = other.x() - s.pose().pose().x() - TOUCH - PeerField.MARGIN;
+        assertTrue(gap >= 0 && gap <= LoopDefaults.GUARD_MARGIN + 0.05, "gap to the other robot's disc " + gap + " m");
         assertEquals(0, rig.boards.lastWrite().left(), 1e-9);
         assertTrue(rig.loop.guardStatus().startsWith("stopped: obstacle"), rig.loop.guardStatus());
     }
@@ -185,6 +185,7 @@ class PeerLoopTest {
         assertEquals(0.5, discs.get(0).vy(), 1e-9);
         assertEquals(4.0, discs.get(1).x(), 1e-9, "offline: where it was");
         assertEquals(0.0, discs.get(1).vx(), 1e-9);
+        assertEquals(0.25 + PeerField.MARGIN, discs.get(1).radius(), 1e-12, "the footprint and the margin");
         PeerField.Disc late = field.discs(heard.plusSeconds(10), 0.25).get(0);
         assertEquals(1 + 0.5 * PeerField.MAX_PREDICTION, late.y(), 1e-9, "carried forward at most MAX_PREDICTION");
         assertEquals(0.0, late.vy(), 1e-9, "and taken to stand there");
