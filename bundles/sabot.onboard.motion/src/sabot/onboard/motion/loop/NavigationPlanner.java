@@ -26,6 +26,10 @@ public final class NavigationPlanner implements AutoCloseable {
 
     /** Occupancy (0..100) from which a map cell is a known obstacle (ROS map_server: occupied_thresh 0.65). */
     static final int OCCUPIED_THRESHOLD = 65;
+    /** A robot's right-hand sweep lies this many of its diameters to its right ({@link #keepingRight}). */
+    static final double KEEP_RIGHT_OFFSET = 1.0;
+    /** Below this speed, m/s, a robot has no heading to keep right of: it is only its disc and its sweep. */
+    static final double KEEP_RIGHT_MIN_SPEED = 0.05;
     /** Step along an imposed path at which the footprint is checked, m. */
     static final double COLLISION_STEP = 0.02;
 
@@ -92,9 +96,31 @@ public final class NavigationPlanner implements AutoCloseable {
         clearFootprint(withObstacles, start);
         CostmapLayers layers = CostmapLayers.fromOccupancy(withObstacles, inflation, MovingObstacleModel.defaults());
         if (!robots.isEmpty()) {
-            layers.setMovingObstacles(robots, 0, 0);
+            layers.setMovingObstacles(keepingRight(robots), 0, 0);
         }
         return planner.plan(layers.costmap(), start, List.of(goal));
+    }
+
+    /**
+     * Keep right, as traffic does: each robot that drives gets a second sweep beside it on its right hand (its track
+     * moved {@link #KEEP_RIGHT_OFFSET} to the right), which prices the lane there, so that this robot passes it on its
+     * left. Two robots meeting head-on then both turn to their own right instead of both to the same side, where they
+     * would meet again.
+     *
+     * @return the robots and their right-hand sweeps (cost only: never walls)
+     */
+    static List<MovingObstacle> keepingRight(List<MovingObstacle> robots) {
+        List<MovingObstacle> out = new java.util.ArrayList<>(robots);
+        for (MovingObstacle r : robots) {
+            double speed = r.speed();
+            if (speed < KEEP_RIGHT_MIN_SPEED) {
+                continue;
+            }
+            double offset = KEEP_RIGHT_OFFSET * 2 * r.radius();
+            out.add(new MovingObstacle(new Point2D(r.position().x() + offset * r.vy() / speed, r.position().y() - offset
+                    * r.vx() / speed), r.vx(), r.vy(), r.radius()));
+        }
+        return out;
     }
 
     /**

@@ -43,6 +43,13 @@ final class PeerField {
      * pose estimates' errors and 0.2 s of the robot's motion between two of its telemetry items.
      */
     static final double ECHO_ALLOWANCE = 0.15;
+    /**
+     * How far ahead along its velocity a robot's disc is swept for the collision guard and the path-ahead check, s: the
+     * time this robot takes to stop from its top speed (0.5 m/s at 0.5 m/s², docs/sabot-robot.properties). Two
+     * robots driving at each other close twice as fast as one at a wall; each brakes for the room the other will
+     * take meanwhile.
+     */
+    static final double SWEEP = 1.0;
     /** Step along the trajectory ahead at which it is checked against the discs, s. */
     private static final double BLOCKED_CHECK_STEP = 0.1;
 
@@ -165,11 +172,31 @@ final class PeerField {
     }
 
     /**
-     * @return the distance from (x, y) to the nearest disc's edge (0 inside one) of the last refresh, m, or
+     * The collision guard's and the path-ahead check's distance: to the nearest robot's disc swept along its velocity
+     * for {@link #SWEEP} seconds (a capsule), so that two robots driving at each other each brake for the other's
+     * motion as well as their own.
+     *
+     * @return the distance from (x, y) to the nearest swept disc's edge (0 inside one) of the last refresh, m, or
      *         {@code limit} when none is nearer
      */
     double nearest(double x, double y, double limit) {
-        return nearest(discs, x, y, limit);
+        double best = limit;
+        for (Disc d : discs) {
+            double gap = swept(d, x, y);
+            if (gap < best) {
+                best = gap;
+            }
+        }
+        return best;
+    }
+
+    /** @return the distance from (x, y) to the edge of {@code d} swept along its velocity for {@link #SWEEP} s, m */
+    static double swept(Disc d, double x, double y) {
+        double ex = d.vx() * SWEEP;
+        double ey = d.vy() * SWEEP;
+        double length2 = ex * ex + ey * ey;
+        double f = length2 == 0 ? 0 : Math.max(0, Math.min(1, ((x - d.x()) * ex + (y - d.y()) * ey) / length2));
+        return Math.max(0, Math.hypot(d.x() + f * ex - x, d.y() + f * ey - y) - d.radius());
     }
 
     static double nearest(List<Disc> discs, double x, double y, double limit) {
@@ -197,7 +224,7 @@ final class PeerField {
         for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
             TrajectorySample r = trajectory.sample(s);
             for (Disc d : discs) {
-                if (Math.hypot(d.x() - r.x(), d.y() - r.y()) - d.radius() < clearance) {
+                if (swept(d, r.x(), r.y()) < clearance) {
                     return d;
                 }
             }

@@ -6,11 +6,8 @@ import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.time.Instant;
-import java.util.ArrayDeque;
-import java.util.Deque;
 import java.util.List;
 import java.util.Optional;
-import java.util.concurrent.atomic.AtomicReference;
 
 import org.junit.jupiter.api.Test;
 
@@ -35,7 +32,7 @@ class PassageLoopTest {
     private static final double TOUCH = 2 * LoopRig.ROBOT_RADIUS;
     /** The wall between the two rooms: x 5.0..5.1 m; its door y 4.5..5.5 m (1 m: one robot at a time). */
     private static final Passage DOOR = new Passage(1, 5.0, 4.5, 5.1, 5.5);
-    private static final String A = "sabot-01@sabot.local", B = "sabot-02@sabot.local";
+    private static final String A = LoopPair.A, B = LoopPair.B;
 
     /** @return the 10 m × 10 m map with the wall and its door */
     static OccupancyGrid doorMap() {
@@ -51,82 +48,18 @@ class PassageLoopTest {
         return map;
     }
 
-    /** Two robots, one in each room, heard by each other with a delay of {@code lagPeriods} periods. */
-    private static final class Pair {
-        final LoopRig a = new LoopRig(doorMap(), new Pose2D(2, 6, 0));
-        final LoopRig b = new LoopRig(doorMap(), new Pose2D(8, 4, Math.PI));
-        final AtomicReference<List<PeerRobot>> heardByA = new AtomicReference<>(List.of());
-        final AtomicReference<List<PeerRobot>> heardByB = new AtomicReference<>(List.of());
-        final Deque<PeerRobot> fromA = new ArrayDeque<>(), fromB = new ArrayDeque<>();
-        final int lag;
-        double closest = Double.POSITIVE_INFINITY;
-        boolean bothInDoor, aYielded, bYielded, bothPassing;
-
-        Pair(int lagPeriods) {
-            this.lag = lagPeriods;
-            PeerSettings s = new PeerSettings(5, LoopDefaults.PASSAGE_APPROACH, 60);
-            a.loop.peersFrom(heardByA::get, () -> A, s);
-            b.loop.peersFrom(heardByB::get, () -> B, s);
-            a.loop.passages(List.of(DOOR));
-            b.loop.passages(List.of(DOOR));
-        }
-
-        /** One period of both, then each hears the other as it was {@code lag} periods ago. */
-        void tick() {
-            ControlLoop.Snapshot sa = a.tick();
-            ControlLoop.Snapshot sb = b.tick();
-            a.answerPlanRequests();
-            b.answerPlanRequests();
-            fromA.addLast(peer(A, sa, a.clock.now()));
-            fromB.addLast(peer(B, sb, b.clock.now()));
-            if (fromA.size() > lag) {
-                heardByB.set(List.of(fromA.removeFirst()));
-            }
-            if (fromB.size() > lag) {
-                heardByA.set(List.of(fromB.removeFirst()));
-            }
-            Pose2D pa = sa.pose().pose();
-            Pose2D pb = sb.pose().pose();
-            closest = Math.min(closest, Math.hypot(pa.x() - pb.x(), pa.y() - pb.y()));
-            bothInDoor |= DOOR.touches(pa.x(), pa.y(), LoopRig.ROBOT_RADIUS) && DOOR.touches(pb.x(), pb.y(),
-                    LoopRig.ROBOT_RADIUS);
-            aYielded |= sa.mode() == Mode.YIELD;
-            bYielded |= sb.mode() == Mode.YIELD;
-            bothPassing |= passing(sa) && passing(sb);
-        }
-
-        private static boolean passing(ControlLoop.Snapshot s) {
-            return s.passage().map(c -> c.state() == PassageClaim.State.PASSING).orElse(false);
-        }
-
-        private static PeerRobot peer(String jid, ControlLoop.Snapshot s, Instant heard) {
-            return new PeerRobot(jid, s.pose().pose(), s.velocity().twist(), heard, true, s.passage().orElse(null));
-        }
-
-        void send(LoopRig rig, double x, double y, double theta) {
-            Goal g = new Goal(new Pose2D(x, y, theta), 0.1, 0.2);
-            rig.loop.startMission(g, rig.loop.planPath(rig.loop.snapshot().pose().pose(), g, List.of()));
-        }
-
-        MissionState state(LoopRig rig) {
-            return rig.loop.snapshot().mission().state();
-        }
-    }
-
     private static void crossAtOnce(int lagPeriods) {
-        Pair p = new Pair(lagPeriods);
+        LoopPair p = new LoopPair(doorMap(), new Pose2D(2, 6, 0), new Pose2D(8, 4, Math.PI), lagPeriods, List.of(
+                DOOR));
         p.tick();
         p.send(p.a, 8, 6, 0);
         p.send(p.b, 2, 4, Math.PI);
-        for (int i = 0; i < 90 * 50 && (p.state(p.a) == MissionState.RUNNING || p.state(p.b)
-                == MissionState.RUNNING); i++) {
-            p.tick();
-        }
+        p.runMissions(90);
         assertEquals(MissionState.DONE, p.state(p.a), p.a.loop.snapshot().mission().detail());
         assertEquals(MissionState.DONE, p.state(p.b), p.b.loop.snapshot().mission().detail());
         assertTrue(p.aYielded ^ p.bYielded, "exactly one robot yields: a " + p.aYielded + ", b " + p.bYielded);
         assertFalse(p.bothPassing, "both held the door at once");
-        assertFalse(p.bothInDoor, "both footprints were in the door at once");
+        assertFalse(p.bothIn(DOOR), "both footprints were in the door at once");
         assertTrue(p.closest >= TOUCH, "footprints overlapped: centres " + p.closest + " m apart");
         assertEquals(Optional.empty(), p.a.loop.snapshot().passage(), "a let the door go");
         assertEquals(Optional.empty(), p.b.loop.snapshot().passage(), "b let the door go");

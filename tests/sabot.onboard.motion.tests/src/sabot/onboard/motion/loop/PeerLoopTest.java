@@ -11,6 +11,8 @@ import java.util.List;
 import java.util.concurrent.atomic.AtomicReference;
 
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.ValueSource;
 
 import sabot.controlml.payload.Goal;
 import sabot.controlml.payload.MissionState;
@@ -152,6 +154,54 @@ class PeerLoopTest {
         assertTrue(gap >= 0 && gap <= LoopDefaults.GUARD_MARGIN + 0.05, "gap to the other robot's disc " + gap + " m");
         assertEquals(0, rig.boards.lastWrite().left(), 1e-9);
         assertTrue(rig.loop.guardStatus().startsWith("stopped: obstacle"), rig.loop.guardStatus());
+    }
+
+    /**
+     * Two robots driven straight at each other by joystick at the top speed, 0.5 m/s each: each guard brakes for the other's motion
+     * as well as its own (the swept disc), so that they stop apart, where braking each for a standing robot would let
+     * them meet.
+     */
+    @Test
+    void twoRobotsDrivenAtEachOtherStopApart() {
+        LoopPair p = new LoopPair(LoopRig.emptyMap(), new Pose2D(2, 5, 0), new Pose2D(6, 5, Math.PI), 10, List.of());
+        for (double t = 0; t < 8; t += 0.1) {
+            p.a.joystick(0.5, 0);
+            p.b.joystick(0.5, 0);
+            for (int i = 0; i < 5; i++) {
+                p.tick();
+            }
+        }
+        assertTrue(p.closest >= TOUCH, "they touched: centres " + p.closest + " m apart");
+        assertEquals(0, p.a.boards.lastWrite().left(), 1e-9, "a stands");
+        assertEquals(0, p.b.boards.lastWrite().left(), 1e-9, "b stands");
+    }
+
+    /**
+     * Two robots sent to swap their places in open space meet head-on: each keeps right, they pass, and both arrive
+     * without their footprints touching, hearing each other 0.2 s late. Both ways round (robot a from the west, then
+     * from the east): each passes on its own right, whichever side of the map that is.
+     */
+    @ParameterizedTest
+    @ValueSource(booleans = { true, false })
+    void twoRobotsSwappingPlacesHeadOnKeepRightAndPass(boolean aFromTheWest) {
+        Pose2D west = new Pose2D(2, 5, 0), east = new Pose2D(6, 5, Math.PI);
+        LoopPair p = new LoopPair(LoopRig.emptyMap(), aFromTheWest ? west : east, aFromTheWest ? east : west, 10,
+                List.of());
+        p.tick();
+        Pose2D goalA = aFromTheWest ? east : west, goalB = aFromTheWest ? west : east;
+        p.send(p.a, goalA.x(), goalA.y(), goalA.theta() + Math.PI);
+        p.send(p.b, goalB.x(), goalB.y(), goalB.theta() + Math.PI);
+        p.runMissions(60);
+        assertEquals(MissionState.DONE, p.state(p.a), p.a.loop.snapshot().mission().detail());
+        assertEquals(MissionState.DONE, p.state(p.b), p.b.loop.snapshot().mission().detail());
+        assertTrue(p.closest >= TOUCH + 0.1, "came within " + p.closest + " m");
+        // where they met, the one heading east is south of the one heading west: each on its own right
+        Pose2D[] nearest = p.poses.stream().min(java.util.Comparator.comparingDouble(two -> Math.hypot(two[0].x()
+                - two[1].x(), two[0].y() - two[1].y()))).orElseThrow();
+        Pose2D eastbound = aFromTheWest ? nearest[0] : nearest[1];
+        Pose2D westbound = aFromTheWest ? nearest[1] : nearest[0];
+        assertTrue(westbound.y() - eastbound.y() >= TOUCH, "each on its own right, a footprint apart across the way, "
+                + "where they met: eastbound " + eastbound + ", westbound " + westbound);
     }
 
     /** Not heard from for longer than the peer memory, a robot is no obstacle any more: the joystick drives on. */
