@@ -120,7 +120,7 @@ class PeersTest extends RigTest {
     }
 
     @Test
-    void twoRobotsMeetingHeadOnInTheCorridorPassEachOtherWithoutContact(@TempDir(cleanup = org.junit.jupiter.api.io.CleanupMode.NEVER) Path dir) throws Exception {
+    void twoRobotsMeetingHeadOnInTheCorridorPassEachOtherWithoutContact(@TempDir Path dir) throws Exception {
         try (Pair p = new Pair(dir, SimProcess.labMap(), WEST, EAST)) {
             double startTime = p.sim.truth().t();
             p.send(0, new Pose2D(EAST.x(), EAST.y(), WEST.theta()));
