@@ -1116,10 +1116,16 @@ public final class ControlLoop {
 
     /**
      * @return the mission as reported: while the collision guard limits the robot, its words are the detail (a joystick
-     *         drives) or follow it (a mission runs), so that the operator reads why the robot slows or stands
+     *         drives) or follow it (a mission runs), so that the operator reads why the robot slows or stands; so do
+     *         a yield's at a passage ({@code yielding at passage 1: sabot-02@sabot.local passes})
      */
     private MissionStatus withGuardStatus(MissionStatus m) {
         String g = guard.status();
+        if (mode == Mode.YIELD) {
+            String y = "yielding at passage " + (passages.claim() == null ? "" : passages.claim().passage() + "")
+                    + ": " + yieldReason;
+            g = g.isEmpty() ? y : y + "; " + g;
+        }
         if (g.isEmpty()) {
             return m;
         }

@@ -108,6 +108,8 @@ class PassageLoopTest {
                 assertTrue(s.pose().pose().x() < DOOR.minX() - LoopRig.ROBOT_RADIUS - 0.5, "stopped short: "
                         + s.pose());
                 assertEquals(PassageClaim.State.WAITING, s.passage().orElseThrow().state());
+                assertTrue(s.mission().detail().endsWith("; yielding at passage 1: " + B + " passes"), "the "
+                        + "operator reads why it stands: " + s.mission().detail());
             }
             if (t < 5 && !Double.isNaN(yieldedAt)) {
                 assertEquals(Mode.YIELD, s.mode(), "went on at " + t + " s, while the silent claim counted");

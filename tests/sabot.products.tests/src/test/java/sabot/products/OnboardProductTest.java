@@ -72,7 +72,7 @@ class OnboardProductTest {
         try (ProductProcess p = start("tasks = heartbeat, teleport\n")) {
             assertEquals(2, p.waitFor(), p.output());
             assertTrue(p.output().contains(":1: key 'tasks': unknown task 'teleport' (available: bus, controlml, "
-                    + "heartbeat, localizer, motion, planner, portal, remotefs, teleop, tracker)"),
+                    + "heartbeat, localizer, motion, peers, planner, portal, remotefs, teleop, tracker)"),
                     p.output());
         }
     }
