@@ -12,6 +12,7 @@ import java.security.MessageDigest;
 import java.security.cert.CertificateFactory;
 import java.time.Duration;
 import java.util.Base64;
+import java.util.List;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Supplier;
 
@@ -21,6 +22,7 @@ import org.jxmpp.jid.impl.JidCreate;
 import org.openqa.selenium.By;
 import org.openqa.selenium.JavascriptExecutor;
 import org.openqa.selenium.OutputType;
+import org.openqa.selenium.StaleElementReferenceException;
 import org.openqa.selenium.WebDriver;
 import org.openqa.selenium.WebElement;
 import org.openqa.selenium.chrome.ChromeDriver;
@@ -54,6 +56,19 @@ class PortalBrowserTest extends RigTest {
                 throw new AssertionError("the page did not show " + what + " within " + seconds + " s");
             }
             TimeUnit.MILLISECONDS.sleep(50);
+        }
+    }
+
+    /**
+     * @return the text of the element {@code id} of the page shown now, "" while the page has none (or is replaced
+     *         while read)
+     */
+    static String textOf(WebDriver b, String id) {
+        try {
+            List<WebElement> found = b.findElements(By.id(id));
+            return found.isEmpty() ? "" : found.get(0).getText();
+        } catch (StaleElementReferenceException e) {
+            return "";
         }
     }
 
@@ -164,7 +179,8 @@ class PortalBrowserTest extends RigTest {
 
                 // the observer reads, cannot change anything
                 logIn(b, base, "observer@" + PrivateXmppServer.DOMAIN);
-                await(() -> b.findElement(By.id("who")).getText().contains("(observer)"), 10, "the observer");
+                // the log-in form's POST: the click returns before the status page replaces the form
+                await(() -> textOf(b, "who").contains("(observer)"), 10, "the observer");
                 assertTrue(b.findElements(By.linkText("Configuration")).isEmpty());
                 assertEquals(403, forgedPost(b));
                 b.get(base + "/config");
