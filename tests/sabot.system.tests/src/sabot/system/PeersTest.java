@@ -147,8 +147,9 @@ class PeersTest extends RigTest {
     @Test
     void twoRobotsSentThroughOneDoorAtOnceTakeTurns(@TempDir Path dir) throws Exception {
         Path map = PrivateXmppServer.repositoryRoot().resolve("onboard-bridge/maps/two-rooms.yaml");
-        Pose2D westStart = new Pose2D(2.2, 2.6, 0), eastStart = new Pose2D(6.6, 1.8, Math.PI);
-        Pose2D westGoal = new Pose2D(6.6, 2.8, 0), eastGoal = new Pose2D(2.2, 1.6, Math.PI);
+        // both start on the door's axis (y 2.2), so that each approaches it straight; past it, each turns away
+        Pose2D westStart = new Pose2D(2.0, 2.2, 0), eastStart = new Pose2D(6.6, 2.2, Math.PI);
+        Pose2D westGoal = new Pose2D(6.6, 3.3, 0), eastGoal = new Pose2D(2.0, 1.1, Math.PI);
         try (Pair p = new Pair(dir, map, westStart, eastStart)) {
             double startTime = p.sim.truth().t();
             p.send(0, westGoal);
