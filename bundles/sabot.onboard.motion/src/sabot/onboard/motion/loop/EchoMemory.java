@@ -12,7 +12,6 @@ import sabot.model.geometry.Pose2D;
 import sabot.model.map.GridGeometry;
 import sabot.model.map.OccupancyGrid;
 import sabot.model.path.Trajectory;
-import sabot.model.path.TrajectorySample;
 
 /**
  * What the sonar saw, as an obstacle layer over the static map's grid (the costmap's raytracing, in the manner of
@@ -41,8 +40,6 @@ final class EchoMemory {
      */
     static final double POSE_ALLOWANCE = 0.1;
     static final double ANGLE_ALLOWANCE = Math.toRadians(2);
-    /** Step along the trajectory ahead at which it is checked against the marks, s. */
-    private static final double BLOCKED_CHECK_STEP = 0.1;
 
     private final NavigationPlanner planner;
     /** The grid the marks index: the static map's; marks are dropped when the map changes. */
@@ -190,14 +187,7 @@ final class EchoMemory {
         if (marks.isEmpty()) {
             return false;
         }
-        double end = Math.min(trajectory.duration(), from + lookahead);
-        for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
-            TrajectorySample r = trajectory.sample(s);
-            if (nearest(r.x(), r.y(), clearance) < clearance) {
-                return true;
-            }
-        }
-        return false;
+        return PathAhead.blocked(trajectory, from, lookahead, r -> nearest(r.x(), r.y(), clearance) < clearance);
     }
 
     /** @return the distance from (x, y) to the nearest marked cell's centre, m, or {@code limit} when none is nearer */

@@ -9,7 +9,6 @@ import java.util.function.Supplier;
 
 import sabot.model.geometry.Point2D;
 import sabot.model.path.Trajectory;
-import sabot.model.path.TrajectorySample;
 import sabot.model.robot.PeerRobot;
 import sabot.planner.costmap.MovingObstacle;
 
@@ -50,8 +49,6 @@ final class PeerField {
      * take meanwhile.
      */
     static final double SWEEP = 1.0;
-    /** Step along the trajectory ahead at which it is checked against the discs, s. */
-    private static final double BLOCKED_CHECK_STEP = 0.1;
 
     /** A peer as an obstacle now: its predicted centre, its map-frame velocity (0 when offline), its radius. */
     record Disc(String jid, double x, double y, double vx, double vy, double radius) {
@@ -220,13 +217,9 @@ final class PeerField {
         if (discs.isEmpty()) {
             return null;
         }
-        double end = Math.min(trajectory.duration(), from + lookahead);
-        for (double s = from; s <= end; s += BLOCKED_CHECK_STEP) {
-            TrajectorySample r = trajectory.sample(s);
-            for (Disc d : discs) {
-                if (swept(d, r.x(), r.y()) < clearance) {
-                    return d;
-                }
+        for (Disc d : discs) {
+            if (PathAhead.blocked(trajectory, from, lookahead, r -> swept(d, r.x(), r.y()) < clearance)) {
+                return d;
             }
         }
         return null;
